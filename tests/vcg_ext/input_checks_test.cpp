@@ -1,0 +1,101 @@
+// Bad input: a clear std::invalid_argument naming the problem, never a crash;
+// the mesh is never modified; deleted vertices are skipped.
+#include <gtest/gtest.h>
+#include <limits>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "test_mesh.h"
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+
+std::string ErrorOf(const test::TMesh& m, LOD::Param p) {
+  try {
+    LOD::Compute(m, p);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+LOD::Param Radius(double r) {
+  LOD::Param p;
+  p.radius = r;
+  return p;
+}
+}  // namespace
+
+TEST(InputChecks, EmptyOneAndCoincident) {
+  EXPECT_NE(ErrorOf(test::TMesh(), Radius(1)).find("no vertices"), std::string::npos);
+  test::TMesh one;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(one, 1);
+  EXPECT_NE(ErrorOf(one, Radius(1)).find("single vertex"), std::string::npos);
+  test::TMesh same;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(same, 50);
+  for (auto& v : same.vert) v.P() = test::P3(1, 2, 3);
+  EXPECT_NE(ErrorOf(same, Radius(1)).find("coincide"), std::string::npos);
+}
+
+TEST(InputChecks, NonFiniteCoordinates) {
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    test::TMesh m;
+  test::Plane(m, 10);
+    m.vert[7].P()[1] = bad;
+    EXPECT_NE(ErrorOf(m, Radius(0.1)).find("1 vertices have NaN or infinite"), std::string::npos);
+  }
+}
+
+TEST(InputChecks, RadiusAndParameters) {
+  test::TMesh m;
+  test::Plane(m, 10);
+  for (double r : {0.0, -1.0, double(NAN)}) EXPECT_NE(ErrorOf(m, Radius(r)).find("radius"), std::string::npos);
+  LOD::Param p = Radius(0.1);
+  p.domain.normalNeighbors = 0;
+  EXPECT_NE(ErrorOf(m, p).find("normalneighbors must be at least 1"), std::string::npos);
+  p.domain.normalNeighbors = 100;
+  EXPECT_NE(ErrorOf(m, p).find("smaller than the number of vertices (100)"), std::string::npos);
+  p = Radius(0.1);
+  p.domain.graphNeighbors = 0;
+  EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
+  p.domain.graphNeighbors = 1000;
+  EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
+  p = Radius(0.1);
+  p.domain.curvatureExponent = 0;
+  EXPECT_NE(ErrorOf(m, p).find("curvatureexponent"), std::string::npos);
+  p = Radius(0.1);
+  p.domain.adaptivity = -1;
+  EXPECT_NE(ErrorOf(m, p).find("adaptivity"), std::string::npos);
+}
+
+TEST(InputChecks, DuplicatePointsGiveOneSampleAtMost) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  test::AppendShifted(m, [](test::TMesh& b) { test::Plane(b, 20); }, test::P3(0, 0, 0));  // every point twice
+  const auto r = LOD::Compute(m, Radius(0.05));
+  std::set<std::pair<float, float>> at;
+  for (int v : r.vertIndex) EXPECT_TRUE(at.insert({m.vert[v].P()[0], m.vert[v].P()[1]}).second);
+}
+
+TEST(InputChecks, DeletedVerticesAreSkippedAndTheMeshIsUnchanged) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  for (size_t i = 0; i < m.vert.size(); i += 2) vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[i]);
+  const std::vector<test::TVertex> before = m.vert;
+  const auto r = LOD::Compute(m, Radius(0.1));
+  ASSERT_FALSE(r.vertIndex.empty());
+  for (int v : r.vertIndex) EXPECT_FALSE(m.vert[v].IsD());
+  EXPECT_EQ(r.pointCount, 200u);
+  ASSERT_EQ(before.size(), m.vert.size());
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    EXPECT_EQ(before[i].cP(), m.vert[i].cP());
+    EXPECT_EQ(before[i].cN(), m.vert[i].cN());
+    EXPECT_EQ(before[i].Flags(), m.vert[i].Flags());
+  }
+}
+
+TEST(InputChecks, CancelStopsWithCancelled) {
+  test::TMesh m;
+  test::Plane(m, 30);
+  static int calls;
+  calls = 0;
+  vcg::CallBackPos* stop = [](int, const char*) { return ++calls < 3; };
+  EXPECT_THROW(LOD::Compute(m, Radius(0.05), stop), vcg_ext::Cancelled);
+}

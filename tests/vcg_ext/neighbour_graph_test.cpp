@@ -1,0 +1,90 @@
+// The neighbour graph: symmetric, weights never shorter than the edge, components found;
+// the bounded search reaches exactly the points within the radius.
+#include <gtest/gtest.h>
+#include <vcg_ext/bounded_dijkstra.h>
+#include <vcg_ext/geodesic_domain.h>
+#include "test_mesh.h"
+
+namespace {
+using Domain = vcg_ext::GeodesicDomain<float>;
+
+Domain Build(const test::TMesh& m, vcg_ext::Metric metric, double a = 10) {
+  Domain::Param p;
+  p.metric = metric;
+  p.adaptivity = a;
+  return Domain::Build(vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m), p);
+}
+
+bool HasEdge(const vcg_ext::NeighbourGraph<float>& g, int i, int j) {
+  return std::binary_search(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1], j);
+}
+}  // namespace
+
+TEST(NeighbourGraph, SymmetricAndContainsEveryKnnEdge) {
+  test::TMesh m;
+  test::HeightField(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 10);
+  auto g = vcg_ext::NeighbourGraph<float>::Compute(ps.pos, knn, 10, [](int, int, float l) { return l; });
+  for (size_t i = 0; i < g.size(); ++i) {
+    for (int c = 0; c < 10; ++c) EXPECT_TRUE(HasEdge(g, int(i), knn.Row(i)[c]));
+    for (int e = g.offset[i]; e < g.offset[i + 1]; ++e) {
+      EXPECT_NE(g.adj[e], int(i));
+      EXPECT_TRUE(HasEdge(g, g.adj[e], int(i)));
+    }
+  }
+}
+
+TEST(NeighbourGraph, WeightsAreNeverShorterThanTheEdge) {
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (auto metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity, vcg_ext::Metric::Geodesic}) {
+    const Domain d = Build(m, metric);
+    for (size_t i = 0; i < d.graph.size(); ++i)
+      for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e)
+        EXPECT_GE(d.graph.w[e], vcg::Distance(d.points.pos[i], d.points.pos[d.graph.adj[e]]));
+  }
+}
+
+TEST(NeighbourGraph, CountsDisconnectedParts) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  test::AppendShifted(m, [](test::TMesh& b) { test::Plane(b, 20); }, test::P3(5, 0, 0));
+  test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 500, 0.3f); }, test::P3(0, 5, 0));
+  EXPECT_EQ(Build(m, vcg_ext::Metric::Geodesic).components, 3);
+}
+
+TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  const Domain d = Build(m, vcg_ext::Metric::WeightedEq3);
+  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  for (int src : {0, 333, 801, 1599}) {
+    const std::vector<float> full = search.Distances(src);
+    for (float r : {0.02f, 0.1f, 0.3f}) {
+      std::vector<char> seen(full.size(), 0);
+      float last = 0;
+      search.Visit(src, r, [&](int i, float di) {
+        EXPECT_FALSE(seen[i]) << "visited twice";
+        seen[i] = 1;
+        EXPECT_FLOAT_EQ(di, full[i]);
+        EXPECT_GE(di, last);  // increasing distance
+        last = di;
+      });
+      for (size_t i = 0; i < full.size(); ++i) EXPECT_EQ(bool(seen[i]), full[i] <= r) << "point " << i;
+    }
+  }
+}
+
+TEST(BoundedDijkstra, GraphDistanceBoundsTheStraightLine) {
+  test::TMesh m;
+  test::Plane(m, 30);
+  const Domain d = Build(m, vcg_ext::Metric::Geodesic);
+  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  const auto dist = search.Distances(0);
+  for (size_t i = 0; i < dist.size(); ++i) {
+    const float e = vcg::Distance(d.points.pos[0], d.points.pos[i]);
+    EXPECT_GE(dist[i], e * (1 - 1e-5f));
+    EXPECT_LE(dist[i], e * 1.1f + 1e-6f);  // an 8-connected grid path is at most ~8% longer
+  }
+}

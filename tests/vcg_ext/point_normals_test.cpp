@@ -1,0 +1,44 @@
+// Normals: the input's where valid, else estimated, unit and consistently (outward) oriented.
+#include <gtest/gtest.h>
+#include <vcg_ext/point_normals.h>
+#include <vcg_ext/point_set.h>
+#include "test_mesh.h"
+
+using Normals = vcg_ext::PointNormals<float>;
+
+TEST(PointNormals, EstimatedOnASphereAreUnitAndOutward) {
+  test::TMesh m;
+  test::Sphere(m, 3000);
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  auto r = Normals::Compute(ps.pos, ps.normal, Normals::Param{20, true});
+  EXPECT_EQ(r.estimated, ps.size());
+  for (size_t i = 0; i < ps.size(); ++i) {
+    EXPECT_NEAR(r.normal[i].Norm(), 1.f, 1e-4f);
+    EXPECT_GT(r.normal[i].dot(ps.pos[i]), 0.95f) << "point " << i;  // radial and outward
+  }
+}
+
+TEST(PointNormals, ValidInputNormalsAreKeptAndMissingOnesEstimated) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  for (size_t i = 0; i < m.vert.size(); ++i) m.vert[i].N() = i % 3 ? test::P3(0, 0, -2) : test::P3(0, 0, 0);
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  auto r = Normals::Compute(ps.pos, ps.normal, Normals::Param{10, true});
+  size_t zero = 0;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    if (i % 3) EXPECT_EQ(r.normal[i], test::P3(0, 0, -1));
+    else ++zero;
+    EXPECT_NEAR(std::abs(r.normal[i][2]), 1.f, 1e-5f);
+  }
+  EXPECT_EQ(r.estimated, zero);
+}
+
+TEST(PointNormals, RecomputeIgnoresInputNormals) {
+  test::TMesh m;
+  test::Plane(m, 15);
+  for (auto& v : m.vert) v.N() = test::P3(1, 0, 0);  // wrong on purpose
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  auto r = Normals::Compute(ps.pos, ps.normal, Normals::Param{10, false});
+  EXPECT_EQ(r.estimated, ps.size());
+  for (const auto& n : r.normal) EXPECT_NEAR(std::abs(n[2]), 1.f, 1e-5f);
+}

@@ -1,0 +1,170 @@
+// Geodesic Poisson-disk sampling: separation, coverage, determinism, counts,
+// disconnected parts, and adaptivity of the weighted metrics.
+#include <gtest/gtest.h>
+#include <set>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "test_mesh.h"
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using Domain = LOD::Domain;
+using vcg_ext::Metric;
+
+Domain Build(const test::TMesh& m, Metric metric, double adaptivity = 10) {
+  Domain::Param p;
+  p.metric = metric;
+  p.adaptivity = adaptivity;
+  return Domain::Build(vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m), p);
+}
+
+void Bumpy(test::TMesh& m, int n = 60) {
+  test::HeightField(m, n, [](float x, float y) { return test::HalfBumpy(x, y); });
+}
+
+// Share of the samples (and rate ratio) in the bumpy half x >= 0.5.
+struct Split {
+  double share, rateRatio;
+};
+Split BumpySplit(const Domain& d, const std::vector<int>& samples) {
+  size_t nb = 0, sb = 0;
+  for (const auto& p : d.points.pos) nb += p[0] >= 0.5f;
+  for (int s : samples) sb += d.points.pos[s][0] >= 0.5f;
+  const size_t nf = d.points.size() - nb, sf = samples.size() - sb;
+  return {double(sb) / samples.size(), (double(sb) / nb) / (double(sf) / nf)};
+}
+
+// Radius giving about `target` samples in `metric` (bisection on the count).
+double RadiusFor(const Domain& d, Metric metric, size_t target) {
+  double lo = 1e-4, hi = 2;
+  for (int it = 0; it < 30; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (LOD::Sample(d, metric, mid, 1).samples.size() > target ? lo : hi) = mid;
+  }
+  return hi;
+}
+}  // namespace
+
+TEST(PoissonDisk, SamplesAreSeparatedAndCoverEveryPoint) {
+  test::TMesh m;
+  Bumpy(m, 50);
+  for (Metric metric : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic}) {
+    const Domain d = Build(m, metric);
+    vcg_ext::BoundedDijkstra<float> search(d.graph);
+    const float r = 0.08f;
+    const auto s = LOD::Sample(d, metric, r, 7).samples;
+    ASSERT_GT(s.size(), 5u);
+    std::vector<float> nearest(d.points.size(), std::numeric_limits<float>::infinity());
+    for (int a : s) {  // full Dijkstra from every sample
+      const auto dist = search.Distances(a);
+      for (int b : s)
+        if (b != a) EXPECT_GT(dist[b], r) << "samples " << a << " and " << b << " too close";
+      for (size_t i = 0; i < dist.size(); ++i) nearest[i] = std::min(nearest[i], dist[i]);
+    }
+    for (size_t i = 0; i < nearest.size(); ++i) EXPECT_LE(nearest[i], r) << "point " << i << " uncovered";
+  }
+}
+
+TEST(PoissonDisk, EveryPointIsWithinTheRadiusOfASampleInStraightLine) {
+  // g_ij >= |p_i - p_j|: geodesic disks lie inside Euclidean balls.
+  test::TMesh m;
+  Bumpy(m, 50);
+  for (Metric metric : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic, Metric::Euclidean}) {
+    const Domain d = Build(m, metric);
+    const float r = 0.06f;
+    const auto s = LOD::Sample(d, metric, r, 3).samples;
+    for (size_t i = 0; i < d.points.size(); ++i) {
+      float best = std::numeric_limits<float>::infinity();
+      for (int a : s) best = std::min(best, vcg::Distance(d.points.pos[i], d.points.pos[a]));
+      EXPECT_LE(best, r * (1 + 1e-5f)) << "point " << i;
+    }
+    if (metric == Metric::Euclidean)
+      for (size_t a = 0; a < s.size(); ++a)
+        for (size_t b = a + 1; b < s.size(); ++b)
+          EXPECT_GT(vcg::Distance(d.points.pos[s[a]], d.points.pos[s[b]]), r * (1 - 1e-5f));
+  }
+}
+
+TEST(PoissonDisk, SameSeedSameOutputOtherSeedOtherOutput) {
+  test::TMesh m;
+  Bumpy(m, 40);
+  const Domain d = Build(m, Metric::WeightedEq3);
+  const auto a = LOD::Sample(d, Metric::WeightedEq3, 0.05, 42).samples;
+  EXPECT_EQ(a, LOD::Sample(d, Metric::WeightedEq3, 0.05, 42).samples);
+  EXPECT_NE(a, LOD::Sample(d, Metric::WeightedEq3, 0.05, 43).samples);
+  LOD::Param p;
+  p.radius = 0.05;
+  p.seed = 42;
+  EXPECT_EQ(LOD::Compute(m, p).vertIndex, LOD::Compute(m, p).vertIndex);
+}
+
+TEST(PoissonDisk, FewerSamplesAsTheRadiusGrows) {
+  test::TMesh m;
+  Bumpy(m, 50);
+  const Domain d = Build(m, Metric::WeightedEq3);
+  size_t last = d.points.size() + 1;
+  for (double r : {0.03, 0.06, 0.12, 0.24, 0.48}) {
+    const size_t n = LOD::Sample(d, Metric::WeightedEq3, r, 5).samples.size();
+    EXPECT_LT(n, last) << "radius " << r;
+    last = n;
+  }
+  EXPECT_EQ(LOD::Sample(d, Metric::WeightedEq3, 100.0, 5).samples.size(), 1u);  // radius beyond the model
+}
+
+TEST(PoissonDisk, EveryDisconnectedPartIsSampled) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  test::AppendShifted(m, [](test::TMesh& b) { test::Plane(b, 20); }, test::P3(5, 0, 0));
+  test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 300, 0.2f); }, test::P3(0, 5, 0));
+  LOD::Param p;
+  p.radius = 100;  // one disk would swallow everything if the parts were connected
+  const auto r = LOD::Compute(m, p);
+  EXPECT_EQ(r.components, 3);
+  ASSERT_EQ(r.vertIndex.size(), 3u);
+  std::set<int> parts;
+  for (int v : r.vertIndex) parts.insert(v < 400 ? 0 : v < 800 ? 1 : 2);
+  EXPECT_EQ(parts.size(), 3u);
+}
+
+TEST(PoissonDisk, Eq3NeverShortensDistancesAndKeepsTheBumpyShare) {
+  test::TMesh m;
+  Bumpy(m, 60);
+  const Domain geo = Build(m, Metric::Geodesic), eq3 = Build(m, Metric::WeightedEq3);
+  vcg_ext::BoundedDijkstra<float> sg(geo.graph), se(eq3.graph);
+  for (int src : {0, 1234, 3599}) {
+    const auto dg = sg.Distances(src), de = se.Distances(src);
+    for (size_t i = 0; i < dg.size(); ++i) EXPECT_GE(de[i], dg[i]);
+  }
+  double shareGeo = 0, shareEq3 = 0;
+  for (uint64_t seed : {1, 2, 3, 4}) {
+    shareGeo += BumpySplit(geo, LOD::Sample(geo, Metric::Geodesic, 0.04, seed).samples).share / 4;
+    shareEq3 += BumpySplit(eq3, LOD::Sample(eq3, Metric::WeightedEq3, 0.04, seed).samples).share / 4;
+  }
+  EXPECT_GE(shareEq3, shareGeo - 0.005);
+}
+
+TEST(PoissonDisk, CurvatureDensityAdaptsMoreWithAdaptivity) {
+  test::TMesh m;
+  Bumpy(m, 60);
+  const size_t target = 300;  // compare at equal sample counts
+  double last = 0;
+  for (double a : {0.0, 5.0, 10.0, 20.0}) {
+    const Domain d = Build(m, Metric::CurvatureDensity, a);
+    const auto s = LOD::Sample(d, Metric::CurvatureDensity, RadiusFor(d, Metric::CurvatureDensity, target), 1);
+    const double share = BumpySplit(d, s.samples).share;
+    EXPECT_GT(share, last) << "adaptivity " << a;
+    last = share;
+  }
+}
+
+TEST(PoissonDisk, DefaultAdaptivityAtLeastDoublesEuclideanRateRatio) {
+  test::TMesh m;
+  Bumpy(m, 60);
+  const size_t target = 300;
+  const Domain dens = Build(m, Metric::CurvatureDensity), eucl = Build(m, Metric::Euclidean);
+  ASSERT_EQ(Domain::Param().adaptivity, 10.0);
+  const double rd = BumpySplit(dens, LOD::Sample(dens, Metric::CurvatureDensity,
+                                                RadiusFor(dens, Metric::CurvatureDensity, target), 1).samples).rateRatio;
+  const double re = BumpySplit(eucl, LOD::Sample(eucl, Metric::Euclidean,
+                                                RadiusFor(eucl, Metric::Euclidean, target), 1).samples).rateRatio;
+  EXPECT_GE(rd, 2 * re) << "density " << rd << " euclidean " << re;
+}

@@ -1,0 +1,75 @@
+#ifndef VCG_EXT_BOUNDED_DIJKSTRA_H
+#define VCG_EXT_BOUNDED_DIJKSTRA_H
+// Dijkstra on a NeighbourGraph, stopped at a radius: the geodesic disk search.
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <utility>
+#include <vector>
+#include "neighbour_graph.h"
+
+namespace vcg_ext {
+
+/// Build once per graph, then run many searches. A search costs in proportion
+/// to the points it reaches and their edges, never to the graph's size: the
+/// per-point distances are validated by a search stamp instead of being reset.
+template <class Scalar>
+class BoundedDijkstra {
+ public:
+  explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g)
+      : g_(g), dist_(g.size()), stamp_(g.size(), 0) {}
+
+  /// Calls f(i, d) once for every point i at graph distance d <= r from
+  /// `src`, in order of increasing d (src first, with d = 0).
+  template <class F>
+  void Visit(int src, Scalar r, F&& f) {
+    NextStamp();
+    heap_.clear();
+    Reach(src, 0);
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+      const Entry top = heap_.back();
+      heap_.pop_back();
+      const int i = top.second;
+      if (top.first != dist_[i]) continue;  // stale: a shorter path came later
+      f(i, top.first);
+      for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
+        const Scalar nd = top.first + g_.w[e];
+        const int j = g_.adj[e];
+        if (nd <= r && (stamp_[j] != stamp || nd < dist_[j])) Reach(j, nd);
+      }
+    }
+  }
+
+  /// Graph distances from `src` to every point (infinity where unreachable).
+  std::vector<Scalar> Distances(int src) {
+    std::vector<Scalar> d(g_.size(), std::numeric_limits<Scalar>::infinity());
+    Visit(src, std::numeric_limits<Scalar>::max(), [&](int i, Scalar di) { d[i] = di; });
+    return d;
+  }
+
+ private:
+  typedef std::pair<Scalar, int> Entry;
+  void NextStamp() {
+    if (++stamp == 0) {  // wrapped after 2^32 searches: the one O(n) reset
+      std::fill(stamp_.begin(), stamp_.end(), 0);
+      stamp = 1;
+    }
+  }
+  void Reach(int j, Scalar d) {
+    stamp_[j] = stamp;
+    dist_[j] = d;
+    heap_.emplace_back(d, j);
+    std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+  }
+
+  const NeighbourGraph<Scalar>& g_;
+  std::vector<Scalar> dist_;
+  std::vector<uint32_t> stamp_;
+  uint32_t stamp = 0;
+  std::vector<Entry> heap_;
+};
+
+}  // namespace vcg_ext
+#endif

@@ -1,0 +1,36 @@
+#ifndef VCG_EXT_EUCLIDEAN_BALL_H
+#define VCG_EXT_EUCLIDEAN_BALL_H
+// Straight-line disk search with vcglib's kd-tree: the Euclidean baseline of
+// the same Poisson-disk sampler.
+#include <cmath>
+#include <memory>
+#include <vector>
+#include <vcg/space/index/kdtree/kdtree.h>
+
+namespace vcg_ext {
+
+template <class Scalar>
+class EuclideanBall {
+ public:
+  typedef vcg::Point3<Scalar> Coord;
+  explicit EuclideanBall(const std::vector<Coord>& pos)
+      : pos_(pos), tree_(new vcg::KdTree<Scalar>(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())))) {}
+
+  /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order).
+  template <class F>
+  void Visit(int src, Scalar r, F&& f) {
+    idx_.clear();
+    sq_.clear();
+    tree_->doQueryDist(pos_[src], r, idx_, sq_);
+    for (size_t h = 0; h < idx_.size(); ++h) f(int(idx_[h]), std::sqrt(sq_[h]));
+  }
+
+ private:
+  const std::vector<Coord>& pos_;
+  std::unique_ptr<vcg::KdTree<Scalar>> tree_;
+  std::vector<unsigned int> idx_;
+  std::vector<Scalar> sq_;
+};
+
+}  // namespace vcg_ext
+#endif

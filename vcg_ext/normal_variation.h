@@ -1,0 +1,32 @@
+#ifndef VCG_EXT_NORMAL_VARIATION_H
+#define VCG_EXT_NORMAL_VARIATION_H
+// Curvature as normal variation, paper eq. 1.
+#include <cmath>
+#include <vector>
+#include "knn_table.h"
+
+namespace vcg_ext {
+
+template <class Scalar>
+class NormalVariation {
+ public:
+  /// Eq. 1: v_i = sum_{j in kNN(i)} (1 - |n_i . n_j|) / k, over the k nearest
+  /// other points (the first k columns of the table, k <= knn.k; all by
+  /// default). 0 on a plane, at most 1; unit normals expected.
+  static std::vector<Scalar> Compute(const std::vector<vcg::Point3<Scalar>>& normal,
+                                     const KnnTable<Scalar>& knn, int k = 0) {
+    if (k <= 0) k = knn.k;
+    const size_t n = normal.size();
+    std::vector<Scalar> v(n);
+    for (size_t i = 0; i < n; ++i) {
+      const int* row = knn.Row(i);
+      double s = 0;
+      for (int j = 0; j < k; ++j) s += 1.0 - std::abs(double(normal[i].dot(normal[row[j]])));
+      v[i] = Scalar(std::max(0.0, s / k));
+    }
+    return v;
+  }
+};
+
+}  // namespace vcg_ext
+#endif

@@ -1,0 +1,59 @@
+#ifndef VCG_EXT_POINT_SET_H
+#define VCG_EXT_POINT_SET_H
+// The live (non-deleted) vertices of a vcglib mesh as a dense point array.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <vcg/complex/complex.h>
+
+namespace vcg_ext {
+
+/// Dense copy of a mesh's live vertices; every vcg_ext algorithm indexes
+/// points 0..size()-1 and maps back to the mesh through `vertIndex`.
+template <class Scalar>
+struct PointSet {
+  std::vector<vcg::Point3<Scalar>> pos;      ///< positions
+  std::vector<vcg::Point3<Scalar>> normal;   ///< the mesh's normals (zero if it has none)
+  std::vector<int> vertIndex;                ///< index in m.vert of each point
+  size_t size() const { return pos.size(); }
+};
+
+template <class MeshType>
+class PointSetFromMesh {
+ public:
+  typedef typename MeshType::ScalarType Scalar;
+
+  /// Copies the live vertices of `m` (deleted ones are skipped). The mesh is
+  /// not modified. Throws std::invalid_argument on non-finite coordinates,
+  /// which no distance can be computed from.
+  static PointSet<Scalar> Compute(const MeshType& m) {
+    PointSet<Scalar> ps;
+    ps.pos.reserve(m.vn);
+    ps.vertIndex.reserve(m.vn);
+    const bool hasNormal = vcg::tri::HasPerVertexNormal(m);
+    if (hasNormal) ps.normal.reserve(m.vn);
+    size_t nonFinite = 0;
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+      const auto& v = m.vert[i];
+      if (v.IsD()) continue;
+      const auto& p = v.cP();
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+        ++nonFinite;
+        continue;
+      }
+      ps.pos.push_back(vcg::Point3<Scalar>::Construct(p));
+      ps.vertIndex.push_back(int(i));
+      if (hasNormal) ps.normal.push_back(vcg::Point3<Scalar>::Construct(v.cN()));
+    }
+    if (nonFinite)
+      throw std::invalid_argument(std::to_string(nonFinite) +
+          " vertices have NaN or infinite coordinates: remove them first "
+          "(for example with 'Remove Unreferenced/NaN Vertices' after 'Select by Vertex Quality')");
+    if (!hasNormal) ps.normal.assign(ps.pos.size(), vcg::Point3<Scalar>(0, 0, 0));
+    return ps;
+  }
+};
+
+}  // namespace vcg_ext
+#endif
