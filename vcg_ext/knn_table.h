@@ -10,19 +10,17 @@
 namespace vcg_ext {
 
 /// Row i holds the k nearest other points of point i, nearest first.
-/// Memory: k * (4 + sizeof(Scalar)) bytes per point.
+/// Memory: 4k bytes per point.
 template <class Scalar>
 class KnnTable {
  public:
   typedef vcg::Point3<Scalar> Coord;
 
   int k = 0;
-  std::vector<int> idx;       ///< n*k neighbour indices
-  std::vector<Scalar> dist;   ///< n*k Euclidean distances, ascending per row
+  std::vector<int> idx;       ///< n*k neighbour indices, by increasing distance per row
 
   size_t size() const { return k ? idx.size() / k : 0; }
   const int* Row(size_t i) const { return &idx[i * k]; }
-  const Scalar* Dist(size_t i) const { return &dist[i * k]; }
 
   /// kNN of all points, excluding the point itself; 1 <= k < pos.size().
   /// Cost O(n k log n).
@@ -31,7 +29,6 @@ class KnnTable {
     t.k = k;
     const size_t n = pos.size();
     t.idx.resize(n * k);
-    t.dist.resize(n * k);
     vcg::ConstDataWrapper<Coord> dw(pos.data(), n);
     vcg::KdTree<Scalar> tree(dw);
     typename vcg::KdTree<Scalar>::PriorityQueue heap;
@@ -43,10 +40,7 @@ class KnnTable {
         if (heap.getIndex(h) != int(i)) row.emplace_back(heap.getWeight(h), heap.getIndex(h));
       // Ties (duplicate points) are broken by index so the table is deterministic.
       std::sort(row.begin(), row.end());
-      for (int j = 0; j < k; ++j) {
-        t.idx[i * k + j] = row[j].second;
-        t.dist[i * k + j] = std::sqrt(row[j].first);  // the heap holds squared distances
-      }
+      for (int j = 0; j < k; ++j) t.idx[i * k + j] = row[j].second;
       if ((i & 4095) == 0) progress(i, n, "Finding nearest neighbours");
     }
     return t;

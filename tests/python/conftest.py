@@ -1,0 +1,52 @@
+"""Fixtures for the pymeshlab client tests: the built plugin and the shared scans."""
+import os
+import pathlib
+
+import numpy as np
+import pymeshlab
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SHARED_DATA = pathlib.Path(os.environ.get("GEODESIC_LOD_SHARED_DATA", ROOT.parent / "shared" / "data"))
+PLUGIN = pathlib.Path(os.environ.get("GEODESIC_LOD_PLUGIN", ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+
+_loaded = False
+
+
+@pytest.fixture(scope="session")
+def plugin():
+    """Loads the plugin into pymeshlab once per process."""
+    global _loaded
+    assert PLUGIN.is_file(), f"plugin not built: {PLUGIN}"
+    if not _loaded:
+        pymeshlab.load_plugin(str(PLUGIN))
+        _loaded = True
+    return PLUGIN
+
+
+@pytest.fixture
+def shared():
+    """Path of a file in ../shared/data; skips, saying so, where that folder is absent (a user's clone)."""
+    def get(name):
+        path = SHARED_DATA / name
+        if not path.is_file():
+            pytest.skip(f"needs the shared scan {path} (present in CI, not in a user's clone)")
+        return str(path)
+    return get
+
+
+def bumpy_points(n=60, amp=0.05):
+    """n x n points on [0,1]^2, flat for x < 0.5 and with sine bumps for x >= 0.5."""
+    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n), indexing="ij")
+    z = np.where(x < 0.5, 0.0, amp * (np.sin(8 * np.pi * x) * np.sin(8 * np.pi * y)) ** 2)
+    return np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+
+
+def mesh_set(points, normals=None):
+    ms = pymeshlab.MeshSet()
+    if normals is None:
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(points, dtype=np.float64)), "cloud")
+    else:
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(points, dtype=np.float64),
+                                   v_normals_matrix=np.asarray(normals, dtype=np.float64)), "cloud")
+    return ms

@@ -1,0 +1,162 @@
+"""The plugin through the real pymeshlab 2025.7: listing, output properties, bad input."""
+import numpy as np
+import pymeshlab
+import pytest
+from scipy.spatial import cKDTree
+
+from conftest import bumpy_points, mesh_set
+
+FILTER = "generate_geodesic_poisson_lod"
+PARAMS = ["radius", "metric", "curvatureexponent", "adaptivity", "normalneighbors",
+          "graphneighbors", "recomputenormals", "seed"]
+
+
+def snapshot(mesh):
+    return (mesh.vertex_matrix().copy(), mesh.vertex_normal_matrix().copy(),
+            mesh.vertex_color_matrix().copy(), mesh.face_number())
+
+
+def assert_same(a, b):
+    for x, y in zip(a[:3], b[:3]):
+        np.testing.assert_array_equal(x, y)
+    assert a[3] == b[3]
+
+
+def check_lod(ms, input_id, result):
+    """Subset of the input, coverage within the radius, unit normals, input unchanged."""
+    src = ms.mesh(input_id)
+    lod = ms.current_mesh()
+    assert lod.id() != input_id
+    assert lod.label() == src.label() + " LOD"
+    pts, samples = src.vertex_matrix(), lod.vertex_matrix()
+    assert result["sample_num"] == lod.vertex_number() > 0
+    assert lod.vertex_number() < src.vertex_number()
+    # Every sample is an input point, bit for bit, and no point is taken twice.
+    dist, idx = cKDTree(pts).query(samples)
+    assert np.all(dist == 0)
+    np.testing.assert_array_equal(pts[idx], samples)
+    assert len(np.unique(idx)) == len(idx)
+    # Coverage: geodesic disks lie inside Euclidean balls of the same radius.
+    reach, _ = cKDTree(samples).query(pts)
+    assert reach.max() <= result["radius"] * (1 + 1e-9)
+    normals = lod.vertex_normal_matrix()
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
+    return idx
+
+
+def test_filter_is_listed_with_documented_parameters(plugin, capfd):
+    assert FILTER in pymeshlab.filter_list()
+    pymeshlab.print_filter_parameter_list(FILTER)
+    out = capfd.readouterr().out
+    for p in PARAMS:
+        assert p in out, p
+
+
+def test_synthetic_cloud(plugin):
+    ms = mesh_set(bumpy_points())
+    before = snapshot(ms.current_mesh())
+    res = ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.05))
+    assert set(res) >= {"sample_num", "radius"}
+    assert res["radius"] == pytest.approx(0.05)
+    check_lod(ms, 0, res)
+    assert_same(before, snapshot(ms.mesh(0)))
+    assert ms.mesh_number() == 2
+
+
+def test_same_seed_same_output(plugin):
+    runs = []
+    for seed in (3, 3, 4):
+        ms = mesh_set(bumpy_points(40))
+        ms.apply_filter(FILTER, radius=pymeshlab.PercentageValue(4), seed=seed)
+        runs.append(ms.current_mesh().vertex_matrix())
+    np.testing.assert_array_equal(runs[0], runs[1])
+    assert runs[0].shape != runs[2].shape or not np.array_equal(runs[0], runs[2])
+
+
+def test_every_metric_runs_and_curvature_density_adapts(plugin):
+    pts = bumpy_points()
+    share = {}
+    for metric in ["Weighted geodesic (eq. 3)", "Curvature-density geodesic", "Geodesic (unweighted)", "Euclidean"]:
+        ms = mesh_set(pts)
+        res = ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.04), metric=metric)
+        idx = check_lod(ms, 0, res)
+        share[metric] = np.mean(pts[idx, 0] >= 0.5)
+    assert share["Curvature-density geodesic"] > share["Euclidean"]
+
+
+def test_attributes_are_carried_to_the_lod(plugin):
+    pts = bumpy_points(30)
+    ms = mesh_set(pts)
+    m = ms.current_mesh()
+    ms.compute_color_by_function_per_vertex(r="x*255", g="y*255", b="128")
+    ms.compute_scalar_by_function_per_vertex(q="x+2*y")
+    ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.1))
+    src, lod = ms.mesh(0), ms.current_mesh()
+    _, idx = cKDTree(src.vertex_matrix()).query(lod.vertex_matrix())
+    np.testing.assert_array_equal(lod.vertex_color_matrix(), src.vertex_color_matrix()[idx])
+    np.testing.assert_array_equal(lod.vertex_scalar_array(), src.vertex_scalar_array()[idx])
+
+
+def test_given_normals_are_kept(plugin):
+    pts = bumpy_points(30)
+    normals = np.tile([0.0, 0.0, 1.0], (len(pts), 1))
+    ms = mesh_set(pts, normals)
+    ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.1))
+    np.testing.assert_array_equal(ms.current_mesh().vertex_normal_matrix(),
+                                  np.tile([0.0, 0.0, 1.0], (ms.current_mesh().vertex_number(), 1)))
+
+
+def test_duplicate_points_give_distinct_samples(plugin):
+    pts = bumpy_points(30)
+    ms = mesh_set(np.vstack([pts, pts]))
+    res = ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.1))
+    samples = ms.current_mesh().vertex_matrix()
+    assert len(np.unique(samples, axis=0)) == len(samples) == res["sample_num"]
+
+
+def test_bunny_raw_scans(plugin, shared):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(shared("bunny_scans_362k.ply"))
+    before = snapshot(ms.current_mesh())
+    res = ms.apply_filter(FILTER)
+    check_lod(ms, 0, res)
+    assert_same(before, snapshot(ms.mesh(0)))
+
+
+def test_dragon_vertices(plugin, shared):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(shared("dragon_437k.ply"))
+    before = snapshot(ms.current_mesh())
+    res = ms.apply_filter(FILTER, metric="Curvature-density geodesic")
+    check_lod(ms, 0, res)
+    assert_same(before, snapshot(ms.mesh(0)))
+    assert ms.current_mesh().face_number() == 0
+
+
+BAD = {
+    "empty layer": (np.zeros((0, 3)), {}, "no vertices"),
+    "one point": (np.array([[0.0, 0.0, 0.0]]), {}, "single vertex"),
+    "coincident points": (np.ones((50, 3)), {}, "coincide"),
+    "NaN coordinate": (np.vstack([bumpy_points(10), [[np.nan, 0, 0]]]), {}, "NaN or infinite"),
+    "infinite coordinate": (np.vstack([bumpy_points(10), [[0, np.inf, 0]]]), {}, "NaN or infinite"),
+    "zero radius": (bumpy_points(10), {"radius": pymeshlab.PureValue(0)}, "radius must be a positive"),
+    "negative radius": (bumpy_points(10), {"radius": pymeshlab.PureValue(-1)}, "radius must be a positive"),
+    "normalneighbors 0": (bumpy_points(10), {"normalneighbors": 0}, "normalneighbors must be at least 1"),
+    "normalneighbors >= n": (bumpy_points(10), {"normalneighbors": 100}, "normalneighbors (100)"),
+    "graphneighbors 0": (bumpy_points(10), {"graphneighbors": 0}, "graphneighbors must be at least 1"),
+    "graphneighbors >= n": (bumpy_points(10), {"graphneighbors": 500}, "graphneighbors (500)"),
+    "curvatureexponent 0": (bumpy_points(10), {"curvatureexponent": 0.0}, "curvatureexponent"),
+    "negative adaptivity": (bumpy_points(10), {"adaptivity": -1.0}, "adaptivity"),
+    "negative seed": (bumpy_points(10), {"seed": -5}, "seed"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input_raises_a_clear_exception(plugin, case):
+    pts, kwargs, message = BAD[case]
+    ms = mesh_set(pts)
+    before = snapshot(ms.current_mesh())
+    with pytest.raises(pymeshlab.PyMeshLabException, match=message):
+        ms.apply_filter(FILTER, **kwargs)
+    assert ms.mesh_number() == 1  # no half-made layer
+    assert_same(before, snapshot(ms.mesh(0)))
