@@ -93,11 +93,17 @@ def test_attributes_are_carried_to_the_lod(plugin):
     m = ms.current_mesh()
     ms.compute_color_by_function_per_vertex(x="x*255", y="y*255", z="128")
     ms.compute_scalar_by_function_per_vertex(q="x+2*y")
+    m.add_vertex_custom_scalar_attribute(np.arange(len(pts), dtype=np.float64) / 3, "confidence")
+    m.add_vertex_custom_point_attribute(pts[:, ::-1].copy(), "albedo")
     ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.1))
     src, lod = ms.mesh(0), ms.current_mesh()
     _, idx = cKDTree(src.vertex_matrix()).query(lod.vertex_matrix())
     np.testing.assert_array_equal(lod.vertex_color_matrix(), src.vertex_color_matrix()[idx])
     np.testing.assert_array_equal(lod.vertex_scalar_array(), src.vertex_scalar_array()[idx])
+    np.testing.assert_array_equal(lod.vertex_custom_scalar_attribute_array("confidence"),
+                                  src.vertex_custom_scalar_attribute_array("confidence")[idx])
+    np.testing.assert_array_equal(lod.vertex_custom_point_attribute_matrix("albedo"),
+                                  src.vertex_custom_point_attribute_matrix("albedo")[idx])
 
 
 def test_given_normals_are_kept(plugin):

@@ -1,7 +1,9 @@
 // Bad input: a clear std::invalid_argument naming the problem, never a crash;
 // the mesh is never modified; deleted vertices are skipped.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <limits>
+#include <set>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include "test_mesh.h"
 
@@ -98,4 +100,17 @@ TEST(InputChecks, CancelStopsWithCancelled) {
   calls = 0;
   vcg::CallBackPos* stop = [](int, const char*) { return ++calls < 3; };
   EXPECT_THROW(LOD::Compute(m, Radius(0.05), stop), vcg_ext::Cancelled);
+}
+
+TEST(InputChecks, ProgressRisesToTheEnd) {
+  test::TMesh m;
+  test::Plane(m, 40);
+  static std::vector<int> seen;
+  seen.clear();
+  vcg::CallBackPos* record = [](int pct, const char*) { seen.push_back(pct); return true; };
+  LOD::Compute(m, Radius(0.05), record);
+  ASSERT_GT(seen.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GE(seen.back(), 99);
+  EXPECT_LE(seen.back(), 100);
 }
