@@ -42,6 +42,34 @@ class BoundedDijkstra {
     }
   }
 
+  /// Multi-source step: lowers `dist` (distances to a set of sources, one
+  /// entry per point, infinity where unknown) to account for the new source
+  /// `src`, calling f(i, d) for every point whose distance drops to d. Only
+  /// those points and their edges are touched.
+  template <class F>
+  void Lower(int src, std::vector<Scalar>& dist, F&& f) {
+    heap_.clear();
+    dist[src] = 0;
+    heap_.emplace_back(Scalar(0), src);
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+      const Entry top = heap_.back();
+      heap_.pop_back();
+      const int i = top.second;
+      if (top.first != dist[i]) continue;  // stale
+      f(i, top.first);
+      for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
+        const Scalar nd = top.first + g_.w[e];
+        const int j = g_.adj[e];
+        if (nd < dist[j]) {
+          dist[j] = nd;
+          heap_.emplace_back(nd, j);
+          std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+        }
+      }
+    }
+  }
+
   /// Graph distances from `src` to every point (infinity where unreachable).
   std::vector<Scalar> Distances(int src) {
     std::vector<Scalar> d(g_.size(), std::numeric_limits<Scalar>::infinity());
