@@ -24,21 +24,28 @@ class NeighbourGraph {
   template <class WeightFn>
   static NeighbourGraph Compute(const std::vector<vcg::Point3<Scalar>>& pos,
                                 const KnnTable<Scalar>& knn, int k, const WeightFn& weight) {
-    NeighbourGraph g;
-    const size_t n = knn.size();
-    std::vector<int> deg(n, k);
-    for (size_t i = 0; i < n; ++i)
-      for (int j = 0; j < k; ++j) ++deg[knn.Row(i)[j]];
-    g.offset.assign(n + 1, 0);
-    for (size_t i = 0; i < n; ++i) g.offset[i + 1] = g.offset[i] + deg[i];
-    std::vector<int> fill(g.offset.begin(), g.offset.end() - 1);
-    g.adj.resize(g.offset[n]);
-    for (size_t i = 0; i < n; ++i)
+    std::vector<std::pair<int, int>> pairs;
+    pairs.reserve(knn.size() * k * 2);
+    for (size_t i = 0; i < knn.size(); ++i)
       for (int c = 0; c < k; ++c) {
-        const int j = knn.Row(i)[c];
-        g.adj[fill[i]++] = j;
-        g.adj[fill[j]++] = int(i);
+        pairs.emplace_back(int(i), knn.Row(i)[c]);
+        pairs.emplace_back(knn.Row(i)[c], int(i));
       }
+    return FromPairs(pos, knn.size(), pairs, weight);
+  }
+
+  /// The graph of the directed pairs (i, j), duplicates merged, on n points;
+  /// give both directions for a symmetric graph.
+  template <class WeightFn>
+  static NeighbourGraph FromPairs(const std::vector<vcg::Point3<Scalar>>& pos, size_t n,
+                                  const std::vector<std::pair<int, int>>& pairs, const WeightFn& weight) {
+    NeighbourGraph g;
+    g.offset.assign(n + 1, 0);
+    for (const auto& p : pairs) ++g.offset[p.first + 1];
+    for (size_t i = 0; i < n; ++i) g.offset[i + 1] += g.offset[i];
+    std::vector<int> fill(g.offset.begin(), g.offset.end() - 1);
+    g.adj.resize(pairs.size());
+    for (const auto& p : pairs) g.adj[fill[p.first]++] = p.second;
     // Sort and dedupe each row in place, then close the gaps.
     int out = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -56,6 +63,12 @@ class NeighbourGraph {
       for (int e = g.offset[i]; e < g.offset[i + 1]; ++e)
         g.w[e] = weight(int(i), g.adj[e], vcg::Distance(pos[i], pos[g.adj[e]]));
     return g;
+  }
+
+  /// g_ij of the edge (i, j), which must exist. Cost O(log degree).
+  Scalar Weight(int i, int j) const {
+    const auto b = adj.begin() + offset[i], e = adj.begin() + offset[i + 1];
+    return w[std::lower_bound(b, e, j) - adj.begin()];
   }
 
   /// Number of connected components.

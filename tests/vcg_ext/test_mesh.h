@@ -38,6 +38,20 @@ inline float HalfBumpy(float x, float y, float amp = 0.05f, float freq = 8.f) {
   return amp * s * s;
 }
 
+/// HeightField with two triangles per grid cell, counter-clockwise seen from +z.
+inline void GridMesh(TMesh& m, int n, const std::function<float(float, float)>& h) {
+  HeightField(m, n, h);
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      TVertex* v00 = &m.vert[size_t(i) * n + j];
+      TVertex* v10 = &m.vert[size_t(i + 1) * n + j];
+      TVertex* v01 = &m.vert[size_t(i) * n + j + 1];
+      TVertex* v11 = &m.vert[size_t(i + 1) * n + j + 1];
+      vcg::tri::Allocator<TMesh>::AddFace(m, v00, v10, v11);
+      vcg::tri::Allocator<TMesh>::AddFace(m, v00, v11, v01);
+    }
+}
+
 /// Points on a sphere (Fibonacci spiral), normals left zero.
 inline void Sphere(TMesh& m, int n, float r = 1.f) {
   vcg::tri::Allocator<TMesh>::AddVertices(m, n);
