@@ -16,6 +16,23 @@ class EuclideanBall {
   explicit EuclideanBall(const std::vector<Coord>& pos)
       : pos_(pos), tree_(new vcg::KdTree<Scalar>(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())))) {}
 
+  /// Lowers `dist` (straight-line distances to a set of sources) for the new
+  /// source `src`, calling f(i, d) for each point whose distance drops. Such a
+  /// point is nearer to src than dist[src] (the farthest distance, in FPS), so
+  /// one ball query of that radius finds them all.
+  template <class F>
+  void Lower(int src, std::vector<Scalar>& dist, F&& f) {
+    const Scalar reach = dist[src];
+    auto lower = [&](int i, Scalar d) {
+      if (d < dist[i] || i == src) { dist[i] = d; f(i, d); }
+    };
+    if (std::isinf(reach)) {
+      for (size_t i = 0; i < pos_.size(); ++i) lower(int(i), vcg::Distance(pos_[src], pos_[i]));
+    } else {
+      Visit(src, reach, lower);
+    }
+  }
+
   /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order).
   template <class F>
   void Visit(int src, Scalar r, F&& f) {

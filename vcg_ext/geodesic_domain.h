@@ -1,14 +1,20 @@
 #ifndef VCG_EXT_GEODESIC_DOMAIN_H
 #define VCG_EXT_GEODESIC_DOMAIN_H
-// Everything the samplers need from a point set, built once: normals (n_i),
-// curvature (eq. 1) and the weighted neighbour graph (eq. 2-3).
+// Everything the samplers need from a layer, built once: normals (n_i),
+// curvature (eq. 1) and the geodesics of the weighted metric (eq. 2-3), on
+// the point graph or by fast marching over the mesh's triangles.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "bounded_dijkstra.h"
+#include "euclidean_ball.h"
+#include "fast_marching.h"
 #include "geodesic_metric.h"
 #include "knn_table.h"
+#include "mesh_triangles.h"
 #include "neighbour_graph.h"
 #include "normal_variation.h"
 #include "point_normals.h"
@@ -16,12 +22,19 @@
 
 namespace vcg_ext {
 
+enum class GeodesicMode {
+  Auto = 0,       ///< Mesh when the layer has faces, else PointGraph
+  Mesh = 1,       ///< fast marching over the triangles
+  PointGraph = 2  ///< Dijkstra on the symmetric k-nearest-neighbour graph
+};
+
 template <class Scalar>
 class GeodesicDomain {
  public:
   typedef vcg::Point3<Scalar> Coord;
   struct Param {
     Metric metric = Metric::WeightedEq3;
+    GeodesicMode mode = GeodesicMode::Auto;
     double curvatureExponent = 1.0;  ///< c of eq. 3, > 0
     double adaptivity = 10.0;        ///< a of the curvature-density weighting, >= 0
     int normalNeighbors = 20;        ///< k of the normal fit and of eq. 1
@@ -29,15 +42,21 @@ class GeodesicDomain {
     bool useInputNormals = true;     ///< keep the input's valid normals
   };
 
-  PointSet<Scalar> points;
+  PointSet<Scalar> points;          ///< in Mesh mode: the vertices of usable triangles only
   std::vector<Coord> normal;        ///< n_i, unit
   size_t estimatedNormals = 0;
   std::vector<Scalar> curvature;    ///< v_i, eq. 1
-  NeighbourGraph<Scalar> graph;     ///< empty for Metric::Euclidean
-  int components = 0;               ///< connected parts of the graph (0 if none built)
+  Metric metric = Metric::WeightedEq3;
+  bool meshGeodesics = false;       ///< fast marching (else point graph or Euclidean)
+  NeighbourGraph<Scalar> graph;     ///< point-graph geodesics
+  FastMarchingMesh<Scalar> fmMesh;  ///< mesh geodesics
+  std::vector<std::array<int, 3>> triangles;  ///< the layer's usable triangles, point indices
+  int components = 0;               ///< connected parts (0 for Euclidean)
+  size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
+  size_t skippedFaces = 0;          ///< faces with a deleted or repeated corner
 
   /// Throws std::invalid_argument naming the first bad input.
-  static void Check(const PointSet<Scalar>& ps, const Param& p) {
+  static void Check(const PointSet<Scalar>& ps, bool hasTriangles, const Param& p) {
     const size_t n = ps.size();
     if (n == 0) throw std::invalid_argument("the layer has no vertices");
     if (n == 1) throw std::invalid_argument("the layer has a single vertex: there is nothing to sample from");
@@ -45,18 +64,39 @@ class GeodesicDomain {
     for (const Coord& q : ps.pos) box.Add(q);
     if (!(box.Diag() > 0))
       throw std::invalid_argument("all " + std::to_string(n) + " vertices coincide: there is no surface to sample");
+    if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)
+      throw std::invalid_argument("geodesicmode Mesh needs a layer with faces; this one has none "
+                                  "(use Auto or Point graph for point clouds)");
     CheckNeighbours("normalneighbors", p.normalNeighbors, n);
-    if (p.metric != Metric::Euclidean) CheckNeighbours("graphneighbors", p.graphNeighbors, n);
+    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours("graphneighbors", p.graphNeighbors, n);
     if (!(p.curvatureExponent > 0) || !std::isfinite(p.curvatureExponent))
       throw std::invalid_argument("curvatureexponent must be a positive number (got " + Str(p.curvatureExponent) + ")");
     if (!(p.adaptivity >= 0) || !std::isfinite(p.adaptivity))
       throw std::invalid_argument("adaptivity must be zero or positive (got " + Str(p.adaptivity) + ")");
   }
 
+  /// From a vcglib mesh (not modified): its live vertices, and its faces when
+  /// the mode asks for mesh geodesics. Throws std::invalid_argument.
+  template <class MeshType>
+  static GeodesicDomain FromMesh(const MeshType& m, const Param& p, Progress progress = Progress(nullptr)) {
+    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
+    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
+    return Build(std::move(ps), std::move(tris), p, progress);
+  }
+
   /// Cost O(n k log n) for the kNN queries, O(n k) for the rest.
-  static GeodesicDomain Build(PointSet<Scalar> ps, const Param& p, Progress progress = Progress(nullptr)) {
-    Check(ps, p);
+  static GeodesicDomain Build(PointSet<Scalar> ps, MeshTriangles tris, const Param& p,
+                              Progress progress = Progress(nullptr)) {
+    Check(ps, !tris.tri.empty(), p);
     GeodesicDomain d;
+    d.metric = p.metric;
+    d.meshGeodesics = p.metric != Metric::Euclidean && !UsesPointGraph(!tris.tri.empty(), p);
+    if (d.meshGeodesics) {
+      d.skippedFaces = tris.skipped;
+      d.leftOut = KeepReferenced(ps, tris.tri);
+      Check(ps, true, p);  // what is left must still be samplable
+    }
+    d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     typename PointNormals<Scalar>::Param np;
     np.k = p.normalNeighbors;
@@ -64,25 +104,72 @@ class GeodesicDomain {
     auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, np, progress.Sub(0, 50));
     d.normal = std::move(nr.normal);
     d.estimatedNormals = nr.estimated;
-    const bool graph = p.metric != Metric::Euclidean;
+    const bool graph = p.metric != Metric::Euclidean && !d.meshGeodesics;
     const int k = graph ? std::max(p.normalNeighbors, p.graphNeighbors) : p.normalNeighbors;
     KnnTable<Scalar> knn = KnnTable<Scalar>::Compute(d.points.pos, k, progress.Sub(50, 90));
     d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbors);
+    EdgeWeight<Scalar> wf;
+    wf.metric = p.metric;
+    wf.exponent = p.curvatureExponent;
+    wf.adaptivity = p.adaptivity;
+    wf.curvature = &d.curvature;
+    progress(90, 100, "Building the geodesic domain");
     if (graph) {
-      EdgeWeight<Scalar> wf;
-      wf.metric = p.metric;
-      wf.exponent = p.curvatureExponent;
-      wf.adaptivity = p.adaptivity;
-      wf.curvature = &d.curvature;
-      progress(90, 100, "Building the neighbour graph");
       d.graph = NeighbourGraph<Scalar>::Compute(d.points.pos, knn, p.graphNeighbors, wf);
       d.components = d.graph.ComponentCount();
+    } else if (d.meshGeodesics) {
+      d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, wf);
+      d.components = d.fmMesh.edges.ComponentCount();
     }
-    progress(100, 100, "Neighbour graph ready");
+    progress(100, 100, "Geodesic domain ready");
     return d;
   }
 
+  size_t size() const { return points.size(); }
+
+  /// Calls f(search) with the distance search of this domain's metric and
+  /// geodesics: BoundedDijkstra, FastMarching or EuclideanBall, each with
+  /// Visit(src, r, f) and Lower(src, dist, f).
+  template <class F>
+  void WithSearch(F&& f) const {
+    if (metric == Metric::Euclidean) {
+      EuclideanBall<Scalar> s(points.pos);
+      f(s);
+    } else if (meshGeodesics) {
+      FastMarching<Scalar> s(fmMesh);
+      f(s);
+    } else {
+      BoundedDijkstra<Scalar> s(graph);
+      f(s);
+    }
+  }
+
  private:
+  static bool UsesPointGraph(bool hasTriangles, const Param& p) {
+    return p.mode == GeodesicMode::PointGraph || (p.mode == GeodesicMode::Auto && !hasTriangles);
+  }
+  // Drops the points in no triangle and renumbers the triangles; returns how many were dropped.
+  static size_t KeepReferenced(PointSet<Scalar>& ps, std::vector<std::array<int, 3>>& tri) {
+    std::vector<int> remap(ps.size(), -1);
+    for (const auto& t : tri)
+      for (int c : t) remap[c] = 0;
+    size_t kept = 0;
+    for (size_t i = 0; i < ps.size(); ++i)
+      if (remap[i] == 0) {
+        remap[i] = int(kept);
+        ps.pos[kept] = ps.pos[i];
+        ps.normal[kept] = ps.normal[i];
+        ps.vertIndex[kept] = ps.vertIndex[i];
+        ++kept;
+      }
+    const size_t dropped = ps.size() - kept;
+    ps.pos.resize(kept);
+    ps.normal.resize(kept);
+    ps.vertIndex.resize(kept);
+    for (auto& t : tri)
+      for (int& c : t) c = remap[c];
+    return dropped;
+  }
   static void CheckNeighbours(const char* name, int k, size_t n) {
     if (k < 1) throw std::invalid_argument(std::string(name) + " must be at least 1 (got " + std::to_string(k) + ")");
     if (size_t(k) >= n)

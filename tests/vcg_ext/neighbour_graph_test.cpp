@@ -12,7 +12,7 @@ Domain Build(const test::TMesh& m, vcg_ext::Metric metric, double a = 10) {
   Domain::Param p;
   p.metric = metric;
   p.adaptivity = a;
-  return Domain::Build(vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m), p);
+  return Domain::FromMesh(m, p);
 }
 
 bool HasEdge(const vcg_ext::NeighbourGraph<float>& g, int i, int j) {

@@ -14,7 +14,7 @@ Domain Build(const test::TMesh& m, Metric metric, double adaptivity = 10) {
   Domain::Param p;
   p.metric = metric;
   p.adaptivity = adaptivity;
-  return Domain::Build(vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m), p);
+  return Domain::FromMesh(m, p);
 }
 
 void Bumpy(test::TMesh& m, int n = 60) {
@@ -34,11 +34,11 @@ Split BumpySplit(const Domain& d, const std::vector<int>& samples) {
 }
 
 // Radius giving about `target` samples in `metric` (bisection on the count).
-double RadiusFor(const Domain& d, Metric metric, size_t target) {
+double RadiusFor(const Domain& d, size_t target) {
   double lo = 1e-4, hi = 2;
   for (int it = 0; it < 30; ++it) {
     const double mid = std::sqrt(lo * hi);
-    (LOD::Sample(d, metric, mid, 1).samples.size() > target ? lo : hi) = mid;
+    (LOD::Sample(d, mid, 1).samples.size() > target ? lo : hi) = mid;
   }
   return hi;
 }
@@ -51,7 +51,7 @@ TEST(PoissonDisk, SamplesAreSeparatedAndCoverEveryPoint) {
     const Domain d = Build(m, metric);
     vcg_ext::BoundedDijkstra<float> search(d.graph);
     const float r = 0.08f;
-    const auto s = LOD::Sample(d, metric, r, 7).samples;
+    const auto s = LOD::Sample(d, r, 7).samples;
     ASSERT_GT(s.size(), 5u);
     std::vector<float> nearest(d.points.size(), std::numeric_limits<float>::infinity());
     for (int a : s) {  // full Dijkstra from every sample
@@ -71,7 +71,7 @@ TEST(PoissonDisk, EveryPointIsWithinTheRadiusOfASampleInStraightLine) {
   for (Metric metric : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic, Metric::Euclidean}) {
     const Domain d = Build(m, metric);
     const float r = 0.06f;
-    const auto s = LOD::Sample(d, metric, r, 3).samples;
+    const auto s = LOD::Sample(d, r, 3).samples;
     for (size_t i = 0; i < d.points.size(); ++i) {
       float best = std::numeric_limits<float>::infinity();
       for (int a : s) best = std::min(best, vcg::Distance(d.points.pos[i], d.points.pos[a]));
@@ -88,9 +88,9 @@ TEST(PoissonDisk, SameSeedSameOutputOtherSeedOtherOutput) {
   test::TMesh m;
   Bumpy(m, 40);
   const Domain d = Build(m, Metric::WeightedEq3);
-  const auto a = LOD::Sample(d, Metric::WeightedEq3, 0.05, 42).samples;
-  EXPECT_EQ(a, LOD::Sample(d, Metric::WeightedEq3, 0.05, 42).samples);
-  EXPECT_NE(a, LOD::Sample(d, Metric::WeightedEq3, 0.05, 43).samples);
+  const auto a = LOD::Sample(d, 0.05, 42).samples;
+  EXPECT_EQ(a, LOD::Sample(d, 0.05, 42).samples);
+  EXPECT_NE(a, LOD::Sample(d, 0.05, 43).samples);
   LOD::Param p;
   p.radius = 0.05;
   p.seed = 42;
@@ -103,11 +103,11 @@ TEST(PoissonDisk, FewerSamplesAsTheRadiusGrows) {
   const Domain d = Build(m, Metric::WeightedEq3);
   size_t last = d.points.size() + 1;
   for (double r : {0.03, 0.06, 0.12, 0.24, 0.48}) {
-    const size_t n = LOD::Sample(d, Metric::WeightedEq3, r, 5).samples.size();
+    const size_t n = LOD::Sample(d, r, 5).samples.size();
     EXPECT_LT(n, last) << "radius " << r;
     last = n;
   }
-  EXPECT_EQ(LOD::Sample(d, Metric::WeightedEq3, 100.0, 5).samples.size(), 1u);  // radius beyond the model
+  EXPECT_EQ(LOD::Sample(d, 100.0, 5).samples.size(), 1u);  // radius beyond the model
 }
 
 TEST(PoissonDisk, EveryDisconnectedPartIsSampled) {
@@ -136,8 +136,8 @@ TEST(PoissonDisk, Eq3NeverShortensDistancesAndKeepsTheBumpyShare) {
   }
   double shareGeo = 0, shareEq3 = 0;
   for (uint64_t seed : {1, 2, 3, 4}) {
-    shareGeo += BumpySplit(geo, LOD::Sample(geo, Metric::Geodesic, 0.04, seed).samples).share / 4;
-    shareEq3 += BumpySplit(eq3, LOD::Sample(eq3, Metric::WeightedEq3, 0.04, seed).samples).share / 4;
+    shareGeo += BumpySplit(geo, LOD::Sample(geo, 0.04, seed).samples).share / 4;
+    shareEq3 += BumpySplit(eq3, LOD::Sample(eq3, 0.04, seed).samples).share / 4;
   }
   EXPECT_GE(shareEq3, shareGeo - 0.005);
 }
@@ -149,7 +149,7 @@ TEST(PoissonDisk, CurvatureDensityAdaptsMoreWithAdaptivity) {
   double last = 0;
   for (double a : {0.0, 5.0, 10.0, 20.0}) {
     const Domain d = Build(m, Metric::CurvatureDensity, a);
-    const auto s = LOD::Sample(d, Metric::CurvatureDensity, RadiusFor(d, Metric::CurvatureDensity, target), 1);
+    const auto s = LOD::Sample(d, RadiusFor(d, target), 1);
     const double share = BumpySplit(d, s.samples).share;
     EXPECT_GT(share, last) << "adaptivity " << a;
     last = share;
@@ -162,9 +162,7 @@ TEST(PoissonDisk, DefaultAdaptivityAtLeastDoublesEuclideanRateRatio) {
   const size_t target = 300;
   const Domain dens = Build(m, Metric::CurvatureDensity), eucl = Build(m, Metric::Euclidean);
   ASSERT_EQ(Domain::Param().adaptivity, 10.0);
-  const double rd = BumpySplit(dens, LOD::Sample(dens, Metric::CurvatureDensity,
-                                                RadiusFor(dens, Metric::CurvatureDensity, target), 1).samples).rateRatio;
-  const double re = BumpySplit(eucl, LOD::Sample(eucl, Metric::Euclidean,
-                                                RadiusFor(eucl, Metric::Euclidean, target), 1).samples).rateRatio;
+  const double rd = BumpySplit(dens, LOD::Sample(dens, RadiusFor(dens, target), 1).samples).rateRatio;
+  const double re = BumpySplit(eucl, LOD::Sample(eucl, RadiusFor(eucl, target), 1).samples).rateRatio;
   EXPECT_GE(rd, 2 * re) << "density " << rd << " euclidean " << re;
 }

@@ -1,0 +1,120 @@
+// Mesh layers: geodesic mode selection, left-out vertices, Poisson disks by
+// fast marching, and the geodesic Delaunay triangle-mesh output.
+#include <gtest/gtest.h>
+#include <map>
+#include <set>
+#include <vcg/complex/algorithms/create/platonic.h>
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "test_mesh.h"
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using vcg_ext::GeodesicMode;
+
+std::string ErrorOf(const test::TMesh& m, const LOD::Param& p) {
+  try {
+    LOD::Compute(m, p);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Closed, consistently oriented 2-manifold: every directed edge once, with its twin.
+void ExpectClosedManifold(const std::vector<std::array<int, 3>>& faces, size_t vertices) {
+  std::map<std::pair<int, int>, int> directed;
+  std::set<std::array<int, 3>> keys;
+  for (const auto& f : faces) {
+    EXPECT_TRUE(f[0] != f[1] && f[1] != f[2] && f[0] != f[2]);
+    auto k = f;
+    std::sort(k.begin(), k.end());
+    EXPECT_TRUE(keys.insert(k).second) << "duplicate face";
+    for (int e = 0; e < 3; ++e) ++directed[{f[e], f[(e + 1) % 3]}];
+  }
+  for (const auto& d : directed) {
+    EXPECT_EQ(d.second, 1) << "edge used twice in one direction";
+    EXPECT_EQ(directed.count({d.first.second, d.first.first}), 1u) << "border edge";
+  }
+  std::set<int> used;
+  for (const auto& f : faces) used.insert(f.begin(), f.end());
+  EXPECT_EQ(used.size(), vertices);
+  const long V = long(vertices), E = long(directed.size() / 2), F = long(faces.size());
+  EXPECT_EQ(V - E + F, 2) << "Euler characteristic of a sphere";
+}
+}  // namespace
+
+TEST(GeodesicMesh, AutoUsesTheFacesAndMeshModeNeedsThem) {
+  test::TMesh grid;
+  test::GridMesh(grid, 20, [](float, float) { return 0.f; });
+  LOD::Param p;
+  p.radius = 0.2;
+  EXPECT_TRUE(LOD::Compute(grid, p).meshGeodesics);
+  p.domain.mode = GeodesicMode::PointGraph;
+  EXPECT_FALSE(LOD::Compute(grid, p).meshGeodesics);
+  test::TMesh cloud;
+  test::Plane(cloud, 20);
+  p.domain.mode = GeodesicMode::Mesh;
+  EXPECT_NE(ErrorOf(cloud, p).find("geodesicmode Mesh needs a layer with faces"), std::string::npos);
+  p.meshOutput = true;
+  p.domain.mode = GeodesicMode::Auto;
+  EXPECT_NE(ErrorOf(cloud, p).find("triangle-mesh output needs a layer with faces"), std::string::npos);
+}
+
+TEST(GeodesicMesh, UnreferencedVerticesAreLeftOutAndCounted) {
+  test::TMesh m;
+  test::GridMesh(m, 20, [](float, float) { return 0.f; });
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 3);
+  for (int i = 0; i < 3; ++i) m.vert[400 + i].P() = test::P3(2 + i, 2, 2);
+  LOD::Param p;
+  p.radius = 0.3;
+  const auto mesh = LOD::Compute(m, p);
+  EXPECT_EQ(mesh.leftOut, 3u);
+  EXPECT_EQ(mesh.pointCount, 400u);
+  for (int v : mesh.vertIndex) EXPECT_LT(v, 400);
+  p.domain.mode = GeodesicMode::PointGraph;  // the point graph keeps them
+  EXPECT_EQ(LOD::Compute(m, p).leftOut, 0u);
+}
+
+TEST(GeodesicMesh, PoissonByFastMarchingIsSeparatedAndCovers) {
+  test::TMesh m;
+  test::GridMesh(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  LOD::Domain::Param dp;
+  const auto d = LOD::Domain::FromMesh(m, dp);
+  ASSERT_TRUE(d.meshGeodesics);
+  const float r = 0.1f;
+  const auto s = LOD::Sample(d, r, 2).samples;
+  std::vector<float> nearest(d.size(), std::numeric_limits<float>::infinity());
+  vcg_ext::FastMarching<float> fm(d.fmMesh);
+  for (size_t a = 0; a < s.size(); ++a) {
+    const auto dist = fm.Distances(s[a]);
+    for (size_t b = a + 1; b < s.size(); ++b) EXPECT_GT(dist[s[b]], r);  // later samples lie outside earlier disks
+    for (size_t i = 0; i < dist.size(); ++i) nearest[i] = std::min(nearest[i], dist[i]);
+  }
+  for (float x : nearest) EXPECT_LE(x, r);
+}
+
+TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
+  test::TMesh m;
+  vcg::tri::Sphere(m, 4);  // 2562 vertices
+  for (const int target : {30, 120}) {
+    FPS::Param p;
+    p.sampleNum = size_t(target);
+    p.meshOutput = true;
+    const auto r = FPS::Compute(m, p);
+    ASSERT_EQ(r.vertIndex.size(), size_t(target));
+    ExpectClosedManifold(r.faces, r.vertIndex.size());
+    // Outward, like the input: the faces' normals point away from the centre.
+    for (const auto& f : r.faces) {
+      const auto &a = m.vert[r.vertIndex[f[0]]].cP(), &b = m.vert[r.vertIndex[f[1]]].cP(),
+                 &c = m.vert[r.vertIndex[f[2]]].cP();
+      EXPECT_GT(((b - a) ^ (c - a)).dot(a + b + c), 0);
+    }
+  }
+  LOD::Param p;
+  p.radius = 0.5;
+  p.meshOutput = true;
+  const auto r = LOD::Compute(m, p);
+  ExpectClosedManifold(r.faces, r.vertIndex.size());
+}

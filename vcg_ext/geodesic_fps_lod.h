@@ -1,0 +1,56 @@
+#ifndef VCG_EXT_GEODESIC_FPS_LOD_H
+#define VCG_EXT_GEODESIC_FPS_LOD_H
+// Geodesic farthest point LOD of a vcglib mesh: an exact number of samples in
+// progressive (FPS) order.
+#include <cstdint>
+#include <stdexcept>
+#include "farthest_point.h"
+#include "geodesic_delaunay.h"
+#include "geodesic_domain.h"
+#include "lod_result.h"
+
+namespace vcg_ext {
+
+template <class MeshType>
+class GeodesicFpsLOD {
+ public:
+  typedef typename MeshType::ScalarType Scalar;
+  typedef GeodesicDomain<Scalar> Domain;
+  struct Param {
+    typename Domain::Param domain;
+    size_t sampleNum = 0;     ///< exact number of samples, 1..number of points
+    uint64_t seed = 0;        ///< chooses the first sample
+    bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
+  };
+  struct Result : LodResult<Scalar> {
+    std::vector<double> coveringRadius;  ///< [k]: covering radius of the first k+1 samples
+  };
+
+  static FarthestPoint::Result Sample(const Domain& d, size_t sampleNum, uint64_t seed,
+                                      Progress progress = Progress(nullptr)) {
+    FarthestPoint::Param fp;
+    fp.sampleNum = sampleNum;
+    fp.seed = seed;
+    FarthestPoint::Result r;
+    d.WithSearch([&](auto& search) { r = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); });
+    return r;
+  }
+
+  /// Never modifies `m`. Throws std::invalid_argument for bad input and
+  /// vcg_ext::Cancelled when the callback asks to stop.
+  static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
+    Progress progress(cb);
+    if (p.meshOutput && m.fn == 0)
+      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+    const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 50));
+    const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(50, 100));
+    Result r;
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, s.samples);
+    r.coveringRadius = s.coveringRadius;
+    if (p.meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, s.owner);
+    return r;
+  }
+};
+
+}  // namespace vcg_ext
+#endif
