@@ -41,7 +41,7 @@ RichParameterList ToRich(const std::vector<ParamSpec>& specs) {
 }  // namespace
 
 FilterGeodesicLODPlugin::FilterGeodesicLODPlugin() {
-  typeList = {FP_GEODESIC_POISSON_LOD};
+  typeList = {FP_GEODESIC_POISSON_LOD, FP_GEODESIC_FPS_LOD};
   for (ActionIDType t : types()) actionList.push_back(new QAction(filterName(t), this));
 }
 
@@ -50,6 +50,7 @@ QString FilterGeodesicLODPlugin::pluginName() const { return "FilterGeodesicLOD"
 QString FilterGeodesicLODPlugin::filterName(ActionIDType f) const {
   switch (f) {
     case FP_GEODESIC_POISSON_LOD: return PoissonLodName();
+    case FP_GEODESIC_FPS_LOD: return FpsLodName();
     default: assert(0); return QString();
   }
 }
@@ -57,6 +58,7 @@ QString FilterGeodesicLODPlugin::filterName(ActionIDType f) const {
 QString FilterGeodesicLODPlugin::pythonFilterName(ActionIDType f) const {
   switch (f) {
     case FP_GEODESIC_POISSON_LOD: return PoissonLodPythonName();
+    case FP_GEODESIC_FPS_LOD: return FpsLodPythonName();
     default: assert(0); return QString();
   }
 }
@@ -64,6 +66,7 @@ QString FilterGeodesicLODPlugin::pythonFilterName(ActionIDType f) const {
 QString FilterGeodesicLODPlugin::filterInfo(ActionIDType f) const {
   switch (f) {
     case FP_GEODESIC_POISSON_LOD: return PoissonLodInfo();
+    case FP_GEODESIC_FPS_LOD: return FpsLodInfo();
     default: assert(0); return QString();
   }
 }
@@ -81,6 +84,7 @@ int FilterGeodesicLODPlugin::postCondition(const QAction*) const { return MeshMo
 RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, const MeshModel& m) {
   switch (ID(a)) {
     case FP_GEODESIC_POISSON_LOD: return ToRich(PoissonLodParams(m.cm));
+    case FP_GEODESIC_FPS_LOD: return ToRich(FpsLodParams(m.cm));
     default: wrongActionCalled(a); return {};
   }
 }
@@ -88,18 +92,21 @@ RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, c
 std::map<std::string, QVariant> FilterGeodesicLODPlugin::applyFilter(
     const QAction* action, const RichParameterList& params, MeshDocument& md, unsigned int& /*mask*/,
     vcg::CallBackPos* cb) {
-  if (ID(action) != FP_GEODESIC_POISSON_LOD) wrongActionCalled(action);
   MeshModel* src = md.mm();
   if (src == nullptr) throw MLException("Geodesic LOD: there is no current layer");
   // All the work happens before the layer is made, so a failure leaves the document as it was.
-  const PoissonLodRun run = RunPoissonLod(src->cm, RichParamSource(params), cb);
+  LodRun run;
+  switch (ID(action)) {
+    case FP_GEODESIC_POISSON_LOD: run = RunPoissonLod(src->cm, RichParamSource(params), cb); break;
+    case FP_GEODESIC_FPS_LOD: run = RunFpsLod(src->cm, RichParamSource(params), cb); break;
+    default: wrongActionCalled(action); return {};
+  }
   MeshModel* out = md.addNewMesh("", src->label() + " LOD", true);
   out->updateDataMask(src);
   const QStringList skipped = FillLodLayer(src->cm, run, out->cm);
-  out->updateBoxAndNormals();
-  log(Summary(run).toStdString());
+  log(run.summary.toStdString());
   if (!skipped.isEmpty()) log("Attributes of unsupported types not copied: " + skipped.join(", ").toStdString());
-  return {{"sample_num", QVariant(int(run.result.vertIndex.size()))}, {"radius", QVariant(double(run.param.radius))}};
+  return run.values;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterGeodesicLODPlugin)

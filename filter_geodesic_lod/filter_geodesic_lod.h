@@ -9,7 +9,7 @@ class FilterGeodesicLODPlugin : public QObject, public FilterPlugin {
   Q_INTERFACES(FilterPlugin)
 
  public:
-  enum { FP_GEODESIC_POISSON_LOD };
+  enum { FP_GEODESIC_POISSON_LOD, FP_GEODESIC_FPS_LOD };
 
   FilterGeodesicLODPlugin();
   QString pluginName() const override;

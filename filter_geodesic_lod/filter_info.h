@@ -11,23 +11,40 @@ inline QString PaperReference() {
          "<a href=\"https://doi.org/10.1371/journal.pone.0120151\">doi:10.1371/journal.pone.0120151</a>.";
 }
 
+// What both sampling filters share: the metric, the geodesics, the output.
+inline QString MethodInfo() {
+  return "Normals n_i are the layer's own where valid, else estimated from the k nearest points; the curvature is "
+         "the normal variation v_i = sum_j (1 - |n_i . n_j|)/k (eq. 1); edge lengths are g_ij = "
+         "exp(|v_i - v_j|^c) |p_i - p_j| (eq. 2-3), or the curvature-density weighting (1 + a (v_i + v_j)/2) "
+         "|p_i - p_j|. Geodesic distances are computed by fast marching over the triangles of meshes, or by "
+         "Dijkstra on the symmetric k-nearest-neighbour graph of point clouds.<br>"
+         "The vertices of the new layer are exact copies of input vertices with their data (normal, colour, "
+         "quality, custom attributes); estimated normals are stored where the layer had none. For meshes the "
+         "output can be the geodesic Delaunay triangulation of the samples. The current layer is not changed. ";
+}
+
 inline QString PoissonLodName() { return "Geodesic Poisson-disk LOD"; }
 inline QString PoissonLodPythonName() { return "generate_geodesic_poisson_lod"; }
 inline QString PoissonLodInfo() {
   return "Creates a new layer (named after the current one plus \" LOD\") holding a subset of the current layer's "
          "vertices, spread uniformly in a curvature-weighted geodesic metric: dense where the surface is rugged, "
-         "sparse where it is smooth. Works on point clouds and on the vertices of meshes.<br>"
-         "Normals n_i are the layer's own where valid, else estimated from the k nearest points; the curvature is "
-         "the normal variation v_i = sum_j (1 - |n_i . n_j|)/k (eq. 1); geodesic distances are shortest paths on the "
-         "symmetric k-nearest-neighbour graph with edge lengths g_ij = exp(|v_i - v_j|^c) |p_i - p_j| (eq. 2-3), or "
-         "the curvature-density weighting (1 + a (v_i + v_j)/2) |p_i - p_j|. Points are visited in a seeded random "
-         "order; an unvisited point becomes a sample and every point within the radius of it is marked visited. "
-         "Samples are pairwise farther apart than the radius and every point lies within the radius of a sample, "
-         "in every connected part.<br>"
-         "The vertices of the new layer are exact copies of input vertices with their data (normal, colour, "
-         "quality, custom attributes); estimated normals are stored where the layer had none. The current layer "
-         "is not changed. Returns <i>sample_num</i> and <i>radius</i> (absolute)." +
-         PaperReference();
+         "sparse where it is smooth. Points are visited in a seeded random order; an unvisited point becomes a "
+         "sample and every point within the radius of it is marked visited. Samples are pairwise farther apart "
+         "than the radius and every point lies within the radius of a sample, in every connected part.<br>" +
+         MethodInfo() + "Returns <i>sample_num</i> and <i>radius</i> (absolute)." + PaperReference();
+}
+
+inline QString FpsLodName() { return "Geodesic Farthest Point LOD"; }
+inline QString FpsLodPythonName() { return "generate_geodesic_fps_lod"; }
+inline QString FpsLodInfo() {
+  return "Creates a new layer (named after the current one plus \" LOD\") holding exactly <i>samplenum</i> of the "
+         "current layer's vertices, chosen by farthest point sampling in a curvature-weighted geodesic metric: each "
+         "new sample is the vertex farthest from all samples so far (the first one is drawn from the seed). The "
+         "output is in sampling order, so its first k vertices are the k-sample LOD: a progressive LOD in one run; "
+         "the order is also stored in the per-vertex attribute <i>fps_order</i>.<br>" +
+         MethodInfo() +
+         "Returns <i>sample_num</i> and <i>covering_radius</i> (the largest distance from a vertex to its nearest "
+         "sample)." + PaperReference();
 }
 
 }  // namespace geodesic_lod

@@ -1,8 +1,13 @@
 #include "lod_filters.h"
 
+#include <algorithm>
 #include <new>
 #include <stdexcept>
 #include <common/mlexception.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/point_normals.h>
 #include <vcg_ext/vertex_subset.h>
 
@@ -11,6 +16,8 @@ namespace {
 
 const QStringList kMetricNames = {
     "Weighted geodesic (eq. 3)", "Curvature-density geodesic", "Geodesic (unweighted)", "Euclidean"};
+const QStringList kModeNames = {"Auto", "Mesh (fast marching)", "Point graph (Dijkstra)"};
+const QStringList kOutputNames = {"Points", "Triangle mesh (geodesic Delaunay)"};
 
 // Runs f, turning every failure into an MLException the hosts can show.
 template <class F>
@@ -26,6 +33,75 @@ auto Guarded(F&& f) -> decltype(f()) {
   }
 }
 
+int Choice(const ParamSource& src, const char* name, const QStringList& names) {
+  const int c = src.choice(name);
+  if (c < 0 || c >= names.size())
+    throw std::invalid_argument(std::string(name) + " must be one of: " + names.join(", ").toStdString());
+  return c;
+}
+
+// Parameters shared by every sampling filter, after the filter's own.
+void AddDomainParams(std::vector<ParamSpec>& p) {
+  p.push_back({ParamKind::Enum, "metric", "Metric",
+               "Distance the samples are spread by. Weighted geodesic: paper eq. 3, edges weighted by "
+               "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
+               "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
+               "Euclidean: straight-line distance (for comparison).",
+               0, 0, 0, kMetricNames});
+  p.push_back({ParamKind::Enum, "geodesicmode", "Geodesics",
+               "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
+               "faces, else Dijkstra on the k-nearest-neighbour graph of the points. Mesh mode leaves out "
+               "vertices that are in no triangle (their number is logged); the point graph keeps every vertex.",
+               0, 0, 0, kModeNames});
+  p.push_back({ParamKind::Float, "curvatureexponent", "Curvature exponent c",
+               "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.", 1.0});
+  p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
+               "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
+               "only by that metric. 0 gives the unweighted geodesic.", 10.0});
+  p.push_back({ParamKind::Int, "normalneighbors", "Normal neighbours k",
+               "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20});
+  p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
+               "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
+               "run on.", 10});
+  p.push_back({ParamKind::Bool, "recomputenormals", "Recompute normals",
+               "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
+               "When off, the layer's valid normals are used and only missing ones are estimated.", 0});
+  p.push_back({ParamKind::Enum, "output", "Output",
+               "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
+               "(dual of their geodesic Voronoi regions), for layers with faces.",
+               0, 0, 0, kOutputNames});
+  p.push_back({ParamKind::Int, "seed", "Random seed", "The same seed gives the same LOD.", 0});
+}
+
+template <class DomainParam>
+void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bool& meshOutput) {
+  d.metric = vcg_ext::Metric(Choice(src, "metric", kMetricNames));
+  d.mode = vcg_ext::GeodesicMode(Choice(src, "geodesicmode", kModeNames));
+  d.curvatureExponent = src.number("curvatureexponent");
+  d.adaptivity = src.number("adaptivity");
+  d.normalNeighbors = int(src.number("normalneighbors"));
+  d.graphNeighbors = int(src.number("graphneighbors"));
+  d.useInputNormals = !src.flag("recomputenormals");
+  meshOutput = Choice(src, "output", kOutputNames) == 1;
+  const double s = src.number("seed");
+  if (s < 0) throw std::invalid_argument("seed must be zero or positive");
+  seed = uint64_t(s);
+}
+
+QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_ext::Metric metric) {
+  QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric, %6 geodesics")
+                  .arg(what)
+                  .arg(r.vertIndex.size())
+                  .arg(r.pointCount)
+                  .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
+                  .arg(kMetricNames[int(metric)])
+                  .arg(metric == vcg_ext::Metric::Euclidean ? "no" : r.meshGeodesics ? "fast-marching" : "point-graph");
+  s += QString("; %1 normals estimated; %2 connected parts").arg(r.estimatedNormals).arg(r.components);
+  if (r.leftOut) s += QString("; %1 vertices in no triangle left out (use the point graph to keep them)").arg(r.leftOut);
+  if (!r.faces.empty()) s += QString("; %1 triangles").arg(r.faces.size());
+  return s;
+}
+
 }  // namespace
 
 std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
@@ -35,77 +111,82 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "Radius of the Poisson disks in the chosen metric: an absolute value or a percentage of the "
                "bounding-box diagonal. Larger radius, fewer samples.",
                diag * 0.01, 0, diag});
-  p.push_back({ParamKind::Enum, "metric", "Metric",
-               "Distance the disks are measured in. Weighted geodesic: paper eq. 3, edges weighted by "
-               "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
-               "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: shortest paths on the neighbour "
-               "graph. Euclidean: straight-line distance (for comparison).",
-               0, 0, 0, kMetricNames});
-  p.push_back({ParamKind::Float, "curvatureexponent", "Curvature exponent c",
-               "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.", 1.0});
-  p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
-               "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
-               "only by that metric. 0 gives the unweighted geodesic.", 10.0});
-  p.push_back({ParamKind::Int, "normalneighbors", "Normal neighbours k",
-               "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20});
-  p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
-               "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the geodesics run on.", 10});
-  p.push_back({ParamKind::Bool, "recomputenormals", "Recompute normals",
-               "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
-               "When off, the layer's valid normals are used and only missing ones are estimated.", 0});
-  p.push_back({ParamKind::Int, "seed", "Random seed",
-               "Seed of the random visiting order: the same seed gives the same LOD.", 0});
+  AddDomainParams(p);
   return p;
 }
 
-PoissonLodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
+std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
+  std::vector<ParamSpec> p;
+  p.push_back({ParamKind::Int, "samplenum", "Number of samples",
+               "Exact number of samples, from 1 to the number of vertices. The output is in farthest-point order: "
+               "its first k vertices are the k-sample LOD.",
+               double(std::max(1, m.vn / 10))});
+  AddDomainParams(p);
+  return p;
+}
+
+LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    PoissonLodRun run;
-    auto& p = run.param;
+    vcg_ext::GeodesicPoissonLOD<CMeshO>::Param p;
     p.radius = src.number("radius");
-    const int metric = src.choice("metric");
-    if (metric < 0 || metric >= kMetricNames.size())
-      throw std::invalid_argument("metric must be one of: " + kMetricNames.join(", ").toStdString());
-    p.domain.metric = vcg_ext::Metric(metric);
-    p.domain.curvatureExponent = src.number("curvatureexponent");
-    p.domain.adaptivity = src.number("adaptivity");
-    p.domain.normalNeighbors = int(src.number("normalneighbors"));
-    p.domain.graphNeighbors = int(src.number("graphneighbors"));
-    p.domain.useInputNormals = !src.flag("recomputenormals");
-    const double seed = src.number("seed");
-    if (seed < 0) throw std::invalid_argument("seed must be zero or positive");
-    p.seed = uint64_t(seed);
+    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    LodRun run;
     run.result = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
+    run.useInputNormals = p.domain.useInputNormals;
+    run.summary = Describe("Geodesic Poisson-disk LOD", run.result, p.domain.metric) +
+                  QString("; radius %1").arg(p.radius);
+    run.values = {{"sample_num", QVariant(int(run.result.vertIndex.size()))}, {"radius", QVariant(double(p.radius))}};
     return run;
   });
 }
 
-QStringList FillLodLayer(const CMeshO& in, const PoissonLodRun& run, CMeshO& out) {
+LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
+  return Guarded([&] {
+    vcg_ext::GeodesicFpsLOD<CMeshO>::Param p;
+    const double n = src.number("samplenum");
+    if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
+    p.sampleNum = size_t(n);
+    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    auto r = vcg_ext::GeodesicFpsLOD<CMeshO>::Compute(in, p, cb);
+    LodRun run;
+    run.result = r;
+    run.useInputNormals = p.domain.useInputNormals;
+    run.fpsOrder = true;
+    const double cover = r.coveringRadius.back();
+    run.summary = Describe("Geodesic Farthest Point LOD", run.result, p.domain.metric) +
+                  QString("; covering radius %1").arg(cover);
+    run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"covering_radius", QVariant(cover)}};
+    return run;
+  });
+}
+
+QStringList FillLodLayer(const CMeshO& in, const LodRun& run, CMeshO& out) {
   return Guarded([&] {
     const auto& r = run.result;
     const size_t base = out.vert.size();
     const auto skipped = vcg_ext::VertexSubset<CMeshO>::Compute(in, r.vertIndex, out);
     for (size_t k = 0; k < r.vertIndex.size(); ++k) {
       auto& n = out.vert[base + k].N();
-      if (!run.param.domain.useInputNormals || !vcg_ext::PointNormals<Scalarm>::IsValid(n)) n = r.normal[k];
+      if (!run.useInputNormals || !vcg_ext::PointNormals<Scalarm>::IsValid(n)) n = r.normal[k];
     }
+    if (run.fpsOrder) {
+      auto order = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(out, "fps_order");
+      for (size_t k = 0; k < r.vertIndex.size(); ++k) order[base + k] = Scalarm(k);
+    }
+    if (!r.faces.empty()) {
+      auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, r.faces.size());
+      for (const auto& f : r.faces) {
+        for (int c = 0; c < 3; ++c) fi->V(c) = &out.vert[base + f[c]];
+        ++fi;
+      }
+      // Vertex normals stay the input's (smooth, from the full-resolution surface).
+      vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out);
+    }
+    vcg::tri::UpdateBounding<CMeshO>::Box(out);
     QStringList names;
     for (const auto& s : skipped) names << QString::fromStdString(s);
     return names;
   });
-}
-
-QString Summary(const PoissonLodRun& run) {
-  const auto& r = run.result;
-  return QString("Geodesic Poisson-disk LOD: %1 samples of %2 points (%3%), radius %4 in the %5 metric; "
-                 "%6 normals estimated; %7 connected parts")
-      .arg(r.vertIndex.size())
-      .arg(r.pointCount)
-      .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
-      .arg(run.param.radius)
-      .arg(kMetricNames[int(run.param.domain.metric)])
-      .arg(r.estimatedNormals)
-      .arg(r.components);
 }
 
 }  // namespace geodesic_lod

@@ -5,9 +5,12 @@
 // Each API version has a small adapter that turns these into its own classes.
 #include <QString>
 #include <QStringList>
+#include <QVariant>
+#include <map>
+#include <string>
 #include <vector>
 #include <common/ml_document/cmesh.h>
-#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/lod_result.h>
 
 namespace geodesic_lod {
 
@@ -31,25 +34,29 @@ class ParamSource {
   virtual int choice(const QString& name) const = 0;     ///< enum index
 };
 
-/// Parameters of "Geodesic Poisson-disk LOD"; defaults depend on the mesh (its size).
-std::vector<ParamSpec> PoissonLodParams(const CMeshO& m);
-
-struct PoissonLodRun {
-  vcg_ext::GeodesicPoissonLOD<CMeshO>::Param param;
-  vcg_ext::GeodesicPoissonLOD<CMeshO>::Result result;
+/// What a filter made, ready for an output layer.
+struct LodRun {
+  vcg_ext::LodResult<Scalarm> result;
+  bool useInputNormals = true;
+  bool fpsOrder = false;                        ///< store the "fps_order" attribute
+  QString summary;                              ///< one line for the log
+  std::map<std::string, QVariant> values;       ///< returned to the host (pymeshlab's result dict)
 };
 
-/// Samples `in` (never modified). Throws MLException with a readable message
+/// Parameters of each filter; defaults depend on the mesh (its size).
+std::vector<ParamSpec> PoissonLodParams(const CMeshO& m);
+std::vector<ParamSpec> FpsLodParams(const CMeshO& m);
+
+/// Sample `in` (never modified). Throw MLException with a readable message
 /// for bad input, on a stop request and when memory runs out.
-PoissonLodRun RunPoissonLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+LodRun RunPoissonLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+LodRun RunFpsLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 
 /// Fills the empty mesh `out` (with the same optional components enabled as
-/// `in`) with copies of the chosen vertices and their data; vertices whose
-/// normal was estimated get it. Returns the names of attributes not copied.
-QStringList FillLodLayer(const CMeshO& in, const PoissonLodRun& run, CMeshO& out);
-
-/// One line for the log.
-QString Summary(const PoissonLodRun& run);
+/// `in`) with copies of the chosen vertices and their data, the triangles of a
+/// mesh output, and the bounding box. Vertices whose normal was estimated get
+/// it. Returns the names of attributes not copied.
+QStringList FillLodLayer(const CMeshO& in, const LodRun& run, CMeshO& out);
 
 }  // namespace geodesic_lod
 #endif

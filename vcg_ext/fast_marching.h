@@ -29,15 +29,21 @@ class FastMarchingMesh {
 
   size_t size() const { return edges.size(); }
 
-  /// `weight(i, j, |p_i - p_j|)` gives g_ij. Memory: about 6 fans and 6 edges
-  /// per vertex on a manifold mesh, roughly 200 bytes per vertex (double).
+  /// `weight(i, j, |p_i - p_j|)` gives g_ij. `links`: extra edges, such as
+  /// CoincidentPairs. Memory: about 6 fans and 6 edges per vertex on a
+  /// manifold mesh, roughly 200 bytes per vertex (double).
   template <class WeightFn>
   static FastMarchingMesh Build(const std::vector<vcg::Point3<Scalar>>& pos,
-                                const std::vector<std::array<int, 3>>& tri, const WeightFn& weight) {
+                                const std::vector<std::array<int, 3>>& tri, const WeightFn& weight,
+                                const std::vector<std::pair<int, int>>& links = {}) {
     FastMarchingMesh fm;
     const size_t n = pos.size();
     std::vector<std::pair<int, int>> pairs;
-    pairs.reserve(tri.size() * 6);
+    pairs.reserve(tri.size() * 6 + links.size() * 2);
+    for (const auto& l : links) {
+      pairs.push_back(l);
+      pairs.emplace_back(l.second, l.first);
+    }
     for (const auto& t : tri)
       for (int k = 0; k < 3; ++k) {
         pairs.emplace_back(t[k], t[(k + 1) % 3]);

@@ -118,7 +118,8 @@ class GeodesicDomain {
       d.graph = NeighbourGraph<Scalar>::Compute(d.points.pos, knn, p.graphNeighbors, wf);
       d.components = d.graph.ComponentCount();
     } else if (d.meshGeodesics) {
-      d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, wf);
+      // Vertices a mesh repeats (seams, split normals) are joined at no cost.
+      d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, wf, CoincidentPairs(d.points.pos));
       d.components = d.fmMesh.edges.ComponentCount();
     }
     progress(100, 100, "Geodesic domain ready");

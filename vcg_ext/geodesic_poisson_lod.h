@@ -47,7 +47,11 @@ class GeodesicPoissonLOD {
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
-    CheckRadius(p.radius);
+    if (!(p.radius > 0) || !std::isfinite(p.radius)) {
+      // An empty or degenerate layer also gets a zero default radius: name the layer's problem first.
+      Domain::Check(PointSetFromMesh<MeshType>::Compute(m), m.fn > 0, p.domain);
+      CheckRadius(p.radius);
+    }
     if (p.meshOutput && m.fn == 0)
       throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 60));

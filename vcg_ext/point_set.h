@@ -1,7 +1,9 @@
 #ifndef VCG_EXT_POINT_SET_H
 #define VCG_EXT_POINT_SET_H
 // The live (non-deleted) vertices of a vcglib mesh as a dense point array.
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +20,22 @@ struct PointSet {
   std::vector<int> vertIndex;                ///< index in m.vert of each point
   size_t size() const { return pos.size(); }
 };
+
+/// Pairs (a, b) linking the points at exactly the same position into chains:
+/// meshes often repeat a vertex along seams, and these pairs let distances
+/// cross such seams at no cost. Cost O(n log n).
+template <class Scalar>
+std::vector<std::pair<int, int>> CoincidentPairs(const std::vector<vcg::Point3<Scalar>>& pos) {
+  std::vector<int> order(pos.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
+  });
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t k = 1; k < order.size(); ++k)
+    if (pos[order[k]] == pos[order[k - 1]]) pairs.emplace_back(order[k - 1], order[k]);
+  return pairs;
+}
 
 template <class MeshType>
 class PointSetFromMesh {

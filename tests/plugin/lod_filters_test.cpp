@@ -12,8 +12,8 @@ using namespace geodesic_lod;
 // Parameter values: the specs' defaults, overridable by name.
 class MapSource : public ParamSource {
  public:
-  explicit MapSource(const CMeshO& m) {
-    for (const ParamSpec& s : PoissonLodParams(m)) v_[s.name] = s.defaultValue;
+  explicit MapSource(const CMeshO& m, bool fps = false) {
+    for (const ParamSpec& s : fps ? FpsLodParams(m) : PoissonLodParams(m)) v_[s.name] = s.defaultValue;
   }
   MapSource& set(const QString& n, double x) {
     EXPECT_TRUE(v_.count(n)) << n.toStdString();
@@ -28,7 +28,7 @@ class MapSource : public ParamSource {
   std::map<QString, double> v_;
 };
 
-void Bumpy(CMeshO& m, int n) {
+void Bumpy(CMeshO& m, int n, bool faces = false) {
   vcg::tri::Allocator<CMeshO>::AddVertices(m, size_t(n) * n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
@@ -39,6 +39,13 @@ void Bumpy(CMeshO& m, int n) {
       v.C() = vcg::Color4b(i, j, 7, 255);
       v.Q() = x + y;
     }
+  if (faces)
+    for (int i = 0; i + 1 < n; ++i)
+      for (int j = 0; j + 1 < n; ++j) {
+        auto* v = &m.vert[size_t(i) * n + j];
+        vcg::tri::Allocator<CMeshO>::AddFace(m, v, v + n, v + n + 1);
+        vcg::tri::Allocator<CMeshO>::AddFace(m, v, v + n + 1, v + 1);
+      }
   vcg::tri::UpdateBounding<CMeshO>::Box(m);
 }
 
@@ -77,7 +84,7 @@ TEST(LodFilters, OutputIsACopyOfChosenVerticesAndTheInputIsUnchanged) {
 
   MapSource p(in);
   p.set("radius", 0.05);
-  const PoissonLodRun run = RunPoissonLod(in, p, nullptr);
+  const LodRun run = RunPoissonLod(in, p, nullptr);
   CMeshO out;
   const QStringList skipped = FillLodLayer(in, run, out);
   EXPECT_TRUE(skipped.isEmpty());
@@ -101,7 +108,7 @@ TEST(LodFilters, OutputIsACopyOfChosenVerticesAndTheInputIsUnchanged) {
     EXPECT_EQ(before[i].cQ(), in.vert[i].cQ());
     EXPECT_EQ(before[i].Flags(), in.vert[i].Flags());
   }
-  EXPECT_TRUE(Summary(run).contains(QString::number(out.vn) + " samples"));
+  EXPECT_TRUE(run.summary.contains(QString::number(out.vn) + " samples"));
 }
 
 TEST(LodFilters, ValidInputNormalsAreKeptUnlessRecomputeIsAsked) {
@@ -142,5 +149,64 @@ TEST(LodFilters, AStopRequestBecomesAnMLException) {
     FAIL() << "no exception";
   } catch (const MLException& e) {
     EXPECT_NE(std::string(e.what()).find("stopped"), std::string::npos);
+  }
+}
+
+TEST(LodFilters, FpsGivesTheExactCountInOrderWithItsAttribute) {
+  CMeshO in;
+  Bumpy(in, 30, true);
+  MapSource p(in, true);
+  EXPECT_EQ(p.number("samplenum"), 90);  // default: a tenth of the vertices
+  p.set("samplenum", 57);
+  const LodRun run = RunFpsLod(in, p, nullptr);
+  CMeshO out;
+  FillLodLayer(in, run, out);
+  ASSERT_EQ(out.vn, 57);
+  EXPECT_EQ(out.fn, 0);
+  auto order = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Scalarm>(out, "fps_order");
+  ASSERT_TRUE(vcg::tri::Allocator<CMeshO>::IsValidHandle(out, order));
+  for (int k = 0; k < out.vn; ++k) EXPECT_EQ(order[k], k);
+  EXPECT_EQ(run.values.at("sample_num").toInt(), 57);
+  EXPECT_GT(run.values.at("covering_radius").toDouble(), 0);
+  EXPECT_TRUE(run.result.meshGeodesics);
+  for (double bad : {0.0, -3.0, 901.0}) {
+    p.set("samplenum", bad);
+    try {
+      RunFpsLod(in, p, nullptr);
+      ADD_FAILURE() << bad;
+    } catch (const MLException& e) {
+      EXPECT_NE(std::string(e.what()).find("samplenum"), std::string::npos);
+    }
+  }
+}
+
+TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
+  CMeshO in;
+  Bumpy(in, 40, true);
+  for (bool fps : {false, true}) {
+    MapSource p(in, fps);
+    p.set("output", 1);
+    if (fps) p.set("samplenum", 80);
+    else p.set("radius", 0.08);
+    const LodRun run = fps ? RunFpsLod(in, p, nullptr) : RunPoissonLod(in, p, nullptr);
+    CMeshO out;
+    FillLodLayer(in, run, out);
+    ASSERT_GT(out.fn, 10);
+    for (const auto& f : out.face)
+      for (int c = 0; c < 3; ++c) {
+        const size_t k = vcg::tri::Index(out, f.cV(c));
+        ASSERT_LT(k, size_t(out.vn));
+        EXPECT_EQ(f.cP(c), in.vert[run.result.vertIndex[k]].cP());
+      }
+  }
+  CMeshO cloud;
+  Bumpy(cloud, 10);
+  MapSource p(cloud);
+  p.set("output", 1);
+  try {
+    RunPoissonLod(cloud, p, nullptr);
+    FAIL();
+  } catch (const MLException& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a layer with faces"), std::string::npos);
   }
 }

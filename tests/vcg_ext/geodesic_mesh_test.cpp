@@ -118,3 +118,26 @@ TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
   const auto r = LOD::Compute(m, p);
   ExpectClosedManifold(r.faces, r.vertIndex.size());
 }
+
+TEST(GeodesicMesh, RepeatedSeamVerticesAreCrossedAtNoCost) {
+  // Two grids meeting at x = 1 with their own copies of the seam vertices.
+  test::TMesh m;
+  test::GridMesh(m, 11, [](float, float) { return 0.f; });
+  test::TMesh right;
+  test::GridMesh(right, 11, [](float, float) { return 0.f; });
+  const size_t base = m.vert.size();
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, right.vert.size());
+  for (size_t i = 0; i < right.vert.size(); ++i) m.vert[base + i].P() = right.vert[i].P() + test::P3(1, 0, 0);
+  for (const auto& f : right.face)
+    vcg::tri::Allocator<test::TMesh>::AddFace(m, &m.vert[base + vcg::tri::Index(right, f.cV(0))],
+                                             &m.vert[base + vcg::tri::Index(right, f.cV(1))],
+                                             &m.vert[base + vcg::tri::Index(right, f.cV(2))]);
+  LOD::Domain::Param p;
+  p.metric = vcg_ext::Metric::Geodesic;
+  const auto d = LOD::Domain::FromMesh(m, p);
+  EXPECT_EQ(d.components, 1);
+  vcg_ext::FastMarching<float> fm(d.fmMesh);
+  const auto dist = fm.Distances(0 * 11 + 5);  // (0, 0.5) on the left grid
+  const size_t far = base + 10 * 11 + 5;       // (2, 0.5) on the right grid
+  EXPECT_NEAR(dist[far], 2.0f, 0.02f);
+}
