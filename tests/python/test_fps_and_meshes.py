@@ -1,0 +1,135 @@
+"""Farthest point LOD, mesh geodesics and triangle-mesh output through the real pymeshlab 2025.7."""
+import re
+
+import numpy as np
+import pymeshlab
+import pytest
+from scipy.spatial import cKDTree
+
+from conftest import bumpy_points, mesh_set
+
+FPS = "generate_geodesic_fps_lod"
+POISSON = "generate_geodesic_poisson_lod"
+TRIANGLES = "Triangle mesh (geodesic Delaunay)"
+
+
+def grid_mesh(n=40):
+    pts = bumpy_points(n)
+    idx = np.arange(n * n).reshape(n, n)
+    a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    faces = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=pts, face_matrix=faces), "grid")
+    return ms
+
+
+def assert_subset(src, lod):
+    dist, idx = cKDTree(src.vertex_matrix()).query(lod.vertex_matrix())
+    assert np.all(dist == 0)
+    return idx
+
+
+def assert_clean_faces(lod):
+    f = lod.face_matrix()
+    assert len(f) > 0
+    assert np.all((f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2]))
+    assert len(np.unique(np.sort(f, axis=1), axis=0)) == len(f)
+    assert f.max() < lod.vertex_number()
+
+
+def test_fps_filter_is_listed(plugin, capfd):
+    assert FPS in pymeshlab.filter_list()
+    pymeshlab.print_filter_parameter_list(FPS)
+    out = capfd.readouterr().out
+    for p in ["samplenum", "metric", "geodesicmode", "output", "seed"]:
+        assert p in out, p
+
+
+def test_fps_exact_count_order_and_prefixes(plugin):
+    pts = bumpy_points(40)
+    runs = {}
+    for n in (20, 75):
+        ms = mesh_set(pts)
+        res = ms.apply_filter(FPS, samplenum=n, seed=11)
+        lod = ms.current_mesh()
+        assert res["sample_num"] == lod.vertex_number() == n
+        np.testing.assert_array_equal(lod.vertex_custom_scalar_attribute_array("fps_order"), np.arange(n))
+        assert_subset(ms.mesh(0), lod)
+        runs[n] = (lod.vertex_matrix(), res["covering_radius"])
+    np.testing.assert_array_equal(runs[75][0][:20], runs[20][0])  # a prefix is the smaller LOD
+    assert 0 < runs[75][1] < runs[20][1]
+    # The covering radius is a true bound on the distance to the nearest sample (Euclidean <= geodesic).
+    reach, _ = cKDTree(runs[75][0]).query(pts)
+    assert reach.max() <= runs[75][1] * (1 + 1e-9)
+
+
+def test_mesh_geodesics_and_triangle_output(plugin):
+    for flt, kwargs in [(POISSON, {"radius": pymeshlab.PureValue(0.08)}), (FPS, {"samplenum": 120})]:
+        ms = grid_mesh()
+        ms.apply_filter(flt, output=TRIANGLES, geodesicmode="Mesh (fast marching)", **kwargs)
+        lod = ms.current_mesh()
+        assert_subset(ms.mesh(0), lod)
+        assert_clean_faces(lod)
+        assert ms.mesh(0).face_number() == 2 * 39 * 39  # input untouched
+
+
+def test_terrain_crop_both_modes(plugin, shared):
+    for mode in ["Mesh (fast marching)", "Point graph (Dijkstra)"]:
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(shared("terrain_n44w072_crop301x301.ply"))
+        res = ms.apply_filter(FPS, samplenum=2000, geodesicmode=mode, output=TRIANGLES)
+        lod = ms.current_mesh()
+        assert res["sample_num"] == lod.vertex_number() == 2000
+        assert_subset(ms.mesh(0), lod)
+        assert_clean_faces(lod)
+        assert res["covering_radius"] > 0
+
+
+def test_dragon_mesh_lod(plugin, shared):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(shared("dragon_437k.ply"))
+    before = ms.current_mesh().vertex_matrix().copy()
+    res = ms.apply_filter(POISSON, output=TRIANGLES)
+    lod = ms.current_mesh()
+    assert res["sample_num"] == lod.vertex_number()
+    idx = assert_subset(ms.mesh(0), lod)
+    assert len(np.unique(idx)) == len(idx)  # repeated seam vertices never give two samples at one place
+    assert_clean_faces(lod)
+    np.testing.assert_array_equal(before, ms.mesh(0).vertex_matrix())
+
+
+def test_dragon_100k_degenerate_mesh(plugin, shared):
+    """Holes, duplicated edges and 43 unreferenced vertices: a result, and the left-out vertices reported."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(shared("dragon_100k.ply"))
+    n = ms.current_mesh().vertex_number()
+    res = ms.apply_filter(FPS, samplenum=3000, output=TRIANGLES)
+    assert res["sample_num"] == 3000
+    assert_clean_faces(ms.current_mesh())
+    ms.set_current_mesh(0)
+    res = ms.apply_filter(FPS, samplenum=n, geodesicmode="Point graph (Dijkstra)")
+    assert res["sample_num"] == n  # the point graph keeps the unreferenced vertices
+    with pytest.raises(pymeshlab.PyMeshLabException, match="samplenum must be between 1 and the number of vertices"):
+        ms.set_current_mesh(0)
+        ms.apply_filter(FPS, samplenum=n)  # mesh geodesics leave the 43 unreferenced vertices out
+
+
+BAD = {
+    "samplenum 0": (FPS, {"samplenum": 0}, "samplenum must be at least 1"),
+    "samplenum negative": (FPS, {"samplenum": -4}, "samplenum must be at least 1"),
+    "samplenum above n": (FPS, {"samplenum": 101}, "samplenum must be between 1 and the number of vertices (100)"),
+    "mesh mode on a cloud": (FPS, {"samplenum": 5, "geodesicmode": "Mesh (fast marching)"},
+                             "geodesicmode Mesh needs a layer with faces"),
+    "mesh output of a cloud": (POISSON, {"output": TRIANGLES}, "triangle-mesh output needs a layer with faces"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input_raises_a_clear_exception(plugin, case):
+    flt, kwargs, message = BAD[case]
+    ms = mesh_set(bumpy_points(10))
+    before = ms.current_mesh().vertex_matrix().copy()
+    with pytest.raises(pymeshlab.PyMeshLabException, match=re.escape(message)):
+        ms.apply_filter(flt, **kwargs)
+    assert ms.mesh_number() == 1
+    np.testing.assert_array_equal(before, ms.mesh(0).vertex_matrix())
