@@ -177,3 +177,12 @@ def test_bad_input_raises_a_clear_exception(plugin, case):
         ms.apply_filter(FILTER, **kwargs)
     assert ms.mesh_number() == 1  # no half-made layer
     assert_same(before, snapshot(ms.mesh(0)))
+
+
+def test_methods_bound_as_the_readme_shows(plugin):
+    for name in ("generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"):
+        setattr(pymeshlab.MeshSet, name, pymeshlab.bind_function(name))
+    ms = mesh_set(bumpy_points(30))
+    assert ms.generate_geodesic_fps_lod(samplenum=12)["sample_num"] == 12
+    ms.set_current_mesh(0)
+    assert ms.generate_geodesic_poisson_lod(radius=pymeshlab.PureValue(0.2))["sample_num"] > 0
