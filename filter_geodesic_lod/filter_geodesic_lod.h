@@ -1,6 +1,7 @@
 #ifndef GEODESIC_LOD_FILTER_GEODESIC_LOD_H
 #define GEODESIC_LOD_FILTER_GEODESIC_LOD_H
-// MeshLab 2025.07 adapter (FilterPlugin API) over lod_filters.h.
+// MeshLab 2025.07 adapter (FilterPlugin API) over lod_filters.h: one action per
+// entry of geodesic_lod::Filters(), its index the action's ID.
 #include <common/plugins/interfaces/filter_plugin.h>
 
 class FilterGeodesicLODPlugin : public QObject, public FilterPlugin {
@@ -9,8 +10,6 @@ class FilterGeodesicLODPlugin : public QObject, public FilterPlugin {
   Q_INTERFACES(FilterPlugin)
 
  public:
-  enum { FP_GEODESIC_POISSON_LOD, FP_GEODESIC_FPS_LOD };
-
   FilterGeodesicLODPlugin();
   QString pluginName() const override;
   QString filterName(ActionIDType filter) const override;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <new>
 #include <stdexcept>
-#include <common/mlexception.h>
+#include "filter_info.h"
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
 #include <vcg_ext/geodesic_fps_lod.h>
@@ -158,6 +158,14 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"covering_radius", QVariant(cover)}};
     return run;
   });
+}
+
+const std::vector<FilterDef>& Filters() {
+  static const std::vector<FilterDef> filters = {
+      {PoissonLodName, PoissonLodPythonName, PoissonLodInfo, PoissonLodParams, RunPoissonLod},
+      {FpsLodName, FpsLodPythonName, FpsLodInfo, FpsLodParams, RunFpsLod},
+  };
+  return filters;
 }
 
 QStringList FillLodLayer(const CMeshO& in, const LodRun& run, CMeshO& out) {

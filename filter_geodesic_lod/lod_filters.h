@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 #include <vector>
-#include <common/ml_document/cmesh.h>
+#include "meshlab_mesh.h"
 #include <vcg_ext/lod_result.h>
 
 namespace geodesic_lod {
@@ -51,6 +51,16 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m);
 /// for bad input, on a stop request and when memory runs out.
 LodRun RunPoissonLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+
+/// One filter, as every API adapter presents it: index = the filter's ID.
+struct FilterDef {
+  QString (*name)();
+  QString (*pythonName)();
+  QString (*info)();
+  std::vector<ParamSpec> (*params)(const CMeshO& m);
+  LodRun (*run)(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+};
+const std::vector<FilterDef>& Filters();
 
 /// Fills the empty mesh `out` (with the same optional components enabled as
 /// `in`) with copies of the chosen vertices and their data, the triangles of a
