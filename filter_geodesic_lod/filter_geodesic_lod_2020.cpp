@@ -1,0 +1,77 @@
+// MeshLab 2020.09 adapter (MeshFilterInterface API, meshlabserver).
+#include "filter_geodesic_lod_2020.h"
+
+#include <new>
+#include "apply_lod.h"
+
+using namespace geodesic_lod;
+
+namespace {
+
+class RichParamSource : public ParamSource {
+ public:
+  explicit RichParamSource(const RichParameterList& p) : p_(p) {}
+  double number(const QString& n) const override {
+    const Value& v = p_.getParameterByName(n).value();
+    if (v.isInt()) return v.getInt();
+    if (v.isAbsPerc()) return v.getAbsPerc();
+    return v.getFloat();
+  }
+  bool flag(const QString& n) const override { return p_.getBool(n); }
+  int choice(const QString& n) const override { return p_.getEnum(n); }
+
+ private:
+  const RichParameterList& p_;
+};
+
+}  // namespace
+
+FilterGeodesicLOD2020Plugin::FilterGeodesicLOD2020Plugin() {
+  for (size_t id = 0; id < Filters().size(); ++id) {
+    typeList << FilterIDType(id);
+    actionList << new QAction(filterName(FilterIDType(id)), this);
+  }
+}
+
+QString FilterGeodesicLOD2020Plugin::pluginName() const { return "FilterGeodesicLOD"; }
+QString FilterGeodesicLOD2020Plugin::filterName(FilterIDType f) const { return Filters().at(f).name(); }
+QString FilterGeodesicLOD2020Plugin::filterInfo(FilterIDType f) const { return Filters().at(f).info(); }
+
+MeshFilterInterface::FilterClass FilterGeodesicLOD2020Plugin::getClass(QAction*) {
+  return FilterClass(MeshFilterInterface::Sampling | MeshFilterInterface::PointSet);
+}
+
+MeshFilterInterface::FILTER_ARITY FilterGeodesicLOD2020Plugin::filterArity(QAction*) const { return SINGLE_MESH; }
+int FilterGeodesicLOD2020Plugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
+int FilterGeodesicLOD2020Plugin::postCondition(QAction*) const { return MeshModel::MM_NONE; }
+
+void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& list) {
+  for (const ParamSpec& s : Filters().at(ID(a)).params(m.cm)) {
+    switch (s.kind) {
+      case ParamKind::Percentage:
+        list.addParam(RichAbsPerc(s.name, float(s.defaultValue), float(s.min), float(s.max), s.label, s.tooltip));
+        break;
+      case ParamKind::Float: list.addParam(RichFloat(s.name, float(s.defaultValue), s.label, s.tooltip)); break;
+      case ParamKind::Int: list.addParam(RichInt(s.name, int(s.defaultValue), s.label, s.tooltip)); break;
+      case ParamKind::Bool: list.addParam(RichBool(s.name, s.defaultValue != 0, s.label, s.tooltip)); break;
+      case ParamKind::Enum: list.addParam(RichEnum(s.name, int(s.defaultValue), s.values, s.label, s.tooltip)); break;
+    }
+  }
+}
+
+bool FilterGeodesicLOD2020Plugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
+                                              vcg::CallBackPos* cb) {
+  // This host catches nothing but bad_alloc: every failure becomes a false
+  // return with its message in errorMessage and in the log (meshlabserver prints the log).
+  try {
+    const LodRun run = ApplyLod(size_t(ID(a)), md, RichParamSource(par), cb, [this](const std::string& s) { Log(s); });
+    for (const auto& v : run.values) Log(v.first + " = " + v.second.toString().toStdString());
+    return true;
+  } catch (const std::exception& e) {
+    errorMessage = e.what();
+  } catch (...) {
+    errorMessage = "Geodesic LOD: unexpected failure";
+  }
+  Log(GLLogStream::WARNING, errorMessage.toStdString());
+  return false;
+}
