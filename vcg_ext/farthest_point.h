@@ -50,39 +50,44 @@ class FarthestPoint {
     heap.reserve(2 * n);
     for (size_t i = 0; i < n; ++i) heap.emplace_back(inf, int(i));
     std::make_heap(heap.begin(), heap.end());
+    std::vector<char> chosen(n, 0);
     int next = int(std::mt19937_64(p.seed)() % n);
     for (size_t k = 0; k < p.sampleNum; ++k) {
       if (k > 0) r.coveringRadius.push_back(double(dist[next]));
       const int id = int(k);
       r.samples.push_back(next);
+      chosen[next] = 1;
       prop.Lower(next, dist, [&](int i, Scalar d) {
         r.owner[i] = id;
         heap.emplace_back(d, i);
         std::push_heap(heap.begin(), heap.end());
       });
-      if (heap.size() > 4 * n) Rebuild(heap, dist);
-      next = Top(heap, dist);
+      if (heap.size() > 4 * n) Rebuild(heap, dist, chosen);
+      next = Top(heap, dist, chosen);
       if ((k & 63) == 0) progress(k, p.sampleNum, "Farthest point sampling");
     }
-    r.coveringRadius.push_back(double(dist[next]));
+    r.coveringRadius.push_back(next < 0 ? 0.0 : double(dist[next]));
     r.dist.assign(dist.begin(), dist.end());
     return r;
   }
 
  private:
-  // The farthest point: drops stale entries from the top.
+  // The farthest point not yet chosen (-1 when none is left): drops stale
+  // entries and chosen points from the top. A chosen point can tie for the
+  // top when the rest coincide with samples (distance 0).
   template <class Entry, class Scalar>
-  static int Top(std::vector<Entry>& heap, const std::vector<Scalar>& dist) {
-    while (heap.front().first != dist[heap.front().second]) {
+  static int Top(std::vector<Entry>& heap, const std::vector<Scalar>& dist, const std::vector<char>& chosen) {
+    while (!heap.empty() && (heap.front().first != dist[heap.front().second] || chosen[heap.front().second])) {
       std::pop_heap(heap.begin(), heap.end());
       heap.pop_back();
     }
-    return heap.front().second;
+    return heap.empty() ? -1 : heap.front().second;
   }
   template <class Entry, class Scalar>
-  static void Rebuild(std::vector<Entry>& heap, const std::vector<Scalar>& dist) {
+  static void Rebuild(std::vector<Entry>& heap, const std::vector<Scalar>& dist, const std::vector<char>& chosen) {
     heap.clear();
-    for (size_t i = 0; i < dist.size(); ++i) heap.emplace_back(dist[i], int(i));
+    for (size_t i = 0; i < dist.size(); ++i)
+      if (!chosen[i]) heap.emplace_back(dist[i], int(i));
     std::make_heap(heap.begin(), heap.end());
   }
 };

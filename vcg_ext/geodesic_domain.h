@@ -62,6 +62,8 @@ class GeodesicDomain {
     if (n == 1) throw std::invalid_argument("the layer has a single vertex: there is nothing to sample from");
     vcg::Box3<Scalar> box;
     for (const Coord& q : ps.pos) box.Add(q);
+    if (!std::isfinite(box.Diag()))
+      throw std::invalid_argument("the coordinates are too large: the bounding box's diagonal overflows");
     if (!(box.Diag() > 0))
       throw std::invalid_argument("all " + std::to_string(n) + " vertices coincide: there is no surface to sample");
     if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)

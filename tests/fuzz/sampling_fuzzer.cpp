@@ -1,0 +1,107 @@
+// libFuzzer target: vcg_ext's sampling entry points on arbitrary point sets,
+// faces and parameters. Bad input must end in std::invalid_argument, never in
+// a crash, a sanitizer report or a broken result.
+#include <fuzzer/FuzzedDataProvider.h>
+#include <cfloat>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "../vcg_ext/test_mesh.h"
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+
+float Special(FuzzedDataProvider& f) {
+  static const float values[] = {0.f, 1.f, -1.f, 0.5f, 1e-30f, -1e-30f, 1e30f, -1e30f, FLT_MAX, -FLT_MAX,
+                                 FLT_MIN, 1e-45f, std::numeric_limits<float>::quiet_NaN(),
+                                 std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  return values[f.ConsumeIntegralInRange<size_t>(0, sizeof(values) / sizeof(values[0]) - 1)];
+}
+
+float Coordinate(FuzzedDataProvider& f) {
+  switch (f.ConsumeIntegralInRange<int>(0, 3)) {
+    case 0: return Special(f);
+    case 1: return f.ConsumeFloatingPoint<float>();
+    default: return f.ConsumeFloatingPointInRange<float>(-1.f, 1.f);
+  }
+}
+
+[[noreturn]] void Fail(const char* what) {
+  std::fprintf(stderr, "broken result: %s\n", what);
+  __builtin_trap();
+}
+
+void Check(const vcg_ext::LodResult<float>& r, const test::TMesh& m) {
+  std::set<int> seen;
+  for (int v : r.vertIndex) {
+    if (v < 0 || size_t(v) >= m.vert.size()) Fail("sample index out of range");
+    if (m.vert[v].IsD()) Fail("deleted vertex sampled");
+    if (!seen.insert(v).second) Fail("vertex sampled twice");
+  }
+  for (const auto& f : r.faces)
+    for (int c : f)
+      if (c < 0 || size_t(c) >= r.vertIndex.size()) Fail("face corner is not a sample");
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  FuzzedDataProvider f(data, size);
+  test::TMesh m;
+  const int n = f.ConsumeIntegralInRange<int>(0, 200);
+  const int layout = f.ConsumeIntegralInRange<int>(0, 3);  // free, collinear, coincident runs, grid
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, n);
+  for (int i = 0; i < n; ++i) {
+    auto& p = m.vert[i].P();
+    if (layout == 1) p = test::P3(Coordinate(f), 0, 0);
+    else if (layout == 2 && i > 0 && f.ConsumeBool()) p = m.vert[i - 1].P();
+    else if (layout == 3) p = test::P3(float(i % 15), float(i / 15), f.ConsumeBool() ? Coordinate(f) : 0.f);
+    else p = test::P3(Coordinate(f), Coordinate(f), Coordinate(f));
+    m.vert[i].N() = f.ConsumeBool() ? test::P3(Coordinate(f), Coordinate(f), Coordinate(f)) : test::P3(0, 0, 0);
+  }
+  const int nf = n ? f.ConsumeIntegralInRange<int>(0, 2 * n) : 0;
+  if (nf) vcg::tri::Allocator<test::TMesh>::AddFaces(m, nf);  // corners set directly: repeats allowed
+  for (auto& face : m.face)
+    for (int c = 0; c < 3; ++c) face.V(c) = &m.vert[f.ConsumeIntegralInRange<int>(0, n - 1)];
+  for (int i = 0; i < n; ++i)
+    if (f.ConsumeIntegralInRange<int>(0, 15) == 0) vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[i]);
+
+  LOD::Domain::Param d;
+  d.metric = vcg_ext::Metric(f.ConsumeIntegralInRange<int>(0, 3));
+  d.mode = vcg_ext::GeodesicMode(f.ConsumeIntegralInRange<int>(0, 2));
+  d.normalNeighbors = f.ConsumeIntegralInRange<int>(-1, n + 2);
+  d.graphNeighbors = f.ConsumeIntegralInRange<int>(-1, n + 2);
+  d.curvatureExponent = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0.01, 4);
+  d.adaptivity = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0, 50);
+  d.useInputNormals = f.ConsumeBool();
+  const bool meshOutput = f.ConsumeBool();
+  const uint64_t seed = f.ConsumeIntegral<uint64_t>();
+  const double radius = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
+  const size_t sampleNum = f.ConsumeIntegralInRange<size_t>(0, size_t(n) + 2);
+
+  LOD::Param lp;
+  lp.domain = d;
+  lp.radius = radius;
+  lp.seed = seed;
+  lp.meshOutput = meshOutput;
+  try {
+    Check(LOD::Compute(m, lp), m);
+  } catch (const std::invalid_argument&) {
+  }
+  FPS::Param fp;
+  fp.domain = d;
+  fp.sampleNum = sampleNum;
+  fp.seed = seed;
+  fp.meshOutput = meshOutput;
+  try {
+    const auto r = FPS::Compute(m, fp);
+    Check(r, m);
+    if (r.vertIndex.size() != sampleNum) Fail("FPS count differs from samplenum");
+  } catch (const std::invalid_argument&) {
+  }
+  return 0;
+}

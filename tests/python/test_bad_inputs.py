@@ -1,0 +1,179 @@
+"""The table of unusual and bad inputs, for both filters through pymeshlab: each case ends in a
+clear PyMeshLabException (MeshLab's MLException message) or in the documented result, the
+input layer is bit-identical afterwards, and the process goes on."""
+import re
+
+import numpy as np
+import pymeshlab
+import pytest
+
+from conftest import bumpy_points
+
+POISSON, FPS = "generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"
+MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
+TRIANGLES = "Triangle mesh (geodesic Delaunay)"
+
+
+def grid(n=12, shift=(0.0, 0.0, 0.0)):
+    pts = bumpy_points(n) + np.asarray(shift)
+    idx = np.arange(n * n).reshape(n, n)
+    a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    return pts, np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+
+
+def layer(points, faces=None, normals=None):
+    kw = {"vertex_matrix": np.asarray(points, dtype=np.float64)}
+    if faces is not None:
+        kw["face_matrix"] = np.asarray(faces, dtype=np.int32)
+    if normals is not None:
+        kw["v_normals_matrix"] = np.asarray(normals, dtype=np.float64)
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(**kw), "input")
+    return ms
+
+
+def empty():
+    ms = layer(bumpy_points(5))
+    ms.set_selection_all()
+    ms.meshing_remove_selected_vertices()
+    return ms
+
+
+def two_parts():
+    a, fa = grid()
+    b, fb = grid(shift=(5, 0, 0))
+    return layer(np.vstack([a, b]), np.vstack([fa, fb + len(a)]))
+
+
+def non_manifold():
+    pts, faces = grid()
+    extra = np.vstack([pts, [[0.5, 0.5, 1.0]]])
+    edge = faces[0][:2]  # a third triangle on an interior edge
+    return layer(extra, np.vstack([faces, [[edge[0], edge[1], len(pts)]]]))
+
+
+def degenerate_faces():
+    pts, faces = grid()
+    flat = np.vstack([pts, [[2.0, 2.0, 0.0], [3.0, 3.0, 0.0], [4.0, 4.0, 0.0]]])  # a zero-area triangle
+    return layer(flat, np.vstack([faces, [[len(pts), len(pts) + 1, len(pts) + 2]]]))
+
+
+def unreferenced():
+    pts, faces = grid()
+    return layer(np.vstack([pts, [[3.0, 3.0, 3.0], [3.5, 3.0, 3.0]]]), faces)
+
+
+def n_of(ms):
+    return ms.current_mesh().vertex_number()
+
+
+# Documented results: a check on the LOD layer (and on the input, ms.mesh(0)).
+def distinct_samples(ms):
+    v = ms.current_mesh().vertex_matrix()
+    assert len(np.unique(v, axis=0)) == len(v)
+
+
+def unit_normals(ms):
+    np.testing.assert_allclose(np.linalg.norm(ms.current_mesh().vertex_normal_matrix(), axis=1), 1.0, atol=1e-6)
+
+
+def one_per_part(parts):
+    def check(ms):
+        assert ms.current_mesh().vertex_number() == parts
+    return check
+
+
+def with_faces(ms):
+    assert ms.current_mesh().face_number() > 0
+
+
+def no_unreferenced_sample(ms):
+    assert ms.current_mesh().vertex_matrix()[:, 2].max() < 3.0
+
+
+# (name, make the input layer, filter, parameters, expected: an error message or a check)
+CASES = [
+    ("empty layer", empty, POISSON, {}, "the layer has no vertices"),
+    ("empty layer", empty, FPS, {"samplenum": 1}, "the layer has no vertices"),
+    ("one point", lambda: layer([[0, 0, 0]]), POISSON, {}, "single vertex"),
+    ("one point", lambda: layer([[0, 0, 0]]), FPS, {"samplenum": 1}, "single vertex"),
+    ("all coincident", lambda: layer(np.ones((40, 3))), POISSON, {}, "all 40 vertices coincide"),
+    ("all coincident", lambda: layer(np.ones((40, 3))), FPS, {"samplenum": 3}, "all 40 vertices coincide"),
+    ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), POISSON,
+     {"radius": pymeshlab.PureValue(0.1)}, distinct_samples),
+    ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), FPS, {"samplenum": 450}, one_per_part(450)),
+    ("NaN coordinate", lambda: layer(np.vstack([bumpy_points(10), [[np.nan, 0, 0]]])), POISSON, {},
+     "1 vertices have NaN or infinite coordinates"),
+    ("infinite coordinate", lambda: layer(np.vstack([bumpy_points(10), [[0, np.inf, 0]]])), FPS, {"samplenum": 5},
+     "1 vertices have NaN or infinite coordinates"),
+    ("huge coordinates", lambda: layer(bumpy_points(10) * 1e200), POISSON, {}, "coordinates are too large"),
+    ("zero normals", lambda: layer(bumpy_points(20), normals=np.zeros((400, 3))), POISSON,
+     {"radius": pymeshlab.PureValue(0.1)}, unit_normals),
+    ("NaN normals", lambda: layer(bumpy_points(20), normals=np.full((400, 3), np.nan)), FPS, {"samplenum": 30},
+     unit_normals),
+    ("non-manifold faces", non_manifold, POISSON, {"output": TRIANGLES, "geodesicmode": MESH_MODE,
+                                                   "radius": pymeshlab.PureValue(0.15)}, with_faces),
+    ("degenerate faces", degenerate_faces, FPS, {"samplenum": 20, "geodesicmode": MESH_MODE, "output": TRIANGLES},
+     with_faces),
+    ("unreferenced vertices, mesh mode", unreferenced, POISSON,
+     {"geodesicmode": MESH_MODE, "radius": pymeshlab.PureValue(0.1)}, no_unreferenced_sample),
+    ("unreferenced vertices, mesh mode, every vertex", unreferenced, FPS, {"samplenum": 146, "geodesicmode": MESH_MODE},
+     "samplenum must be between 1 and the number of vertices (144)"),
+    ("unreferenced vertices, point graph", unreferenced, FPS, {"samplenum": 146, "geodesicmode": GRAPH},
+     one_per_part(146)),
+    ("disconnected parts, radius beyond the model", two_parts, POISSON, {"radius": pymeshlab.PureValue(100)},
+     one_per_part(2)),
+    ("disconnected parts, FPS", two_parts, FPS, {"samplenum": 2}, one_per_part(2)),
+    ("normalneighbors >= n", lambda: layer(bumpy_points(5)), POISSON, {"normalneighbors": 25},
+     "normalneighbors (25) must be smaller than the number of vertices (25)"),
+    ("graphneighbors >= n", lambda: layer(bumpy_points(5)), FPS, {"samplenum": 3, "graphneighbors": 30},
+     "graphneighbors (30) must be smaller than the number of vertices (25)"),
+    ("normalneighbors 0", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 3, "normalneighbors": 0},
+     "normalneighbors must be at least 1"),
+    ("graphneighbors 0", lambda: layer(bumpy_points(10)), POISSON, {"graphneighbors": 0},
+     "graphneighbors must be at least 1"),
+    ("radius 0", lambda: layer(bumpy_points(10)), POISSON, {"radius": pymeshlab.PureValue(0)},
+     "radius must be a positive number"),
+    ("radius negative", lambda: layer(bumpy_points(10)), POISSON, {"radius": pymeshlab.PureValue(-1)},
+     "radius must be a positive number"),
+    ("samplenum 0", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 0}, "samplenum must be at least 1"),
+    ("samplenum negative", lambda: layer(bumpy_points(10)), FPS, {"samplenum": -4}, "samplenum must be at least 1"),
+    ("samplenum above n", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 101},
+     "samplenum must be between 1 and the number of vertices (100)"),
+    ("mesh mode without faces", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 5, "geodesicmode": MESH_MODE},
+     "geodesicmode Mesh needs a layer with faces"),
+    ("triangle output without faces", lambda: layer(bumpy_points(10)), POISSON, {"output": TRIANGLES},
+     "triangle-mesh output needs a layer with faces"),
+    ("curvatureexponent 0", lambda: layer(bumpy_points(10)), POISSON, {"curvatureexponent": 0.0},
+     "curvatureexponent must be a positive number"),
+    ("adaptivity negative", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 4, "adaptivity": -1.0},
+     "adaptivity must be zero or positive"),
+    ("seed negative", lambda: layer(bumpy_points(10)), POISSON, {"seed": -5}, "seed must be zero or positive"),
+]
+
+
+def snapshot(ms):
+    m = ms.mesh(0)
+    return [m.vertex_matrix().copy(), m.vertex_normal_matrix().copy(), m.vertex_color_matrix().copy(),
+            m.face_matrix().copy(), m.vertex_scalar_array().copy()]
+
+
+@pytest.mark.parametrize("case", CASES, ids=[f"{c[0]} [{c[2].split('_')[2]}]" for c in CASES])
+def test_bad_or_unusual_input(plugin, case):
+    name, make, flt, params, expected = case
+    ms = make()
+    before, layers = snapshot(ms), ms.mesh_number()
+    if isinstance(expected, str):
+        with pytest.raises(pymeshlab.PyMeshLabException, match=re.escape(expected)):
+            ms.apply_filter(flt, **params)
+        assert ms.mesh_number() == layers  # no half-made layer
+    else:
+        ms.apply_filter(flt, **params)
+        assert ms.mesh_number() == layers + 1
+        expected(ms)
+    for a, b in zip(before, snapshot(ms)):
+        np.testing.assert_array_equal(a, b)  # the input layer, bit for bit (NaN included)
+
+
+def test_at_least_twenty_cases():
+    assert len(CASES) >= 20
