@@ -177,3 +177,33 @@ def test_bad_or_unusual_input(plugin, case):
 
 def test_at_least_twenty_cases():
     assert len(CASES) >= 20
+
+
+OOM = r"""
+import resource, sys
+import numpy as np, pymeshlab
+pymeshlab.load_plugin(sys.argv[1])
+ms = pymeshlab.MeshSet()
+ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.random.default_rng(0).random((300000, 3))))
+before = ms.current_mesh().vertex_matrix().copy()
+vm = next(int(l.split()[1]) for l in open("/proc/self/status") if l.startswith("VmSize")) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + 40 * 2**20, resource.RLIM_INFINITY))  # 40 MB more, no further
+try:
+    ms.apply_filter(sys.argv[2], **({"samplenum": 1000} if "fps" in sys.argv[2] else {}))
+    print("no error")
+except pymeshlab.PyMeshLabException as e:
+    print(str(e))
+assert ms.mesh_number() == 1 and np.array_equal(before, ms.mesh(0).vertex_matrix())
+print("alive")
+"""
+
+
+@pytest.mark.parametrize("flt", [POISSON, FPS])
+def test_out_of_memory_is_a_clear_error(plugin, flt):
+    """An input too large for the memory at hand: std::bad_alloc becomes the filter's message."""
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-c", OOM, str(plugin), flt], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert "not enough memory for this layer" in r.stdout
+    assert r.stdout.strip().endswith("alive")

@@ -75,6 +75,19 @@ def test_same_seed_same_output(plugin):
     assert runs[0].shape != runs[2].shape or not np.array_equal(runs[0], runs[2])
 
 
+def test_same_seed_same_bytes(plugin, tmp_path):
+    """Saved LODs of two runs with the same seed are byte-identical files."""
+    for flt, kw in [("generate_geodesic_poisson_lod", {"radius": pymeshlab.PureValue(0.05)}),
+                    ("generate_geodesic_fps_lod", {"samplenum": 200})]:
+        files = []
+        for run in range(2):
+            ms = mesh_set(bumpy_points(40))
+            ms.apply_filter(flt, seed=7, **kw)
+            files.append(tmp_path / f"{flt}_{run}.ply")
+            ms.save_current_mesh(str(files[-1]), binary=True)
+        assert files[0].read_bytes() == files[1].read_bytes()
+
+
 def test_every_metric_runs_and_curvature_density_adapts(plugin):
     pts = bumpy_points()
     share = {}
