@@ -36,7 +36,8 @@ class GeodesicDelaunay {
     std::set<std::array<int, 3>> seen;
     for (const auto& t : triangles) {
       const std::array<int, 3> f = {owner[t[0]], owner[t[1]], owner[t[2]]};
-      if (f[0] < 0 || f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
+      if (f[0] < 0 || f[1] < 0 || f[2] < 0) continue;  // a corner no sample reached (a part without samples)
+      if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
       std::array<int, 3> key = f;
       std::sort(key.begin(), key.end());
       if (seen.insert(key).second) faces.push_back(f);

@@ -141,3 +141,26 @@ TEST(GeodesicMesh, RepeatedSeamVerticesAreCrossedAtNoCost) {
   const size_t far = base + 10 * 11 + 5;       // (2, 0.5) on the right grid
   EXPECT_NEAR(dist[far], 2.0f, 0.02f);
 }
+
+TEST(GeodesicMesh, DelaunayFacesOnlyWhereSamplesReach) {
+  // Regions from another metric (the point graph) need not follow the triangles: a triangle can
+  // have corners no sample reached (-1) beside reached ones. Such triangles give no face.
+  test::TMesh m;
+  test::GridMesh(m, 8, [](float, float) { return 0.f; });
+  test::TMesh other;
+  test::GridMesh(other, 8, [](float, float) { return 0.f; });
+  const size_t base = m.vert.size();
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, other.vert.size());
+  for (size_t i = 0; i < other.vert.size(); ++i) m.vert[base + i].P() = other.vert[i].P() + test::P3(5, 0, 0);
+  for (const auto& f : other.face)
+    vcg::tri::Allocator<test::TMesh>::AddFace(m, &m.vert[base + vcg::tri::Index(other, f.cV(0))],
+                                             &m.vert[base + vcg::tri::Index(other, f.cV(1))],
+                                             &m.vert[base + vcg::tri::Index(other, f.cV(2))]);
+  std::vector<int> owner(m.vert.size(), -1);
+  for (size_t i = 0; i < base; ++i) owner[i] = int(i % 4) - 1;  // regions 0..2 and unreached corners
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& f : m.face)
+    tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
+  for (const auto& f : vcg_ext::GeodesicDelaunay<float>::Compute(tri, owner))
+    for (int c : f) EXPECT_TRUE(c >= 0 && c < 3);
+}
