@@ -14,7 +14,11 @@ struct TUsedTypes : public vcg::UsedTypes<vcg::Use<TVertex>::AsVertexType, vcg::
 class TVertex : public vcg::Vertex<TUsedTypes, vcg::vertex::Coord3f, vcg::vertex::Normal3f, vcg::vertex::Color4b,
                                    vcg::vertex::Qualityf, vcg::vertex::BitFlags> {};
 class TFace : public vcg::Face<TUsedTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
-class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
+// vcglib's mesh destructor leaves named attributes allocated: free them.
+class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {
+ public:
+  ~TMesh() { ClearAttributes(); }
+};
 
 typedef vcg::Point3f P3;
 
