@@ -121,17 +121,11 @@ TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
 
 TEST(GeodesicMesh, RepeatedSeamVerticesAreCrossedAtNoCost) {
   // Two grids meeting at x = 1 with their own copies of the seam vertices.
+  auto flat = [](test::TMesh& g) { test::GridMesh(g, 11, [](float, float) { return 0.f; }); };
   test::TMesh m;
-  test::GridMesh(m, 11, [](float, float) { return 0.f; });
-  test::TMesh right;
-  test::GridMesh(right, 11, [](float, float) { return 0.f; });
+  flat(m);
   const size_t base = m.vert.size();
-  vcg::tri::Allocator<test::TMesh>::AddVertices(m, right.vert.size());
-  for (size_t i = 0; i < right.vert.size(); ++i) m.vert[base + i].P() = right.vert[i].P() + test::P3(1, 0, 0);
-  for (const auto& f : right.face)
-    vcg::tri::Allocator<test::TMesh>::AddFace(m, &m.vert[base + vcg::tri::Index(right, f.cV(0))],
-                                             &m.vert[base + vcg::tri::Index(right, f.cV(1))],
-                                             &m.vert[base + vcg::tri::Index(right, f.cV(2))]);
+  test::AppendShifted(m, flat, test::P3(1, 0, 0));
   LOD::Domain::Param p;
   p.metric = vcg_ext::Metric::Geodesic;
   const auto d = LOD::Domain::FromMesh(m, p);
@@ -147,17 +141,8 @@ TEST(GeodesicMesh, DelaunayFacesOnlyWhereSamplesReach) {
   // have corners no sample reached (-1) beside reached ones. Such triangles give no face.
   test::TMesh m;
   test::GridMesh(m, 8, [](float, float) { return 0.f; });
-  test::TMesh other;
-  test::GridMesh(other, 8, [](float, float) { return 0.f; });
-  const size_t base = m.vert.size();
-  vcg::tri::Allocator<test::TMesh>::AddVertices(m, other.vert.size());
-  for (size_t i = 0; i < other.vert.size(); ++i) m.vert[base + i].P() = other.vert[i].P() + test::P3(5, 0, 0);
-  for (const auto& f : other.face)
-    vcg::tri::Allocator<test::TMesh>::AddFace(m, &m.vert[base + vcg::tri::Index(other, f.cV(0))],
-                                             &m.vert[base + vcg::tri::Index(other, f.cV(1))],
-                                             &m.vert[base + vcg::tri::Index(other, f.cV(2))]);
-  std::vector<int> owner(m.vert.size(), -1);
-  for (size_t i = 0; i < base; ++i) owner[i] = int(i % 4) - 1;  // regions 0..2 and unreached corners
+  std::vector<int> owner(m.vert.size());
+  for (size_t i = 0; i < owner.size(); ++i) owner[i] = int(i % 4) - 1;  // regions 0..2 and unreached corners
   std::vector<std::array<int, 3>> tri;
   for (const auto& f : m.face)
     tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});

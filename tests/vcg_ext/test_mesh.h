@@ -67,7 +67,7 @@ inline void Sphere(TMesh& m, int n, float r = 1.f) {
   }
 }
 
-/// Appends the points of `b` to `a`, shifted by `offset`.
+/// Appends the mesh `make` builds (points and faces) to `a`, shifted by `offset`.
 inline void AppendShifted(TMesh& a, const std::function<void(TMesh&)>& make, const P3& offset) {
   TMesh b;
   make(b);
@@ -77,6 +77,10 @@ inline void AppendShifted(TMesh& a, const std::function<void(TMesh&)>& make, con
     a.vert[base + i].P() = b.vert[i].cP() + offset;
     a.vert[base + i].N() = b.vert[i].cN();
   }
+  for (const auto& f : b.face)
+    vcg::tri::Allocator<TMesh>::AddFace(a, &a.vert[base + vcg::tri::Index(b, f.cV(0))],
+                                        &a.vert[base + vcg::tri::Index(b, f.cV(1))],
+                                        &a.vert[base + vcg::tri::Index(b, f.cV(2))]);
 }
 
 }  // namespace test
