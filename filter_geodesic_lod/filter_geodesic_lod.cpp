@@ -51,13 +51,15 @@ QString FilterGeodesicLODPlugin::filterName(ActionIDType f) const { return Filte
 QString FilterGeodesicLODPlugin::pythonFilterName(ActionIDType f) const { return Filters().at(f).pythonName(); }
 QString FilterGeodesicLODPlugin::filterInfo(ActionIDType f) const { return Filters().at(f).info(); }
 
-FilterPlugin::FilterClass FilterGeodesicLODPlugin::getClass(const QAction*) const {
-  return FilterClass(FilterPlugin::Sampling | FilterPlugin::PointSet);
+FilterPlugin::FilterClass FilterGeodesicLODPlugin::getClass(const QAction* a) const {
+  return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
 FilterPlugin::FilterArity FilterGeodesicLODPlugin::filterArity(const QAction*) const { return SINGLE_MESH; }
 int FilterGeodesicLODPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
-int FilterGeodesicLODPlugin::postCondition(const QAction*) const { return MeshModel::MM_NONE; }
+int FilterGeodesicLODPlugin::postCondition(const QAction* a) const {
+  return Filters().at(ID(a)).newLayer ? int(MeshModel::MM_NONE) : int(MeshModel::MM_VERTQUALITY);
+}
 
 RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, const MeshModel& m) {
   return ToRich(Filters().at(ID(a)).params(m.cm));

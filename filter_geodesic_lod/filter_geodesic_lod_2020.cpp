@@ -37,13 +37,15 @@ QString FilterGeodesicLOD2020Plugin::pluginName() const { return "FilterGeodesic
 QString FilterGeodesicLOD2020Plugin::filterName(FilterIDType f) const { return Filters().at(f).name(); }
 QString FilterGeodesicLOD2020Plugin::filterInfo(FilterIDType f) const { return Filters().at(f).info(); }
 
-MeshFilterInterface::FilterClass FilterGeodesicLOD2020Plugin::getClass(QAction*) {
-  return FilterClass(MeshFilterInterface::Sampling | MeshFilterInterface::PointSet);
+MeshFilterInterface::FilterClass FilterGeodesicLOD2020Plugin::getClass(QAction* a) {
+  return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
 MeshFilterInterface::FILTER_ARITY FilterGeodesicLOD2020Plugin::filterArity(QAction*) const { return SINGLE_MESH; }
 int FilterGeodesicLOD2020Plugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
-int FilterGeodesicLOD2020Plugin::postCondition(QAction*) const { return MeshModel::MM_NONE; }
+int FilterGeodesicLOD2020Plugin::postCondition(QAction* a) const {
+  return Filters().at(ID(a)).newLayer ? int(MeshModel::MM_NONE) : int(MeshModel::MM_VERTQUALITY);
+}
 
 void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& list) {
   for (const ParamSpec& s : Filters().at(ID(a)).params(m.cm)) {

@@ -47,5 +47,16 @@ inline QString FpsLodInfo() {
          "sample)." + PaperReference();
 }
 
+inline QString NormalVariationName() { return "Normal variation curvature"; }
+inline QString NormalVariationPythonName() { return "compute_scalar_by_normal_variation"; }
+inline QString NormalVariationInfo() {
+  return "Stores in each vertex's quality the curvature the geodesic LOD filters use: the normal variation "
+         "v_i = sum_j (1 - |n_i . n_j|)/k over the k nearest points (eq. 1), 0 on a plane, at most 1. Normals "
+         "n_i are the layer's own where valid, else estimated from the k nearest points. Colour by quality or "
+         "look at the quality histogram to see where the LODs will be dense. Changes only the vertex quality. "
+         "Returns <i>min</i>, <i>mean</i> and <i>max</i>." +
+         PaperReference();
+}
+
 }  // namespace geodesic_lod
 #endif

@@ -160,10 +160,49 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
   });
 }
 
+std::vector<ParamSpec> NormalVariationParams(const CMeshO&) {
+  std::vector<ParamSpec> p;
+  p.push_back({ParamKind::Int, "normalneighbors", "Normal neighbours k",
+               "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20});
+  p.push_back({ParamKind::Bool, "recomputenormals", "Recompute normals",
+               "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
+               "When off, the layer's valid normals are used and only missing ones are estimated.", 0});
+  return p;
+}
+
+LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
+  return Guarded([&] {
+    vcg_ext::GeodesicDomain<Scalarm>::Param d;
+    d.metric = vcg_ext::Metric::Euclidean;  // eq. 1 needs no geodesics
+    d.normalNeighbors = int(src.number("normalneighbors"));
+    d.useInputNormals = !src.flag("recomputenormals");
+    const auto domain = vcg_ext::GeodesicDomain<Scalarm>::FromMesh(in, d, vcg_ext::Progress(cb));
+    std::vector<int> all(domain.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+    LodRun run;
+    run.result = vcg_ext::LodResult<Scalarm>::Collect(domain, all);
+    double lo = 1, hi = 0, sum = 0;
+    for (Scalarm v : run.result.curvature) {
+      lo = std::min(lo, double(v));
+      hi = std::max(hi, double(v));
+      sum += v;
+    }
+    const double mean = sum / std::max<size_t>(1, all.size());
+    run.summary = QString("Normal variation curvature (eq. 1, k = %1) in the vertex quality of %2 vertices: "
+                          "min %3, mean %4, max %5; %6 normals estimated")
+                      .arg(d.normalNeighbors).arg(all.size()).arg(lo).arg(mean).arg(hi).arg(domain.estimatedNormals);
+    run.values = {{"min", QVariant(lo)}, {"mean", QVariant(mean)}, {"max", QVariant(hi)}};
+    return run;
+  });
+}
+
 const std::vector<FilterDef>& Filters() {
   static const std::vector<FilterDef> filters = {
-      {PoissonLodName, PoissonLodPythonName, PoissonLodInfo, PoissonLodParams, RunPoissonLod},
-      {FpsLodName, FpsLodPythonName, FpsLodInfo, FpsLodParams, RunFpsLod},
+      {PoissonLodName, PoissonLodPythonName, PoissonLodInfo, PoissonLodParams, RunPoissonLod,
+       kClassSampling | kClassPointSet, true},
+      {FpsLodName, FpsLodPythonName, FpsLodInfo, FpsLodParams, RunFpsLod, kClassSampling | kClassPointSet, true},
+      {NormalVariationName, NormalVariationPythonName, NormalVariationInfo, NormalVariationParams,
+       RunNormalVariation, kClassNormal | kClassQuality, false},
   };
   return filters;
 }

@@ -51,6 +51,8 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m);
 /// for bad input, on a stop request and when memory runs out.
 LodRun RunPoissonLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+std::vector<ParamSpec> NormalVariationParams(const CMeshO& m);
+LodRun RunNormalVariation(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 
 /// One filter, as every API adapter presents it: index = the filter's ID.
 struct FilterDef {
@@ -59,7 +61,12 @@ struct FilterDef {
   QString (*info)();
   std::vector<ParamSpec> (*params)(const CMeshO& m);
   LodRun (*run)(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+  int filterClass;  ///< menu classes, FilterClass bits (the same values in both APIs)
+  bool newLayer;    ///< else it writes run.result.curvature into the current layer's quality
 };
+
+/// Menu classes (FilterPlugin::FilterClass bits).
+enum : int { kClassQuality = 0x00100, kClassNormal = 0x00800, kClassSampling = 0x01000, kClassPointSet = 0x08000 };
 const std::vector<FilterDef>& Filters();
 
 /// Fills the empty mesh `out` (with the same optional components enabled as

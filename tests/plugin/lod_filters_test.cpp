@@ -215,3 +215,30 @@ TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
     EXPECT_NE(std::string(e.what()).find("needs a layer with faces"), std::string::npos);
   }
 }
+
+TEST(LodFilters, NormalVariationFilterGivesEq1ForEveryVertexInPlace) {
+  const FilterDef& f = Filters().at(2);
+  EXPECT_EQ(f.pythonName(), "compute_scalar_by_normal_variation");
+  EXPECT_FALSE(f.newLayer);
+  Mesh in;
+  Bumpy(in, 30);
+  struct Src : ParamSource {
+    double number(const QString&) const override { return 20; }
+    bool flag(const QString&) const override { return false; }
+    int choice(const QString&) const override { return 0; }
+  } src;
+  const LodRun run = f.run(in, src, nullptr);
+  ASSERT_EQ(run.result.vertIndex.size(), size_t(in.vn));
+  double flat = 0, bumpy = 0, top = 0;
+  for (size_t k = 0; k < run.result.vertIndex.size(); ++k) {
+    const double c = run.result.curvature[k], x = in.vert[run.result.vertIndex[k]].cP()[0];
+    EXPECT_GE(c, 0);
+    EXPECT_LE(c, 1);
+    if (x < 0.3) flat = std::max(flat, c);  // neighbourhoods (and their neighbours') all flat
+    if (x > 0.6) bumpy = std::max(bumpy, c);
+    top = std::max(top, c);
+  }
+  EXPECT_LT(flat, 1e-6);
+  EXPECT_GT(bumpy, 0.01);
+  EXPECT_DOUBLE_EQ(run.values.at("max").toDouble(), top);
+}

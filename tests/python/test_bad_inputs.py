@@ -10,6 +10,7 @@ import pytest
 from conftest import bumpy_points
 
 POISSON, FPS = "generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"
+CURVATURE = "compute_scalar_by_normal_variation"
 MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
 TRIANGLES = "Triangle mesh (geodesic Delaunay)"
 
@@ -149,6 +150,13 @@ CASES = [
     ("adaptivity negative", lambda: layer(bumpy_points(10)), FPS, {"samplenum": 4, "adaptivity": -1.0},
      "adaptivity must be zero or positive"),
     ("seed negative", lambda: layer(bumpy_points(10)), POISSON, {"seed": -5}, "seed must be zero or positive"),
+    ("empty layer", empty, CURVATURE, {}, "the layer has no vertices"),
+    ("NaN coordinate", lambda: layer(np.vstack([bumpy_points(10), [[np.nan, 0, 0]]])), CURVATURE, {},
+     "1 vertices have NaN or infinite coordinates"),
+    ("normalneighbors >= n", lambda: layer(bumpy_points(4)), CURVATURE, {"normalneighbors": 16},
+     "normalneighbors (16) must be smaller than the number of vertices (16)"),
+    ("normalneighbors 0", lambda: layer(bumpy_points(4)), CURVATURE, {"normalneighbors": 0},
+     "normalneighbors must be at least 1"),
 ]
 
 
@@ -158,7 +166,7 @@ def snapshot(ms):
             m.face_matrix().copy(), m.vertex_scalar_array().copy()]
 
 
-@pytest.mark.parametrize("case", CASES, ids=[f"{c[0]} [{c[2].split('_')[2]}]" for c in CASES])
+@pytest.mark.parametrize("case", CASES, ids=[f"{c[0]} [{c[2]}]" for c in CASES])
 def test_bad_or_unusual_input(plugin, case):
     name, make, flt, params, expected = case
     ms = make()
