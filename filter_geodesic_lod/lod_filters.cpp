@@ -40,6 +40,17 @@ int Choice(const ParamSource& src, const char* name, const QStringList& names) {
   return c;
 }
 
+// The normals and eq. 1, as every filter asks for them.
+ParamSpec NormalNeighborsParam() {
+  return {ParamKind::Int, "normalneighbors", "Normal neighbours k",
+          "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20};
+}
+ParamSpec RecomputeNormalsParam() {
+  return {ParamKind::Bool, "recomputenormals", "Recompute normals",
+          "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
+          "When off, the layer's valid normals are used and only missing ones are estimated.", 0};
+}
+
 // Parameters shared by every sampling filter, after the filter's own.
 void AddDomainParams(std::vector<ParamSpec>& p) {
   p.push_back({ParamKind::Enum, "metric", "Metric",
@@ -58,14 +69,11 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
   p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
                "only by that metric. 0 gives the unweighted geodesic.", 10.0});
-  p.push_back({ParamKind::Int, "normalneighbors", "Normal neighbours k",
-               "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20});
+  p.push_back(NormalNeighborsParam());
   p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
                "run on.", 10});
-  p.push_back({ParamKind::Bool, "recomputenormals", "Recompute normals",
-               "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
-               "When off, the layer's valid normals are used and only missing ones are estimated.", 0});
+  p.push_back(RecomputeNormalsParam());
   p.push_back({ParamKind::Enum, "output", "Output",
                "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
                "(dual of their geodesic Voronoi regions), for layers with faces.",
@@ -162,11 +170,8 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
 
 std::vector<ParamSpec> NormalVariationParams(const CMeshO&) {
   std::vector<ParamSpec> p;
-  p.push_back({ParamKind::Int, "normalneighbors", "Normal neighbours k",
-               "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20});
-  p.push_back({ParamKind::Bool, "recomputenormals", "Recompute normals",
-               "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
-               "When off, the layer's valid normals are used and only missing ones are estimated.", 0});
+  p.push_back(NormalNeighborsParam());
+  p.push_back(RecomputeNormalsParam());
   return p;
 }
 
