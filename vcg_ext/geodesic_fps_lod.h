@@ -21,6 +21,7 @@ class GeodesicFpsLOD {
     size_t sampleNum = 0;     ///< exact number of samples, 1..number of points
     uint64_t seed = 0;        ///< chooses the first sample
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
+    Regions regions = Regions::None;  ///< fill Result::regionOf; FPS regions are Voronoi regions
   };
   struct Result : LodResult<Scalar> {
     std::vector<double> coveringRadius;  ///< [k]: covering radius of the first k+1 samples
@@ -48,6 +49,7 @@ class GeodesicFpsLOD {
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, s.samples);
     r.coveringRadius = s.coveringRadius;
     if (p.meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, s.owner);
+    if (p.regions != Regions::None) r.SetRegions(d, s.owner, m.vert.size());
     return r;
   }
 };

@@ -1,7 +1,8 @@
 #ifndef VCG_EXT_GEODESIC_POISSON_LOD_H
 #define VCG_EXT_GEODESIC_POISSON_LOD_H
 // Geodesic Poisson-disk LOD of a vcglib mesh: the whole pipeline, from the
-// mesh to the chosen vertices (and, for meshes, their Delaunay triangles).
+// mesh to the chosen vertices (and, for meshes, their Delaunay triangles),
+// at a given radius or a wanted number of samples.
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "geodesic_domain.h"
 #include "lod_result.h"
 #include "poisson_disk.h"
+#include "poisson_target_count.h"
 
 namespace vcg_ext {
 
@@ -18,12 +20,21 @@ class GeodesicPoissonLOD {
  public:
   typedef typename MeshType::ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;
-  typedef LodResult<Scalar> Result;
   struct Param {
     typename Domain::Param domain;
-    double radius = 0;        ///< absolute disk radius in the chosen metric, > 0
+    double radius = 0;        ///< absolute disk radius in the chosen metric, > 0; unused with sampleNum
+    size_t sampleNum = 0;     ///< wanted samples (0: use radius); the radius is searched for
+    double tolerance = 0;     ///< with sampleNum: accept sampleNum * (1 +- tolerance) untrimmed; 0: exact
+    int maxIterations = 24;   ///< with sampleNum: Poisson runs at most
     uint64_t seed = 0;
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
+    Regions regions = Regions::None;  ///< fill Result::regionOf
+  };
+  struct Result : LodResult<Scalar> {
+    double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
+    size_t poissonCount = 0;  ///< samples of the Poisson set before trimming
+    int iterations = 1;       ///< Poisson runs
+    bool trimmed = false;     ///< cut to sampleNum in farthest-point order
   };
 
   static void CheckRadius(double r) {
@@ -43,11 +54,28 @@ class GeodesicPoissonLOD {
     return r;
   }
 
+  /// Samples of the domain, as many as p.sampleNum asks (within p.tolerance).
+  static PoissonTargetCount::Result SampleCount(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
+    PoissonTargetCount::Param tp;
+    tp.sampleNum = p.sampleNum;
+    tp.tolerance = p.tolerance;
+    tp.maxIterations = p.maxIterations;
+    tp.seed = p.seed;
+    // The metric is never shorter than the Euclidean one: start where disks of
+    // this radius would about tile the bounding box's diagonal plane.
+    vcg::Box3<Scalar> box;
+    for (const auto& q : d.points.pos) box.Add(q);
+    tp.initialRadius = box.Diag() / std::sqrt(double(p.sampleNum));
+    PoissonTargetCount::Result r;
+    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
+    return r;
+  }
+
   /// Never modifies `m`. Throws std::invalid_argument for bad input and
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
-    if (!(p.radius > 0) || !std::isfinite(p.radius)) {
+    if (p.sampleNum == 0 && (!(p.radius > 0) || !std::isfinite(p.radius))) {
       // An empty or degenerate layer also gets a zero default radius: name the layer's problem first.
       Domain::Check(PointSetFromMesh<MeshType>::Compute(m), m.fn > 0, p.domain);
       CheckRadius(p.radius);
@@ -55,10 +83,30 @@ class GeodesicPoissonLOD {
     if (p.meshOutput && m.fn == 0)
       throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 60));
-    const PoissonDisk::Result s = Sample(d, p.radius, p.seed, progress.Sub(60, p.meshOutput ? 90 : 100));
-    Result r = Result::Collect(d, s.samples);
-    if (p.meshOutput)
-      r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, GeodesicDelaunay<Scalar>::VoronoiOwners(d, s.samples));
+    const Progress sampling = progress.Sub(60, p.meshOutput ? 90 : 100);
+    Result r;
+    std::vector<int> samples, disk, voronoi;
+    if (p.sampleNum > 0) {
+      PoissonTargetCount::Result t = SampleCount(d, p, sampling);
+      samples = std::move(t.samples);
+      disk = std::move(t.diskOwner);
+      voronoi = std::move(t.voronoiOwner);
+      r.radius = t.radius;
+      r.poissonCount = t.poissonCount;
+      r.iterations = t.iterations;
+      r.trimmed = t.trimmed;
+    } else {
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling);
+      samples = std::move(s.samples);
+      disk = std::move(s.owner);
+      r.radius = p.radius;
+      r.poissonCount = samples.size();
+    }
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, samples);
+    if ((p.meshOutput || p.regions == Regions::Voronoi) && voronoi.empty())
+      voronoi = GeodesicDelaunay<Scalar>::VoronoiOwners(d, samples);
+    if (p.meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
+    if (p.regions != Regions::None) r.SetRegions(d, p.regions == Regions::Disk ? disk : voronoi, m.vert.size());
     return r;
   }
 };

@@ -7,6 +7,13 @@
 
 namespace vcg_ext {
 
+/// Regions of the samples a filter can report on the input (the paper's Fig. 3).
+enum class Regions {
+  None = 0,
+  Disk = 1,    ///< the Poisson disk that first covered each point
+  Voronoi = 2  ///< the nearest sample in the metric
+};
+
 template <class Scalar>
 struct LodResult {
   std::vector<int> vertIndex;                 ///< chosen vertices (indices in m.vert), in sampling order
@@ -18,6 +25,7 @@ struct LodResult {
   size_t leftOut = 0;                         ///< vertices in no triangle, not sampled (mesh geodesics)
   int components = 0;
   bool meshGeodesics = false;
+  std::vector<int> regionOf;  ///< on request, per m.vert index: rank of the sample whose region holds it, -1 if none
 
   /// The data of `samples` (point indices of `d`).
   static LodResult Collect(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples) {
@@ -33,6 +41,12 @@ struct LodResult {
       r.curvature.push_back(d.curvature[i]);
     }
     return r;
+  }
+
+  /// regionOf from a per-point owner of `d` (an index in the samples).
+  void SetRegions(const GeodesicDomain<Scalar>& d, const std::vector<int>& owner, size_t vertCount) {
+    regionOf.assign(vertCount, -1);
+    for (size_t i = 0; i < owner.size(); ++i) regionOf[d.points.vertIndex[i]] = owner[i];
   }
 };
 

@@ -1,0 +1,150 @@
+// Poisson-disk sampling to a wanted number of samples: exact counts, counts
+// within a tolerance, separation kept, termination where the count jumps
+// across the target, and the regions reported on the input.
+#include <gtest/gtest.h>
+#include <set>
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "shared_data.h"
+#include "test_mesh.h"
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using Domain = LOD::Domain;
+using vcg_ext::Metric;
+
+LOD::Param Target(size_t n, double tolerance = 0) {
+  LOD::Param p;
+  p.sampleNum = n;
+  p.tolerance = tolerance;
+  p.seed = 3;
+  return p;
+}
+
+// Distinct samples, pairwise farther apart than the radius of their Poisson set.
+void ExpectSeparated(const test::TMesh& m, const LOD::Param& p, const LOD::Result& r) {
+  EXPECT_EQ(std::set<int>(r.vertIndex.begin(), r.vertIndex.end()).size(), r.vertIndex.size());
+  if (r.radius == 0) return;
+  const Domain d = Domain::FromMesh(m, p.domain);
+  std::vector<int> rank(m.vert.size(), -1);
+  for (size_t k = 0; k < r.vertIndex.size(); ++k) rank[r.vertIndex[k]] = int(k);
+  d.WithSearch([&](auto& search) {
+    for (size_t i = 0; i < d.size(); ++i) {
+      if (rank[d.points.vertIndex[i]] < 0) continue;
+      search.Visit(int(i), r.radius, [&](int j, double) {
+        if (j != int(i)) EXPECT_LT(rank[d.points.vertIndex[j]], 0) << "samples closer than the radius";
+      });
+    }
+  });
+}
+}  // namespace
+
+TEST(TargetCount, ExactCountsForARangeOfTargets) {
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (size_t n : {size_t(1), size_t(2), size_t(17), size_t(160), size_t(400), size_t(1111), m.vert.size() - 1,
+                   m.vert.size()}) {
+    const LOD::Param p = Target(n);
+    const auto r = LOD::Compute(m, p);
+    EXPECT_EQ(r.vertIndex.size(), n);
+    EXPECT_LE(r.iterations, p.maxIterations);
+    EXPECT_GE(r.poissonCount, n);
+    ExpectSeparated(m, p, r);
+  }
+}
+
+TEST(TargetCount, ExactCountsOnMeshesToo) {
+  test::TMesh m;
+  test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (size_t n : {size_t(5), size_t(90), size_t(300)}) {
+    LOD::Param p = Target(n);
+    p.meshOutput = true;
+    const auto r = LOD::Compute(m, p);
+    ASSERT_TRUE(r.meshGeodesics);
+    EXPECT_EQ(r.vertIndex.size(), n);
+    EXPECT_FALSE(r.faces.empty());
+    ExpectSeparated(m, p, r);
+  }
+}
+
+TEST(TargetCount, AToleranceKeepsAnUntrimmedPoissonSet) {
+  test::TMesh m;
+  test::HeightField(m, 50, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (size_t n : {size_t(100), size_t(500)}) {
+    const auto r = LOD::Compute(m, Target(n, 0.05));
+    EXPECT_NEAR(double(r.vertIndex.size()), double(n), 0.05 * n);
+    EXPECT_FALSE(r.trimmed);
+    EXPECT_EQ(r.vertIndex.size(), r.poissonCount);
+    EXPECT_GT(r.radius, 0);
+  }
+}
+
+TEST(TargetCount, TerminatesWhereTheCountJumpsAcrossTheTarget) {
+  // A regular grid in the Euclidean metric: below the spacing every point is
+  // its own disk (N = n); just above it, each disk takes its four neighbours
+  // (N about n / 3). No radius gives a count in between.
+  test::TMesh m;
+  test::Plane(m, 30);
+  for (int maxIterations : {1, 3, 24}) {
+    LOD::Param p = Target(600);
+    p.domain.metric = Metric::Euclidean;
+    p.maxIterations = maxIterations;
+    const auto r = LOD::Compute(m, p);
+    EXPECT_EQ(r.vertIndex.size(), 600u);
+    EXPECT_LE(r.iterations, maxIterations);
+    EXPECT_TRUE(r.trimmed);
+    ExpectSeparated(m, p, r);
+  }
+}
+
+TEST(TargetCount, NamesBadTargets) {
+  test::TMesh m;
+  test::Plane(m, 10);
+  for (auto bad : {std::make_pair(size_t(101), 0.0), std::make_pair(size_t(10), -0.1), std::make_pair(size_t(10), 1.0)}) {
+    try {
+      LOD::Compute(m, Target(bad.first, bad.second));
+      ADD_FAILURE() << "no error for " << bad.first << " " << bad.second;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_TRUE(std::string(e.what()).find(bad.first > 100 ? "samplenum must be between 1 and the number of vertices (100)"
+                                                             : "tolerance must be at least 0 and below 100%") !=
+                  std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(TargetCount, RegionsCoverEveryPointAndHoldTheirSample) {
+  test::TMesh m;
+  test::GridMesh(m, 25, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (auto regions : {vcg_ext::Regions::Disk, vcg_ext::Regions::Voronoi}) {
+    for (size_t n : {size_t(0), size_t(40)}) {
+      LOD::Param p = Target(n);
+      p.radius = 0.1;
+      p.regions = regions;
+      const auto r = LOD::Compute(m, p);
+      ASSERT_EQ(r.regionOf.size(), m.vert.size());
+      std::set<int> seen;
+      for (int k : r.regionOf) {
+        EXPECT_GE(k, 0);
+        EXPECT_LT(k, int(r.vertIndex.size()));
+        seen.insert(k);
+      }
+      EXPECT_EQ(seen.size(), r.vertIndex.size()) << "a region without points";
+      for (size_t k = 0; k < r.vertIndex.size(); ++k) EXPECT_EQ(r.regionOf[r.vertIndex[k]], int(k));
+    }
+  }
+}
+
+TEST(TargetCount, ExactCountsOnTheBunnyScan) {
+  test::TMesh m;
+  const std::string path = test::SharedData("bunny_35k.ply");
+  if (!test::ReadSharedPly(path, m)) GTEST_SKIP() << "needs the shared scan " << path << " (present in CI, not in a user's clone)";
+  for (double rate : {0.5, 0.25, 0.10, 0.05, 0.02}) {
+    const size_t n = size_t(rate * m.vn);
+    LOD::Param p = Target(n);
+    const auto r = LOD::Compute(m, p);
+    EXPECT_EQ(r.vertIndex.size(), n) << rate;
+    EXPECT_LE(r.iterations, p.maxIterations);
+    RecordProperty("iterations_" + std::to_string(n), r.iterations);
+  }
+}

@@ -1,0 +1,118 @@
+#ifndef VCG_EXT_NORMAL_PROJECTION_H
+#define VCG_EXT_NORMAL_PROJECTION_H
+// The paper's error measure (Table 1): for each reference point p_i with
+// normal n_i, the distance from p_i to where the line <p_i, n_i> meets a
+// surface. vcglib's uniform grid and its ray walk find the crossings.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <vcg/space/index/grid_static_ptr.h>
+#include <vcg/space/intersection3.h>
+#include <vcg/space/ray3.h>
+#include "point_normals.h"
+#include "progress.h"
+
+namespace vcg_ext {
+
+template <class MeshType>
+class NormalProjection {
+ public:
+  typedef typename MeshType::ScalarType Scalar;
+  typedef vcg::Point3<Scalar> Coord;
+  struct Param {
+    double maxDistance = 0;  ///< farther crossings count as misses; > 0
+  };
+  struct Result {
+    size_t pointNum = 0;       ///< reference points with a valid normal, measured
+    size_t noNormal = 0;       ///< reference points skipped: zero or non-finite normal
+    size_t hitNum = 0;         ///< points whose line meets the surface within maxDistance
+    double min = 0, mean = 0, rms = 0, max = 0;  ///< over the hits
+    double missFraction() const { return pointNum ? double(pointNum - hitNum) / double(pointNum) : 0.0; }
+    std::vector<double> distance;  ///< per reference vertex (m.vert order): the distance, NaN if skipped or missed
+  };
+
+  /// Neither mesh is modified. Throws std::invalid_argument for a reference
+  /// without normals or a surface without triangles.
+  static Result Compute(const MeshType& reference, const MeshType& surface, const Param& p,
+                        vcg::CallBackPos* cb = nullptr) {
+    Progress progress(cb);
+    if (!(p.maxDistance > 0) || !std::isfinite(p.maxDistance))
+      throw std::invalid_argument("maxdist must be a positive number (got " + std::to_string(p.maxDistance) + ")");
+    std::vector<Tri> tris;
+    for (const auto& f : surface.face)
+      if (!f.IsD()) tris.push_back(Tri{{f.cP(0), f.cP(1), f.cP(2)}});
+    if (tris.empty()) throw std::invalid_argument("the surface layer has no triangles to project onto");
+    vcg::GridStaticPtr<Tri, Scalar> grid;
+    grid.Set(tris.begin(), tris.end());
+
+    Result r;
+    r.distance.assign(reference.vert.size(), std::numeric_limits<double>::quiet_NaN());
+    r.min = std::numeric_limits<double>::infinity();
+    double sum = 0, sum2 = 0;
+    for (size_t i = 0; i < reference.vert.size(); ++i) {
+      const auto& v = reference.vert[i];
+      if (v.IsD()) continue;
+      if (!PointNormals<Scalar>::IsValid(v.cN())) {
+        ++r.noNormal;
+        continue;
+      }
+      ++r.pointNum;
+      // The line, not a ray: the surface may lie on either side of the point.
+      const Coord n = v.cN() / v.cN().Norm();
+      const double t = std::min(Cross(grid, v.cP(), n, p.maxDistance), Cross(grid, v.cP(), -n, p.maxDistance));
+      if (!(t <= p.maxDistance)) continue;
+      r.distance[i] = t;
+      ++r.hitNum;
+      r.min = std::min(r.min, t);
+      r.max = std::max(r.max, t);
+      sum += t;
+      sum2 += t * t;
+      if ((i & 4095) == 0) progress(i, reference.vert.size(), "Normal projection deviation");
+    }
+    if (r.pointNum == 0)
+      throw std::invalid_argument("the reference layer has no valid vertex normals (compute normals first)");
+    if (r.hitNum) {
+      r.mean = sum / double(r.hitNum);
+      r.rms = std::sqrt(sum2 / double(r.hitNum));
+    } else {
+      r.min = 0;
+    }
+    return r;
+  }
+
+ private:
+  // A live triangle of the surface, as vcglib's grid and ray functor read it.
+  struct Tri {
+    typedef typename MeshType::ScalarType ScalarType;
+    Coord p[3];
+    const Coord& cP(int k) const { return p[k]; }
+    void GetBBox(vcg::Box3<Scalar>& b) const {
+      b.Set(p[0]);
+      b.Add(p[1]);
+      b.Add(p[2]);
+    }
+    bool IsD() const { return false; }
+  };
+  // Each triangle is tested once per cell it spans; re-testing is harmless.
+  struct NoMark {
+    void UnMarkAll() const {}
+    bool IsMarked(const Tri*) const { return false; }
+    void Mark(const Tri*) const {}
+  };
+
+  // Distance along the unit direction d to the first crossing, +inf if none within maxDist.
+  static double Cross(vcg::GridStaticPtr<Tri, Scalar>& grid, const Coord& o, const Coord& d, double maxDist) {
+    vcg::RayTriangleIntersectionFunctor<true> hit;
+    NoMark mark;
+    Scalar t = 0;
+    const vcg::Ray3<Scalar> ray(o, d);
+    const Tri* f = grid.DoRay(hit, mark, ray, Scalar(maxDist), t);
+    return f ? double(t) : std::numeric_limits<double>::infinity();
+  }
+};
+
+}  // namespace vcg_ext
+#endif

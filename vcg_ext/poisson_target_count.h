@@ -1,0 +1,162 @@
+#ifndef VCG_EXT_POISSON_TARGET_COUNT_H
+#define VCG_EXT_POISSON_TARGET_COUNT_H
+// Poisson-disk sampling with a wanted number of samples: the radius is searched
+// for, then a slightly denser Poisson set is trimmed in farthest-point order.
+// The paper leaves the choice of r for a sample count open.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+#include "farthest_point.h"
+#include "poisson_disk.h"
+#include "progress.h"
+
+namespace vcg_ext {
+
+/// The count N(r) of a Poisson set falls roughly as 1/r^2 on a surface, but not
+/// monotonically, and it can jump across the target (on regular grids, say).
+/// The search keeps the largest radius seen with N >= target and the smallest
+/// with N < target, steps between them by interpolating log N against log r,
+/// and stops when a count is close enough, the bracket has closed, or after
+/// `maxIterations` runs. Every radius small enough gives N = n >= target, so a
+/// set to trim always exists: the search always ends with the wanted count.
+class PoissonTargetCount {
+ public:
+  struct Param {
+    size_t sampleNum = 0;        ///< wanted samples, 1..n
+    double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance)
+    int maxIterations = 24;      ///< Poisson runs at most
+    double initialRadius = 0;    ///< first radius tried, > 0
+    uint64_t seed = 0;
+  };
+  struct Result {
+    std::vector<int> samples;    ///< point indices; in farthest-point order when trimmed
+    std::vector<int> diskOwner;  ///< per point: rank in samples of its disk's sample (Voronoi owner where trimmed)
+    std::vector<int> voronoiOwner;  ///< per point: rank of the nearest sample (only when trimmed; else empty)
+    double radius = 0;           ///< radius of the Poisson set the samples come from (0: all points)
+    size_t poissonCount = 0;     ///< samples of that set before trimming
+    int iterations = 0;          ///< Poisson runs made
+    bool trimmed = false;
+  };
+
+  /// Search: a disk search and a distance propagator (BoundedDijkstra,
+  /// FastMarching, EuclideanBall).
+  template <class Scalar, class Search>
+  static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr)) {
+    if (p.sampleNum < 1 || p.sampleNum > n)
+      throw std::invalid_argument("samplenum must be between 1 and the number of vertices (" + std::to_string(n) +
+                                  "), got " + std::to_string(p.sampleNum));
+    if (!(p.tolerance >= 0) || !(p.tolerance < 1))
+      throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
+                                  std::to_string(100 * p.tolerance) + "%)");
+    const double target = double(p.sampleNum);
+    // Exact counts trim a set at most ~1% larger; a tolerance accepts counts on both sides.
+    const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;
+    const double accHi = std::max(target * (1 + std::max(p.tolerance, 0.01)), target + 2);
+    Trial above, below;  // above: count >= target, largest radius; below: count < target, smallest radius
+    above.count = n;     // radius 0: every point is a sample
+    double r = p.initialRadius > 0 ? p.initialRadius : 1;
+    Result out;
+    Trial accepted;
+    const int phase = std::max(1, p.maxIterations);
+    for (int it = 0; it < p.maxIterations; ++it) {
+      Trial t = Run(n, search, r, p.seed, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
+      ++out.iterations;
+      const double c = double(t.count);
+      if (c >= accLo && c <= accHi) {
+        accepted = std::move(t);
+        break;
+      }
+      if (t.count >= p.sampleNum) {
+        if (t.radius > above.radius) above = std::move(t);
+      } else if (below.radius == 0 || t.radius < below.radius) {
+        below = std::move(t);
+      }
+      if (below.radius > 0 && below.radius <= above.radius * (1 + 1e-9)) break;  // the count jumps here
+      r = Next(above, below, double(c), r, target);
+    }
+    const bool found = accepted.radius > 0;
+    Trial& from = found ? accepted : above;
+    out.radius = from.radius;
+    out.poissonCount = from.count;
+    if (found && (p.tolerance > 0 || from.count == p.sampleNum)) {
+      out.samples = std::move(from.samples);
+      out.diskOwner = std::move(from.owner);
+      return out;  // a Poisson set as it is
+    }
+    // Trim to the exact count: the farthest-point order among the set's samples.
+    std::vector<int> candidates = from.radius > 0 ? std::move(from.samples) : AllPoints(n);
+    FarthestPoint::Param fp;
+    fp.sampleNum = p.sampleNum;
+    fp.seed = p.seed;
+    fp.candidates = &candidates;
+    FarthestPoint::Result f = FarthestPoint::Compute<Scalar>(n, search, fp, progress.Sub(80, 100));
+    out.trimmed = f.samples.size() < from.count;
+    out.samples = std::move(f.samples);
+    out.voronoiOwner = std::move(f.owner);
+    out.diskOwner = DiskOwners(from, candidates, out.samples, out.voronoiOwner);
+    return out;
+  }
+
+ private:
+  struct Trial {
+    double radius = 0;
+    size_t count = 0;
+    std::vector<int> samples, owner;
+  };
+
+  template <class Search>
+  static Trial Run(size_t n, Search& search, double r, uint64_t seed, Progress progress) {
+    PoissonDisk::Param pp;
+    pp.radius = r;
+    pp.seed = seed;
+    PoissonDisk::Result pr = PoissonDisk::Compute(n, search, pp, progress);
+    Trial t;
+    t.radius = r;
+    t.count = pr.samples.size();
+    t.samples = std::move(pr.samples);
+    t.owner = std::move(pr.owner);
+    return t;
+  }
+
+  // The next radius: inside the bracket once there is one, by the local slope of
+  // log N over log r (about -2 on a surface), clamped so each step makes progress.
+  static double Next(const Trial& above, const Trial& below, double count, double r, double target) {
+    if (above.radius > 0 && below.radius > 0) {
+      const double la = std::log(above.radius), lb = std::log(below.radius);
+      const double ca = std::log(double(above.count)), cb = std::log(double(below.count));
+      double f = ca > cb ? (ca - std::log(target)) / (ca - cb) : 0.5;
+      f = std::min(0.9, std::max(0.1, f));
+      return std::exp(la + f * (lb - la));
+    }
+    const double step = std::sqrt(count / target);  // N ~ 1/r^2
+    return r * std::min(8.0, std::max(1.0 / 8, step));
+  }
+
+  static std::vector<int> AllPoints(size_t n) {
+    std::vector<int> all(n);
+    for (size_t i = 0; i < n; ++i) all[i] = int(i);
+    return all;
+  }
+
+  // Disk regions of the kept samples; the disks of trimmed samples go to
+  // their points' nearest kept sample.
+  static std::vector<int> DiskOwners(const Trial& from, const std::vector<int>& candidates,
+                                     const std::vector<int>& kept, const std::vector<int>& voronoi) {
+    if (from.radius == 0) return voronoi;
+    std::vector<int> rankOf(voronoi.size(), -1);
+    for (size_t k = 0; k < kept.size(); ++k) rankOf[kept[k]] = int(k);
+    std::vector<int> owner(voronoi.size());
+    for (size_t i = 0; i < owner.size(); ++i) {
+      const int disk = from.owner[i] >= 0 ? rankOf[candidates[from.owner[i]]] : -1;
+      owner[i] = disk >= 0 ? disk : voronoi[i];
+    }
+    return owner;
+  }
+};
+
+}  // namespace vcg_ext
+#endif
