@@ -1,0 +1,100 @@
+// Nested LOD pyramid: exact counts per level, levels nested and each spread
+// evenly, coarsest-level labels, one triangulation per level, bad level lists.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <vcg_ext/geodesic_lod_pyramid.h>
+#include "test_mesh.h"
+
+namespace {
+using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
+using Domain = Pyramid::Domain;
+
+Pyramid::Param Levels(std::vector<size_t> counts) {
+  Pyramid::Param p;
+  p.counts = std::move(counts);
+  p.seed = 5;
+  return p;
+}
+
+// Covering radius (largest distance from a point to its nearest sample) and
+// separation (smallest distance between two samples) of a level, in the domain's metric.
+std::pair<double, double> CoverAndSeparation(const Domain& d, const std::vector<int>& level) {
+  std::vector<float> nearest(d.size(), std::numeric_limits<float>::infinity());
+  double separation = std::numeric_limits<double>::infinity();
+  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  for (int a : level) {
+    const auto dist = search.Distances(a);
+    for (int b : level)
+      if (b != a) separation = std::min(separation, double(dist[b]));
+    for (size_t i = 0; i < dist.size(); ++i) nearest[i] = std::min(nearest[i], dist[i]);
+  }
+  return {*std::max_element(nearest.begin(), nearest.end()), separation};
+}
+}  // namespace
+
+TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
+  test::TMesh m;
+  test::HeightField(m, 45, [](float x, float y) { return test::HalfBumpy(x, y); });
+  const Pyramid::Param p = Levels({1000, 400, 100, 25});
+  const auto r = Pyramid::Compute(m, p);
+  ASSERT_EQ(r.vertIndex.size(), 1000u);
+  EXPECT_EQ(std::set<int>(r.vertIndex.begin(), r.vertIndex.end()).size(), 1000u);
+  ASSERT_EQ(r.coarsest.size(), 1000u);
+  for (size_t k = 0; k < p.counts.size(); ++k) {
+    // Level k is the first counts[k] samples: it holds exactly the samples labelled k or coarser.
+    size_t labelled = 0;
+    for (size_t i = 0; i < r.coarsest.size(); ++i) {
+      labelled += r.coarsest[i] >= int(k);
+      EXPECT_EQ(r.coarsest[i] >= int(k), i < p.counts[k]) << "sample " << i << " level " << k;
+    }
+    EXPECT_EQ(labelled, p.counts[k]);
+  }
+  // Coarser levels are farthest-point prefixes: no point is much farther from
+  // the level than two of its samples are from each other.
+  const Domain d = Domain::FromMesh(m, p.domain);
+  std::vector<int> pointOf(m.vert.size());
+  for (size_t i = 0; i < d.size(); ++i) pointOf[d.points.vertIndex[i]] = int(i);
+  for (size_t k = 1; k < p.counts.size(); ++k) {
+    std::vector<int> level;
+    for (size_t i = 0; i < p.counts[k]; ++i) level.push_back(pointOf[r.vertIndex[i]]);
+    const auto cs = CoverAndSeparation(d, level);
+    EXPECT_LE(cs.first, 2.0 * cs.second) << "level " << k;
+  }
+}
+
+TEST(LodPyramid, SameSeedSameLevels) {
+  test::TMesh m;
+  test::HeightField(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
+  const auto a = Pyramid::Compute(m, Levels({300, 90, 10})), b = Pyramid::Compute(m, Levels({300, 90, 10}));
+  EXPECT_EQ(a.vertIndex, b.vertIndex);
+}
+
+TEST(LodPyramid, EveryLevelGetsItsOwnTriangulation) {
+  test::TMesh m;
+  test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
+  Pyramid::Param p = Levels({200, 60, 12});
+  p.meshOutput = true;
+  const auto r = Pyramid::Compute(m, p);
+  ASSERT_EQ(r.levelFaces.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    // A triangulated disk with V vertices, B on its border, has 2V - B - 2 >= V - 2 faces.
+    EXPECT_GE(r.levelFaces[k].size() + 2, p.counts[k]) << "level " << k;
+    for (const auto& f : r.levelFaces[k])
+      for (int c : f) EXPECT_LT(c, int(p.counts[k])) << "a face of level " << k << " uses a finer sample";
+  }
+}
+
+TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
+  test::TMesh m;
+  test::Plane(m, 10);
+  for (const auto& counts : {std::vector<size_t>{}, std::vector<size_t>{50, 50}, std::vector<size_t>{10, 20}}) {
+    try {
+      Pyramid::Compute(m, Levels(counts));
+      ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_TRUE(std::string(e.what()).rfind("levels must", 0) == 0) << e.what();
+    }
+  }
+}

@@ -1,0 +1,103 @@
+#ifndef VCG_EXT_GEODESIC_LOD_PYRAMID_H
+#define VCG_EXT_GEODESIC_LOD_PYRAMID_H
+// Nested geodesic LODs in one run: the finest level is a Poisson-disk set of
+// the wanted count; every coarser level is a farthest-point prefix of it, so
+// each level is a subset of the finer ones. The domain (normals, eq. 1, the
+// geodesics) is built once for all levels.
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include "farthest_point.h"
+#include "geodesic_delaunay.h"
+#include "geodesic_poisson_lod.h"
+
+namespace vcg_ext {
+
+template <class MeshType>
+class GeodesicLodPyramid {
+ public:
+  typedef typename MeshType::ScalarType Scalar;
+  typedef GeodesicDomain<Scalar> Domain;
+  struct Param {
+    typename Domain::Param domain;
+    std::vector<size_t> counts;  ///< samples per level, strictly decreasing (finest first)
+    int maxIterations = 24;      ///< Poisson runs at most for the finest level
+    uint64_t seed = 0;
+    bool meshOutput = false;     ///< triangulate every level (layers with faces only)
+  };
+  struct Result : LodResult<Scalar> {
+    std::vector<size_t> counts;          ///< level k is the first counts[k] samples of vertIndex
+    std::vector<int> coarsest;           ///< per sample: the coarsest level holding it (0 = finest only)
+    std::vector<std::vector<std::array<int, 3>>> levelFaces;  ///< mesh output per level, indices into vertIndex
+    double radius = 0;                   ///< radius of the finest level's Poisson set
+    int iterations = 0;                  ///< Poisson runs for the finest level
+  };
+
+  static void CheckCounts(const std::vector<size_t>& c) {
+    if (c.empty()) throw std::invalid_argument("levels must name at least one level");
+    for (size_t k = 0; k + 1 < c.size(); ++k)
+      if (c[k + 1] >= c[k])
+        throw std::invalid_argument("levels must get strictly coarser: level " + std::to_string(k + 2) + " has " +
+                                    std::to_string(c[k + 1]) + " samples, level " + std::to_string(k + 1) + " " +
+                                    std::to_string(c[k]));
+  }
+
+  /// Never modifies `m`. Throws std::invalid_argument for bad input and
+  /// vcg_ext::Cancelled when the callback asks to stop.
+  static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
+    Progress progress(cb);
+    CheckCounts(p.counts);
+    if (p.meshOutput && m.fn == 0)
+      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+    const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 40));
+    typename GeodesicPoissonLOD<MeshType>::Param pp;
+    pp.sampleNum = p.counts[0];
+    pp.maxIterations = p.maxIterations;
+    pp.seed = p.seed;
+    PoissonTargetCount::Result finest = GeodesicPoissonLOD<MeshType>::SampleCount(d, pp, progress.Sub(40, 80));
+    Result r;
+    r.radius = finest.radius;
+    r.iterations = finest.iterations;
+    r.counts = p.counts;
+    // A trimmed finest level is already in farthest-point order; an untrimmed one is ordered now.
+    const std::vector<int> order = (finest.trimmed || p.counts.size() == 1)
+                                       ? finest.samples
+                                       : Nested(d, finest.samples, p.counts[1], p.seed, progress.Sub(80, 90));
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, order);
+    r.coarsest.assign(order.size(), 0);
+    for (size_t k = 1; k < p.counts.size(); ++k)
+      for (size_t i = 0; i < p.counts[k]; ++i) r.coarsest[i] = int(k);
+    if (p.meshOutput)
+      for (size_t k = 0; k < p.counts.size(); ++k) {
+        const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
+        r.levelFaces.push_back(
+            GeodesicDelaunay<Scalar>::Compute(d.triangles, GeodesicDelaunay<Scalar>::VoronoiOwners(d, level)));
+        progress(90 + 10 * (k + 1) / p.counts.size(), 100, "Triangulating the levels");
+      }
+    return r;
+  }
+
+ private:
+  // The first `count` samples in farthest-point order among `samples`, then the rest.
+  static std::vector<int> Nested(const Domain& d, const std::vector<int>& samples, size_t count, uint64_t seed,
+                                 Progress progress) {
+    FarthestPoint::Param fp;
+    fp.sampleNum = count;
+    fp.seed = seed;
+    fp.candidates = &samples;
+    FarthestPoint::Result f;
+    d.WithSearch([&](auto& search) { f = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); });
+    std::vector<char> taken(d.size(), 0);
+    for (int s : f.samples) taken[s] = 1;
+    std::vector<int> order = std::move(f.samples);
+    for (int s : samples)
+      if (!taken[s]) order.push_back(s);
+    return order;
+  }
+};
+
+}  // namespace vcg_ext
+#endif
