@@ -1,32 +1,78 @@
 #ifndef GEODESIC_LOD_APPLY_LOD_H
 #define GEODESIC_LOD_APPLY_LOD_H
-// The apply step every API adapter shares: run the filter, then add the output
-// layer. MeshDocument and MeshModel are the adapter's own MeshLab types.
+// What every API adapter shares, on its own MeshLab types (MeshDocument,
+// MeshModel, RichParameterList): the apply step (run the filter, then write
+// the output), the parameter reads both APIs spell alike, and default layers.
+#include <type_traits>
+#include <vector>
 #include "lod_filters.h"
 
 namespace geodesic_lod {
 
-/// All the work happens before the layer is made (or the quality written), so
-/// a failure (an MLException) leaves the document as it was. `log(std::string)` writes to
-/// the host's log.
+/// All the work happens before any layer is made or changed, so a failure (an
+/// MLException) leaves the document as it was. `log(std::string)` writes to
+/// the host's log. Returns the run and whether the current layer's vertex
+/// colours changed.
 template <class MeshDocument, class Log>
-LodRun ApplyLod(size_t filter, MeshDocument& md, const ParamSource& params, vcg::CallBackPos* cb, Log&& log) {
+LodRun ApplyLod(size_t filter, MeshDocument& md, const ParamSource& params, vcg::CallBackPos* cb, Log&& log,
+                bool* colouredInput = nullptr) {
   auto* src = md.mm();
   if (src == nullptr) throw MLException("Geodesic LOD: there is no current layer");
   if (filter >= Filters().size()) throw MLException("Geodesic LOD: unknown filter");
+  typedef std::remove_pointer_t<decltype(src)> MeshModel;
   LodRun run = Filters()[filter].run(src->cm, params, cb);
-  if (!Filters()[filter].newLayer) {  // writes the current layer's vertex quality
+  if (Filters()[filter].output == Output::VertexQuality)
     for (size_t k = 0; k < run.result.vertIndex.size(); ++k)
       src->cm.vert[run.result.vertIndex[k]].Q() = run.result.curvature[k];
-    log(run.summary.toStdString());
-    return run;
+  if (Filters()[filter].output == Output::NewLayers) {
+    bool first = true;
+    for (const LodLevel& level : OutputLevels(run)) {
+      auto* out = md.addNewMesh("", src->label() + level.suffix, true);
+      out->updateDataMask(src);
+      const QStringList skipped = FillLodLayer(src->cm, run, level, first, out->cm);
+      if (first && !skipped.isEmpty())
+        log("Attributes of unsupported types not copied: " + skipped.join(", ").toStdString());
+      first = false;
+    }
+    // The input's colours were copied first: only now are they replaced by the regions'.
+    const std::vector<int>& region = run.result.regionOf;
+    if (!region.empty()) {
+      src->updateDataMask(MeshModel::MM_VERTCOLOR);
+      for (size_t i = 0; i < region.size(); ++i)
+        if (region[i] >= 0) src->cm.vert[i].C() = RegionColour(region[i]);
+    }
+    if (colouredInput) *colouredInput = !region.empty();
   }
-  auto* out = md.addNewMesh("", src->label() + " LOD", true);
-  out->updateDataMask(src);
-  const QStringList skipped = FillLodLayer(src->cm, run, out->cm);
   log(run.summary.toStdString());
-  if (!skipped.isEmpty()) log("Attributes of unsupported types not copied: " + skipped.join(", ").toStdString());
   return run;
+}
+
+/// Reads what both APIs' RichParameterList spell alike; each adapter adds
+/// `number` and `mesh`.
+template <class RichParameterList>
+class RichParamSourceBase : public ParamSource {
+ public:
+  explicit RichParamSourceBase(const RichParameterList& p) : p_(p) {}
+  bool flag(const QString& n) const override { return p_.getBool(n); }
+  int choice(const QString& n) const override { return p_.getEnum(n); }
+  QString text(const QString& n) const override { return p_.getString(n); }
+
+ protected:
+  const RichParameterList& p_;
+};
+
+/// A Mesh parameter's default: the current layer, or another one (the first
+/// with faces, else the first other, else the current).
+template <class MeshModelPtr>
+MeshModelPtr DefaultLayer(const std::vector<MeshModelPtr>& layers, MeshModelPtr current, int role) {
+  if (role == kCurrentLayer) return current;
+  MeshModelPtr other = nullptr;
+  for (MeshModelPtr m : layers) {
+    if (m == current) continue;
+    if (m->cm.fn > 0) return m;
+    if (other == nullptr) other = m;
+  }
+  return other ? other : current;
 }
 
 }  // namespace geodesic_lod

@@ -7,22 +7,26 @@ using namespace geodesic_lod;
 
 namespace {
 
-class RichParamSource : public ParamSource {
+class RichParamSource : public RichParamSourceBase<RichParameterList> {
  public:
-  explicit RichParamSource(const RichParameterList& p) : p_(p) {}
+  RichParamSource(const RichParameterList& p, const MeshDocument& md) : RichParamSourceBase(p), md_(md) {}
   double number(const QString& n) const override {
     if (p_.getParameterByName(n).value().isInt()) return p_.getInt(n);
     return p_.getFloat(n);  // also the absolute value of a percentage
   }
-  bool flag(const QString& n) const override { return p_.getBool(n); }
-  int choice(const QString& n) const override { return p_.getEnum(n); }
+  const CMeshO* mesh(const QString& n) const override {
+    const MeshModel* m = md_.getMesh(p_.getMeshId(n));
+    return m ? &m->cm : nullptr;
+  }
 
  private:
-  const RichParameterList& p_;
+  const MeshDocument& md_;
 };
 
-RichParameterList ToRich(const std::vector<ParamSpec>& specs) {
+RichParameterList ToRich(const std::vector<ParamSpec>& specs, const MeshDocument& md) {
   RichParameterList list;
+  std::vector<const MeshModel*> layers;
+  for (const MeshModel& m : md.meshIterator()) layers.push_back(&m);
   for (const ParamSpec& s : specs) {
     switch (s.kind) {
       case ParamKind::Percentage:
@@ -32,6 +36,11 @@ RichParameterList ToRich(const std::vector<ParamSpec>& specs) {
       case ParamKind::Int: list.addParam(RichInt(s.name, int(s.defaultValue), s.label, s.tooltip)); break;
       case ParamKind::Bool: list.addParam(RichBool(s.name, s.defaultValue != 0, s.label, s.tooltip)); break;
       case ParamKind::Enum: list.addParam(RichEnum(s.name, int(s.defaultValue), s.values, s.label, s.tooltip)); break;
+      case ParamKind::String: list.addParam(RichString(s.name, s.text, s.label, s.tooltip)); break;
+      case ParamKind::Mesh:
+        list.addParam(RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue))->id(), &md, s.label,
+                               s.tooltip));
+        break;
     }
   }
   return list;
@@ -55,20 +64,27 @@ FilterPlugin::FilterClass FilterGeodesicLODPlugin::getClass(const QAction* a) co
   return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
-FilterPlugin::FilterArity FilterGeodesicLODPlugin::filterArity(const QAction*) const { return SINGLE_MESH; }
+FilterPlugin::FilterArity FilterGeodesicLODPlugin::filterArity(const QAction* a) const {
+  return FilterArity(Filters().at(ID(a)).arity);
+}
 int FilterGeodesicLODPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
 int FilterGeodesicLODPlugin::postCondition(const QAction* a) const {
-  return Filters().at(ID(a)).newLayer ? int(MeshModel::MM_NONE) : int(MeshModel::MM_VERTQUALITY);
+  return Filters().at(ID(a)).output == Output::VertexQuality ? int(MeshModel::MM_VERTQUALITY)
+                                                             : int(MeshModel::MM_NONE);
 }
 
-RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, const MeshModel& m) {
-  return ToRich(Filters().at(ID(a)).params(m.cm));
+RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, const MeshDocument& md) {
+  return ToRich(Filters().at(ID(a)).params(md.mm()->cm), md);
 }
 
 std::map<std::string, QVariant> FilterGeodesicLODPlugin::applyFilter(
-    const QAction* action, const RichParameterList& params, MeshDocument& md, unsigned int& /*mask*/,
+    const QAction* action, const RichParameterList& params, MeshDocument& md, unsigned int& mask,
     vcg::CallBackPos* cb) {
-  return ApplyLod(ID(action), md, RichParamSource(params), cb, [this](const std::string& s) { log(s); }).values;
+  bool coloured = false;
+  const LodRun run =
+      ApplyLod(ID(action), md, RichParamSource(params, md), cb, [this](const std::string& s) { log(s); }, &coloured);
+  if (coloured) mask = MeshModel::MM_VERTCOLOR;  // the input's colours changed: redraw them
+  return run.values;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterGeodesicLODPlugin)

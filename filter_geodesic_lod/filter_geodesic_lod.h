@@ -19,7 +19,7 @@ class FilterGeodesicLODPlugin : public QObject, public FilterPlugin {
   FilterArity filterArity(const QAction*) const override;
   int getPreConditions(const QAction*) const override;
   int postCondition(const QAction*) const override;
-  RichParameterList initParameterList(const QAction*, const MeshModel& m) override;
+  RichParameterList initParameterList(const QAction*, const MeshDocument& md) override;
   std::map<std::string, QVariant> applyFilter(const QAction* action, const RichParameterList& params,
                                               MeshDocument& md, unsigned int& postConditionMask,
                                               vcg::CallBackPos* cb) override;

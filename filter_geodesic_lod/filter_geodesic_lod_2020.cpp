@@ -8,20 +8,19 @@ using namespace geodesic_lod;
 
 namespace {
 
-class RichParamSource : public ParamSource {
+class RichParamSource : public RichParamSourceBase<RichParameterList> {
  public:
-  explicit RichParamSource(const RichParameterList& p) : p_(p) {}
+  using RichParamSourceBase::RichParamSourceBase;
   double number(const QString& n) const override {
     const Value& v = p_.getParameterByName(n).value();
     if (v.isInt()) return v.getInt();
     if (v.isAbsPerc()) return v.getAbsPerc();
     return v.getFloat();
   }
-  bool flag(const QString& n) const override { return p_.getBool(n); }
-  int choice(const QString& n) const override { return p_.getEnum(n); }
-
- private:
-  const RichParameterList& p_;
+  const CMeshO* mesh(const QString& n) const override {
+    const MeshModel* m = p_.getMesh(n);
+    return m ? &m->cm : nullptr;
+  }
 };
 
 }  // namespace
@@ -41,14 +40,22 @@ MeshFilterInterface::FilterClass FilterGeodesicLOD2020Plugin::getClass(QAction* 
   return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
-MeshFilterInterface::FILTER_ARITY FilterGeodesicLOD2020Plugin::filterArity(QAction*) const { return SINGLE_MESH; }
+MeshFilterInterface::FILTER_ARITY FilterGeodesicLOD2020Plugin::filterArity(QAction* a) const {
+  return FILTER_ARITY(Filters().at(ID(a)).arity);
+}
 int FilterGeodesicLOD2020Plugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
 int FilterGeodesicLOD2020Plugin::postCondition(QAction* a) const {
-  return Filters().at(ID(a)).newLayer ? int(MeshModel::MM_NONE) : int(MeshModel::MM_VERTQUALITY);
+  // The sampling filters may also colour the input by region.
+  switch (Filters().at(ID(a)).output) {
+    case Output::VertexQuality: return MeshModel::MM_VERTQUALITY;
+    case Output::NewLayers: return MeshModel::MM_VERTCOLOR;
+    default: return MeshModel::MM_NONE;
+  }
 }
 
-void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& list) {
-  for (const ParamSpec& s : Filters().at(ID(a)).params(m.cm)) {
+void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshDocument& md, RichParameterList& list) {
+  std::vector<MeshModel*> layers(md.meshList.begin(), md.meshList.end());
+  for (const ParamSpec& s : Filters().at(ID(a)).params(md.mm()->cm)) {
     switch (s.kind) {
       case ParamKind::Percentage:
         list.addParam(RichAbsPerc(s.name, float(s.defaultValue), float(s.min), float(s.max), s.label, s.tooltip));
@@ -57,6 +64,10 @@ void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshModel& m, Ric
       case ParamKind::Int: list.addParam(RichInt(s.name, int(s.defaultValue), s.label, s.tooltip)); break;
       case ParamKind::Bool: list.addParam(RichBool(s.name, s.defaultValue != 0, s.label, s.tooltip)); break;
       case ParamKind::Enum: list.addParam(RichEnum(s.name, int(s.defaultValue), s.values, s.label, s.tooltip)); break;
+      case ParamKind::String: list.addParam(RichString(s.name, s.text, s.label, s.tooltip)); break;
+      case ParamKind::Mesh:
+        list.addParam(RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue)), &md, s.label, s.tooltip));
+        break;
     }
   }
 }

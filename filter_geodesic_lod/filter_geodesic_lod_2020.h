@@ -20,7 +20,7 @@ class FilterGeodesicLOD2020Plugin : public QObject, public MeshFilterInterface {
   FILTER_ARITY filterArity(QAction*) const override;
   int getPreConditions(QAction*) const override;
   int postCondition(QAction*) const override;
-  void initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) override;
+  void initParameterSet(QAction* a, MeshDocument& md, RichParameterList& par) override;
   bool applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) override;
 };
 

@@ -31,7 +31,10 @@ inline QString PoissonLodInfo() {
          "sparse where it is smooth. Points are visited in a seeded random order; an unvisited point becomes a "
          "sample and every point within the radius of it is marked visited. Samples are pairwise farther apart "
          "than the radius and every point lies within the radius of a sample, in every connected part.<br>" +
-         MethodInfo() + "Returns <i>sample_num</i> and <i>radius</i> (absolute)." + PaperReference();
+         QString("With <i>samplenum</i> (a count or a percentage of the vertices) the radius is searched for and the "
+         "result has exactly that many samples (or is within <i>tolerance</i>).<br>") +
+         MethodInfo() + "Returns <i>sample_num</i>, <i>radius</i> (absolute, the one used) and <i>iterations</i> "
+         "(Poisson runs)." + PaperReference();
 }
 
 inline QString FpsLodName() { return "Geodesic Farthest Point LOD"; }
@@ -56,6 +59,31 @@ inline QString NormalVariationInfo() {
          "look at the quality histogram to see where the LODs will be dense. Changes only the vertex quality. "
          "Returns <i>min</i>, <i>mean</i> and <i>max</i>." +
          PaperReference();
+}
+
+inline QString PyramidName() { return "Geodesic LOD pyramid"; }
+inline QString PyramidPythonName() { return "generate_geodesic_lod_pyramid"; }
+inline QString PyramidInfo() {
+  return "Creates several nested LODs in one run, one new layer per level (named after the current one plus "
+         "\" LOD \" and the level), from a list such as 50%,25%,10%,5%,2% (percentages of the vertices) or "
+         "5000,1000 (counts). The finest level is a geodesic Poisson-disk set with exactly that many samples; each "
+         "coarser level is the farthest-point prefix of it, so every level is a subset of the finer ones and is "
+         "spread evenly in the metric. The finest layer gets the per-vertex attribute <i>lod_level</i>: the "
+         "coarsest level (0 = the finest) each vertex belongs to. Normals, curvature and geodesics are computed "
+         "once for all levels.<br>" +
+         MethodInfo() + "Returns <i>level_num</i>, <i>sample_num</i> (of the finest level) and <i>radius</i>." +
+         PaperReference();
+}
+
+inline QString NormalProjectionName() { return "Normal projection deviation"; }
+inline QString NormalProjectionPythonName() { return "get_normal_projection_deviation"; }
+inline QString NormalProjectionInfo() {
+  return "The error measure of the paper's Table 1: for each vertex p_i of the reference layer with normal n_i, "
+         "the distance from p_i to where the line through p_i along n_i (both ways) first meets the surface "
+         "layer's triangles. Vertices without a valid normal are skipped; lines that meet nothing within the "
+         "maximum distance count as misses. Nothing is changed. Returns <i>point_num</i>, <i>hit_num</i>, "
+         "<i>miss_fraction</i>, <i>min</i>, <i>mean</i>, <i>rms</i> and <i>max</i> (over the hits), like the "
+         "Hausdorff distance filter." + PaperReference();
 }
 
 }  // namespace geodesic_lod

@@ -6,8 +6,11 @@
 #include "filter_info.h"
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
+#include <cmath>
 #include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/normal_projection.h>
 #include <vcg_ext/point_normals.h>
 #include <vcg_ext/vertex_subset.h>
 
@@ -18,6 +21,8 @@ const QStringList kMetricNames = {
     "Weighted geodesic (eq. 3)", "Curvature-density geodesic", "Geodesic (unweighted)", "Euclidean"};
 const QStringList kModeNames = {"Auto", "Mesh (fast marching)", "Point graph (Dijkstra)"};
 const QStringList kOutputNames = {"Points", "Triangle mesh (geodesic Delaunay)"};
+const QStringList kPoissonRegionNames = {"None", "Disk regions", "Voronoi regions"};
+const QStringList kFpsRegionNames = {"None", "Voronoi regions"};
 
 // Runs f, turning every failure into an MLException the hosts can show.
 template <class F>
@@ -49,6 +54,15 @@ ParamSpec RecomputeNormalsParam() {
   return {ParamKind::Bool, "recomputenormals", "Recompute normals",
           "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
           "When off, the layer's valid normals are used and only missing ones are estimated.", 0};
+}
+
+ParamSpec RegionsParam(const QStringList& names, const QString& disk) {
+  return {ParamKind::Enum, "regions", "Colour the input by region",
+          "Colours each vertex of the current layer with the colour of its sample's region (the paper's Fig. 3), to "
+          "see what the metric does. " + disk + "Voronoi regions: the nearest sample in the metric. Only the "
+          "vertex colours of the current layer change (colours are enabled if it had none); the new layer keeps "
+          "the input's colours.",
+          0, 0, 0, names};
 }
 
 // Parameters shared by every sampling filter, after the filter's own.
@@ -119,7 +133,16 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "Radius of the Poisson disks in the chosen metric: an absolute value or a percentage of the "
                "bounding-box diagonal. Larger radius, fewer samples.",
                diag * 0.01, 0, diag});
+  p.push_back({ParamKind::Percentage, "samplenum", "Number of samples",
+               "Wanted number of samples, an absolute count or a percentage of the layer's vertices; 0 uses the "
+               "radius instead. The radius is searched for (at most 24 Poisson runs) and a slightly denser Poisson "
+               "set is trimmed in farthest-point order to the exact count; the radius used is reported.",
+               0, 0, double(m.vn)});
+  p.push_back({ParamKind::Float, "tolerance", "Sample count tolerance (%)",
+               "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
+               "it. 0 gives the exact count.", 0});
   AddDomainParams(p);
+  p.push_back(RegionsParam(kPoissonRegionNames, "Disk regions: the disk that first covered each vertex. "));
   return p;
 }
 
@@ -130,6 +153,7 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
                "its first k vertices are the k-sample LOD.",
                double(std::max(1, m.vn / 10))});
   AddDomainParams(p);
+  p.push_back(RegionsParam(kFpsRegionNames, ""));
   return p;
 }
 
@@ -137,13 +161,27 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
   return Guarded([&] {
     vcg_ext::GeodesicPoissonLOD<CMeshO>::Param p;
     p.radius = src.number("radius");
+    const double target = src.number("samplenum");
+    if (!(target >= 0) || !std::isfinite(target))
+      throw std::invalid_argument("samplenum must be 0 (use the radius) or a positive count (got " +
+                                  std::to_string(target) + ")");
+    p.sampleNum = size_t(std::llround(target));
+    if (target > 0 && p.sampleNum == 0) p.sampleNum = 1;
+    p.tolerance = src.number("tolerance") / 100;
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    p.regions = vcg_ext::Regions(Choice(src, "regions", kPoissonRegionNames));
+    const auto r = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
     LodRun run;
-    run.result = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
+    run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
     run.summary = Describe("Geodesic Poisson-disk LOD", run.result, p.domain.metric) +
-                  QString("; radius %1").arg(p.radius);
-    run.values = {{"sample_num", QVariant(int(run.result.vertIndex.size()))}, {"radius", QVariant(double(p.radius))}};
+                  QString("; radius %1").arg(r.radius);
+    if (p.sampleNum > 0)
+      run.summary += QString("; %1 samples asked: radius found in %2 Poisson runs (%3 samples)%4")
+                         .arg(p.sampleNum).arg(r.iterations).arg(r.poissonCount)
+                         .arg(r.trimmed ? ", trimmed in farthest-point order" : "");
+    run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"radius", QVariant(double(r.radius))},
+                  {"iterations", QVariant(r.iterations)}};
     return run;
   });
 }
@@ -155,6 +193,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
     p.sampleNum = size_t(n);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    p.regions = Choice(src, "regions", kFpsRegionNames) ? vcg_ext::Regions::Voronoi : vcg_ext::Regions::None;
     auto r = vcg_ext::GeodesicFpsLOD<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
@@ -201,33 +240,158 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
   });
 }
 
+std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
+  const std::string example = "; use percentages of the vertices or counts, finest first, such as 50%,25%,10%";
+  std::vector<LodLevel> levels;
+  for (QString item : list.split(',')) {
+    item = item.trimmed();
+    const bool percent = item.endsWith('%');
+    bool ok = false;
+    const double x = (percent ? item.left(item.size() - 1).trimmed() : item).toDouble(&ok);
+    if (!ok || !std::isfinite(x) || !(x > 0) || (!percent && x != std::floor(x)))
+      throw std::invalid_argument("levels: '" + item.toStdString() + "' is not a positive percentage or count" +
+                                  example);
+    const double count = percent ? std::round(x / 100 * double(n)) : x;
+    if (percent && x > 100) throw std::invalid_argument("levels: " + item.toStdString() + " is above 100%");
+    if (count < 1 || count > double(n))
+      throw std::invalid_argument("levels: " + item.toStdString() + " gives " + std::to_string(int64_t(count)) +
+                                  " samples; a level needs 1 to " + std::to_string(n) + " (the layer's vertices)");
+    LodLevel l;
+    l.count = size_t(count);
+    l.suffix = " LOD " + item;
+    levels.push_back(l);
+  }
+  return levels;
+}
+
+std::vector<ParamSpec> PyramidParams(const CMeshO&) {
+  std::vector<ParamSpec> p;
+  ParamSpec levels{ParamKind::String, "levels", "Levels",
+                   "Sample counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
+                   "(50%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
+                   "finer ones."};
+  levels.text = "50%,25%,10%,5%,2%";
+  p.push_back(levels);
+  AddDomainParams(p);
+  return p;
+}
+
+LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
+  return Guarded([&] {
+    vcg_ext::GeodesicLodPyramid<CMeshO>::Param p;
+    std::vector<LodLevel> levels = ParseLevels(src.text("levels"), size_t(in.vn));
+    for (const LodLevel& l : levels) p.counts.push_back(l.count);
+    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    const auto r = vcg_ext::GeodesicLodPyramid<CMeshO>::Compute(in, p, cb);
+    LodRun run;
+    run.result = r;
+    for (size_t k = 0; k < r.levelFaces.size(); ++k) levels[k].faces = r.levelFaces[k];
+    run.levels = std::move(levels);
+    run.coarsest = r.coarsest;
+    run.useInputNormals = p.domain.useInputNormals;
+    QStringList counts;
+    for (size_t c : r.counts) counts << QString::number(c);
+    run.summary = Describe("Geodesic LOD pyramid", run.result, p.domain.metric) +
+                  QString("; levels of %1 samples, each a subset of the finer ones; finest radius %2 (%3 Poisson runs)")
+                      .arg(counts.join(", ")).arg(r.radius).arg(r.iterations);
+    run.values = {{"level_num", QVariant(int(r.counts.size()))}, {"sample_num", QVariant(int(r.counts[0]))},
+                  {"radius", QVariant(r.radius)}};
+    return run;
+  });
+}
+
+std::vector<ParamSpec> NormalProjectionParams(const CMeshO& m) {
+  const double diag = m.bbox.Diag();
+  return {
+      {ParamKind::Mesh, "referencemesh", "Reference points",
+       "The layer whose vertices and normals are measured (for the paper's measure: the original scan).",
+       kCurrentLayer},
+      {ParamKind::Mesh, "surfacemesh", "Surface",
+       "The triangle mesh the normal lines are intersected with (for the paper's measure: the surface "
+       "reconstructed from a LOD).", kOtherLayer},
+      {ParamKind::Percentage, "maxdist", "Max distance",
+       "Crossings farther than this from the point count as misses: an absolute value or a percentage of the "
+       "current layer's bounding-box diagonal.", diag * 0.05, 0, diag},
+  };
+}
+
+LodRun RunNormalProjection(const CMeshO&, const ParamSource& src, vcg::CallBackPos* cb) {
+  return Guarded([&] {
+    const CMeshO* ref = src.mesh("referencemesh");
+    const CMeshO* surf = src.mesh("surfacemesh");
+    if (ref == nullptr) throw std::invalid_argument("referencemesh: there is no such layer");
+    if (surf == nullptr) throw std::invalid_argument("surfacemesh: there is no such layer");
+    vcg_ext::NormalProjection<CMeshO>::Param p;
+    p.maxDistance = src.number("maxdist");
+    const auto r = vcg_ext::NormalProjection<CMeshO>::Compute(*ref, *surf, p, cb);
+    LodRun run;
+    run.summary = QString("Normal projection deviation of %1 points: mean %2, RMS %3, max %4; %5% of the normal lines "
+                          "miss the surface within %6")
+                      .arg(r.pointNum).arg(r.mean).arg(r.rms).arg(r.max).arg(100 * r.missFraction())
+                      .arg(p.maxDistance);
+    if (r.noNormal) run.summary += QString("; %1 points without a normal skipped").arg(r.noNormal);
+    run.values = {{"point_num", QVariant(int(r.pointNum))}, {"hit_num", QVariant(int(r.hitNum))},
+                  {"miss_fraction", QVariant(r.missFraction())}, {"min", QVariant(r.min)},
+                  {"mean", QVariant(r.mean)}, {"rms", QVariant(r.rms)}, {"max", QVariant(r.max)}};
+    return run;
+  });
+}
+
 const std::vector<FilterDef>& Filters() {
   static const std::vector<FilterDef> filters = {
       {PoissonLodName, PoissonLodPythonName, PoissonLodInfo, PoissonLodParams, RunPoissonLod,
-       kClassSampling | kClassPointSet, true},
-      {FpsLodName, FpsLodPythonName, FpsLodInfo, FpsLodParams, RunFpsLod, kClassSampling | kClassPointSet, true},
+       kClassSampling | kClassPointSet, Output::NewLayers, kAritySingle},
+      {FpsLodName, FpsLodPythonName, FpsLodInfo, FpsLodParams, RunFpsLod, kClassSampling | kClassPointSet,
+       Output::NewLayers, kAritySingle},
       {NormalVariationName, NormalVariationPythonName, NormalVariationInfo, NormalVariationParams,
-       RunNormalVariation, kClassNormal | kClassQuality, false},
+       RunNormalVariation, kClassNormal | kClassQuality, Output::VertexQuality, kAritySingle},
+      {PyramidName, PyramidPythonName, PyramidInfo, PyramidParams, RunPyramid, kClassSampling | kClassPointSet,
+       Output::NewLayers, kAritySingle},
+      {NormalProjectionName, NormalProjectionPythonName, NormalProjectionInfo, NormalProjectionParams,
+       RunNormalProjection, kClassMeasure, Output::Values, kArityFixed},
   };
   return filters;
 }
 
-QStringList FillLodLayer(const CMeshO& in, const LodRun& run, CMeshO& out) {
+vcg::Color4b RegionColour(int k) {
+  // Golden-ratio steps in hue, with saturation and value varied too, so
+  // neighbouring regions (whatever their ranks) rarely look alike.
+  auto frac = [](double x) { return float(x - std::floor(x)); };
+  vcg::Color4b c;
+  c.SetHSVColor(frac(0.618034 * k), 0.45f + 0.4f * frac(0.754878 * k), 0.95f - 0.3f * frac(0.569840 * k));
+  return c;
+}
+
+std::vector<LodLevel> OutputLevels(const LodRun& run) {
+  if (!run.levels.empty()) return run.levels;
+  LodLevel all;
+  all.count = run.result.vertIndex.size();
+  all.suffix = " LOD";
+  all.faces = run.result.faces;
+  return {all};
+}
+
+QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& level, bool first, CMeshO& out) {
   return Guarded([&] {
     const auto& r = run.result;
     const size_t base = out.vert.size();
-    const auto skipped = vcg_ext::VertexSubset<CMeshO>::Compute(in, r.vertIndex, out);
-    for (size_t k = 0; k < r.vertIndex.size(); ++k) {
+    const std::vector<int> chosen(r.vertIndex.begin(), r.vertIndex.begin() + level.count);
+    const auto skipped = vcg_ext::VertexSubset<CMeshO>::Compute(in, chosen, out);
+    for (size_t k = 0; k < level.count; ++k) {
       auto& n = out.vert[base + k].N();
       if (!run.useInputNormals || !vcg_ext::PointNormals<Scalarm>::IsValid(n)) n = r.normal[k];
     }
     if (run.fpsOrder) {
       auto order = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(out, "fps_order");
-      for (size_t k = 0; k < r.vertIndex.size(); ++k) order[base + k] = Scalarm(k);
+      for (size_t k = 0; k < level.count; ++k) order[base + k] = Scalarm(k);
     }
-    if (!r.faces.empty()) {
-      auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, r.faces.size());
-      for (const auto& f : r.faces) {
+    if (first && !run.coarsest.empty()) {
+      auto lod = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(out, "lod_level");
+      for (size_t k = 0; k < level.count; ++k) lod[base + k] = Scalarm(run.coarsest[k]);
+    }
+    if (!level.faces.empty()) {
+      auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, level.faces.size());
+      for (const auto& f : level.faces) {
         for (int c = 0; c < 3; ++c) fi->V(c) = &out.vert[base + f[c]];
         ++fi;
       }

@@ -6,6 +6,7 @@
 #include <QString>
 #include <QStringList>
 #include <QVariant>
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,15 +15,19 @@
 
 namespace geodesic_lod {
 
-enum class ParamKind { Percentage, Float, Int, Bool, Enum };
+enum class ParamKind { Percentage, Float, Int, Bool, Enum, String, Mesh };
+
+/// A Mesh parameter's default layer (its defaultValue).
+enum MeshRole : int { kCurrentLayer = 0, kOtherLayer = 1 };
 
 /// One filter parameter; `name` is also the pymeshlab keyword.
 struct ParamSpec {
   ParamKind kind;
   QString name, label, tooltip;
-  double defaultValue = 0;   ///< number, bool (0/1) or enum index
+  double defaultValue = 0;   ///< number, bool (0/1), enum index or MeshRole
   double min = 0, max = 0;   ///< range of a Percentage (absolute units)
   QStringList values;        ///< enum choices
+  QString text;              ///< a String's default
 };
 
 /// Reads parameter values by name from whatever the API version passes.
@@ -32,11 +37,22 @@ class ParamSource {
   virtual double number(const QString& name) const = 0;  ///< Percentage (absolute), Float, Int
   virtual bool flag(const QString& name) const = 0;
   virtual int choice(const QString& name) const = 0;     ///< enum index
+  virtual QString text(const QString& name) const = 0;
+  virtual const CMeshO* mesh(const QString& name) const = 0;  ///< nullptr when no such layer
 };
 
-/// What a filter made, ready for an output layer.
+/// One output layer: the first `count` samples of a run.
+struct LodLevel {
+  size_t count = 0;
+  QString suffix;                                  ///< appended to the input layer's name
+  std::vector<std::array<int, 3>> faces;           ///< triangle-mesh output, indices into the samples
+};
+
+/// What a filter made, ready for the output layers.
 struct LodRun {
   vcg_ext::LodResult<Scalarm> result;
+  std::vector<LodLevel> levels;                 ///< output layers; empty: one with every sample and result.faces
+  std::vector<int> coarsest;                    ///< per sample: the coarsest level holding it ("lod_level", first layer)
   bool useInputNormals = true;
   bool fpsOrder = false;                        ///< store the "fps_order" attribute
   QString summary;                              ///< one line for the log
@@ -53,6 +69,21 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* c
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 std::vector<ParamSpec> NormalVariationParams(const CMeshO& m);
 LodRun RunNormalVariation(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+std::vector<ParamSpec> PyramidParams(const CMeshO& m);
+LodRun RunPyramid(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+std::vector<ParamSpec> NormalProjectionParams(const CMeshO& m);
+LodRun RunNormalProjection(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+
+/// Sample counts of a level list such as "50%,25%,10%" or "5000,1000" for a
+/// layer of n vertices, finest first, with the layer-name suffix of each.
+std::vector<LodLevel> ParseLevels(const QString& list, size_t n);
+
+/// Where a filter's results go.
+enum class Output {
+  NewLayers,      ///< one new layer per level
+  VertexQuality,  ///< run.result.curvature into the current layer's quality
+  Values          ///< nothing but the log and the returned values
+};
 
 /// One filter, as every API adapter presents it: index = the filter's ID.
 struct FilterDef {
@@ -62,18 +93,30 @@ struct FilterDef {
   std::vector<ParamSpec> (*params)(const CMeshO& m);
   LodRun (*run)(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
   int filterClass;  ///< menu classes, FilterClass bits (the same values in both APIs)
-  bool newLayer;    ///< else it writes run.result.curvature into the current layer's quality
+  Output output;
+  int arity;        ///< kAritySingle or kArityFixed (layers chosen by Mesh parameters)
 };
 
-/// Menu classes (FilterPlugin::FilterClass bits).
-enum : int { kClassQuality = 0x00100, kClassNormal = 0x00800, kClassSampling = 0x01000, kClassPointSet = 0x08000 };
+/// Menu classes (FilterPlugin::FilterClass bits) and arities, the same values in both APIs.
+enum : int {
+  kClassQuality = 0x00100, kClassNormal = 0x00800, kClassSampling = 0x01000, kClassPointSet = 0x08000,
+  kClassMeasure = 0x10000
+};
+enum : int { kAritySingle = 1, kArityFixed = 2 };
+
+/// The colour of region k on the input (distinct hues for nearby ranks).
+vcg::Color4b RegionColour(int k);
 const std::vector<FilterDef>& Filters();
 
 /// Fills the empty mesh `out` (with the same optional components enabled as
-/// `in`) with copies of the chosen vertices and their data, the triangles of a
-/// mesh output, and the bounding box. Vertices whose normal was estimated get
-/// it. Returns the names of attributes not copied.
-QStringList FillLodLayer(const CMeshO& in, const LodRun& run, CMeshO& out);
+/// `in`) with copies of the first `level.count` chosen vertices and their
+/// data, the level's triangles, and the bounding box. Vertices whose normal
+/// was estimated get it. The first level also gets "lod_level" when the run
+/// has levels. Returns the names of attributes not copied.
+QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& level, bool first, CMeshO& out);
+
+/// The run's output layers (one per level, or one with everything).
+std::vector<LodLevel> OutputLevels(const LodRun& run);
 
 }  // namespace geodesic_lod
 #endif

@@ -9,12 +9,14 @@
 #include <set>
 #include <stdexcept>
 #include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include "../vcg_ext/test_mesh.h"
 
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
 using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
 
 float Special(FuzzedDataProvider& f) {
   static const float values[] = {0.f, 1.f, -1.f, 0.5f, 1e-30f, -1e-30f, 1e30f, -1e30f, FLT_MAX, -FLT_MAX,
@@ -83,24 +85,48 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double radius = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
   const size_t sampleNum = f.ConsumeIntegralInRange<size_t>(0, size_t(n) + 2);
 
+  const double tolerance = f.ConsumeBool() ? 0.0 : f.ConsumeFloatingPointInRange<double>(-0.1, 1.1);
+  const auto regions = vcg_ext::Regions(f.ConsumeIntegralInRange<int>(0, 2));
+  auto common = [&](auto& p) {
+    p.domain = d;
+    p.seed = seed;
+    p.meshOutput = meshOutput;
+  };
+
   LOD::Param lp;
-  lp.domain = d;
+  common(lp);
   lp.radius = radius;
-  lp.seed = seed;
-  lp.meshOutput = meshOutput;
+  lp.regions = regions;
   try {
     Check(LOD::Compute(m, lp), m);
   } catch (const std::invalid_argument&) {
   }
+  // The same with a wanted count (0: the radius): exact unless a tolerance is given, and always ending.
+  lp.sampleNum = sampleNum;
+  lp.tolerance = tolerance;
+  try {
+    const auto r = LOD::Compute(m, lp);
+    Check(r, m);
+    if (sampleNum > 0 && tolerance == 0 && r.vertIndex.size() != sampleNum) Fail("Poisson count differs from samplenum");
+  } catch (const std::invalid_argument&) {
+  }
   FPS::Param fp;
-  fp.domain = d;
+  common(fp);
   fp.sampleNum = sampleNum;
-  fp.seed = seed;
-  fp.meshOutput = meshOutput;
+  fp.regions = regions;
   try {
     const auto r = FPS::Compute(m, fp);
     Check(r, m);
     if (r.vertIndex.size() != sampleNum) Fail("FPS count differs from samplenum");
+  } catch (const std::invalid_argument&) {
+  }
+  Pyramid::Param pp;
+  common(pp);
+  pp.counts = {sampleNum, sampleNum / 2, sampleNum / 5};
+  try {
+    const auto r = Pyramid::Compute(m, pp);
+    Check(r, m);
+    if (r.vertIndex.size() != sampleNum) Fail("pyramid's finest count differs");
   } catch (const std::invalid_argument&) {
   }
   return 0;

@@ -1,6 +1,7 @@
 // The plugin's filter logic on CMeshO: defaults, output layer data, untouched
 // input, and MLException messages for bad input.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <common/mlexception.h>
@@ -14,24 +15,47 @@ struct Mesh : CMeshO {
   ~Mesh() { ClearAttributes(); }
 };
 
-// Parameter values: the specs' defaults, overridable by name.
+// Parameter values: the specs' defaults, overridable by name. Mesh
+// parameters name layers of `layers` (their index), by default the first.
 class MapSource : public ParamSource {
  public:
-  explicit MapSource(const CMeshO& m, bool fps = false) {
-    for (const ParamSpec& s : fps ? FpsLodParams(m) : PoissonLodParams(m)) v_[s.name] = s.defaultValue;
+  typedef std::vector<ParamSpec> (*Specs)(const CMeshO&);
+  explicit MapSource(const CMeshO& m, bool fps = false) : MapSource(m, fps ? FpsLodParams : PoissonLodParams) {}
+  MapSource(const CMeshO& m, Specs specs, std::vector<const CMeshO*> layers = {}) : layers_(std::move(layers)) {
+    for (const ParamSpec& s : specs(m)) {
+      v_[s.name] = s.kind == ParamKind::Mesh ? 0 : s.defaultValue;
+      t_[s.name] = s.text;
+    }
   }
   MapSource& set(const QString& n, double x) {
     EXPECT_TRUE(v_.count(n)) << n.toStdString();
     v_[n] = x;
     return *this;
   }
+  MapSource& set(const QString& n, const QString& x) {
+    EXPECT_TRUE(t_.count(n)) << n.toStdString();
+    t_[n] = x;
+    return *this;
+  }
   double number(const QString& n) const override { return v_.at(n); }
   bool flag(const QString& n) const override { return v_.at(n) != 0; }
   int choice(const QString& n) const override { return int(v_.at(n)); }
+  QString text(const QString& n) const override { return t_.at(n); }
+  const CMeshO* mesh(const QString& n) const override {
+    const size_t k = size_t(v_.at(n));
+    return k < layers_.size() ? layers_[k] : nullptr;
+  }
 
  private:
   std::map<QString, double> v_;
+  std::map<QString, QString> t_;
+  std::vector<const CMeshO*> layers_;
 };
+
+// The run's first output layer.
+QStringList Fill(const CMeshO& in, const LodRun& run, CMeshO& out) {
+  return FillLodLayer(in, run, OutputLevels(run).front(), true, out);
+}
 
 void Bumpy(CMeshO& m, int n, bool faces = false) {
   vcg::tri::Allocator<CMeshO>::AddVertices(m, size_t(n) * n);
@@ -91,7 +115,7 @@ TEST(LodFilters, OutputIsACopyOfChosenVerticesAndTheInputIsUnchanged) {
   p.set("radius", 0.05);
   const LodRun run = RunPoissonLod(in, p, nullptr);
   Mesh out;
-  const QStringList skipped = FillLodLayer(in, run, out);
+  const QStringList skipped = Fill(in, run, out);
   EXPECT_TRUE(skipped.isEmpty());
   ASSERT_EQ(size_t(out.vn), run.result.vertIndex.size());
   ASSERT_GT(out.vn, 10);
@@ -123,10 +147,10 @@ TEST(LodFilters, ValidInputNormalsAreKeptUnlessRecomputeIsAsked) {
   MapSource p(in);
   p.set("radius", 0.1);
   Mesh kept, recomputed;
-  FillLodLayer(in, RunPoissonLod(in, p, nullptr), kept);
+  Fill(in, RunPoissonLod(in, p, nullptr), kept);
   for (const auto& v : kept.vert) EXPECT_EQ(v.cN(), Point3m(0, 0, 3));
   p.set("recomputenormals", 1);
-  FillLodLayer(in, RunPoissonLod(in, p, nullptr), recomputed);
+  Fill(in, RunPoissonLod(in, p, nullptr), recomputed);
   for (const auto& v : recomputed.vert) EXPECT_NEAR(v.cN().Norm(), 1.0, 1e-6);
 }
 
@@ -165,7 +189,7 @@ TEST(LodFilters, FpsGivesTheExactCountInOrderWithItsAttribute) {
   p.set("samplenum", 57);
   const LodRun run = RunFpsLod(in, p, nullptr);
   Mesh out;
-  FillLodLayer(in, run, out);
+  Fill(in, run, out);
   ASSERT_EQ(out.vn, 57);
   EXPECT_EQ(out.fn, 0);
   auto order = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Scalarm>(out, "fps_order");
@@ -195,7 +219,7 @@ TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
     else p.set("radius", 0.08);
     const LodRun run = fps ? RunFpsLod(in, p, nullptr) : RunPoissonLod(in, p, nullptr);
     Mesh out;
-    FillLodLayer(in, run, out);
+    Fill(in, run, out);
     ASSERT_GT(out.fn, 10);
     for (const auto& f : out.face)
       for (int c = 0; c < 3; ++c) {
@@ -219,15 +243,10 @@ TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
 TEST(LodFilters, NormalVariationFilterGivesEq1ForEveryVertexInPlace) {
   const FilterDef& f = Filters().at(2);
   EXPECT_EQ(f.pythonName(), "compute_scalar_by_normal_variation");
-  EXPECT_FALSE(f.newLayer);
+  EXPECT_EQ(f.output, Output::VertexQuality);
   Mesh in;
   Bumpy(in, 30);
-  struct Src : ParamSource {
-    double number(const QString&) const override { return 20; }
-    bool flag(const QString&) const override { return false; }
-    int choice(const QString&) const override { return 0; }
-  } src;
-  const LodRun run = f.run(in, src, nullptr);
+  const LodRun run = f.run(in, MapSource(in, NormalVariationParams), nullptr);
   ASSERT_EQ(run.result.vertIndex.size(), size_t(in.vn));
   double flat = 0, bumpy = 0, top = 0;
   for (size_t k = 0; k < run.result.vertIndex.size(); ++k) {
@@ -241,4 +260,114 @@ TEST(LodFilters, NormalVariationFilterGivesEq1ForEveryVertexInPlace) {
   EXPECT_LT(flat, 1e-6);
   EXPECT_GT(bumpy, 0.01);
   EXPECT_DOUBLE_EQ(run.values.at("max").toDouble(), top);
+}
+
+TEST(LodFilters, PoissonGivesTheAskedCountAndTheRadiusItUsed) {
+  Mesh in;
+  Bumpy(in, 30);
+  MapSource p(in);
+  EXPECT_EQ(p.number("samplenum"), 0);  // default: the radius decides
+  p.set("samplenum", 123);
+  const LodRun run = RunPoissonLod(in, p, nullptr);
+  EXPECT_EQ(run.result.vertIndex.size(), 123u);
+  EXPECT_EQ(run.values.at("sample_num").toInt(), 123);
+  EXPECT_GT(run.values.at("radius").toDouble(), 0);
+  EXPECT_GE(run.values.at("iterations").toInt(), 1);
+  EXPECT_TRUE(run.summary.contains("123 samples asked")) << run.summary.toStdString();
+  p.set("tolerance", 10);
+  const size_t within = RunPoissonLod(in, p, nullptr).result.vertIndex.size();
+  EXPECT_NEAR(double(within), 123, 12.3);
+  for (auto bad : {std::make_pair("samplenum", -5.0), std::make_pair("samplenum", 901.0),
+                   std::make_pair("tolerance", 100.0), std::make_pair("tolerance", -1.0)}) {
+    MapSource q(in);
+    q.set("samplenum", 50).set(bad.first, bad.second);
+    EXPECT_NE(ErrorOf(in, q).find(bad.first), std::string::npos) << ErrorOf(in, q);
+  }
+}
+
+TEST(LodFilters, LevelListsAreParsedOrRefusedByName) {
+  const auto l = ParseLevels(" 50% , 10%,7", 200);
+  ASSERT_EQ(l.size(), 3u);
+  EXPECT_EQ(l[0].count, 100u);
+  EXPECT_EQ(l[1].count, 20u);
+  EXPECT_EQ(l[2].count, 7u);
+  EXPECT_EQ(l[0].suffix, " LOD 50%");
+  EXPECT_EQ(l[2].suffix, " LOD 7");
+  for (const char* bad : {"", "50%,,10%", "abc", "0%", "-5", "2.5", "150%", "201", "0.1%"}) {
+    try {
+      ParseLevels(bad, 200);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("levels: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST(LodFilters, PyramidMakesOneNestedLayerPerLevelAndLabelsTheFinest) {
+  Mesh in;
+  Bumpy(in, 30);
+  MapSource p(in, PyramidParams);
+  EXPECT_EQ(p.text("levels"), "50%,25%,10%,5%,2%");
+  p.set("levels", "40%,10%,20");
+  const LodRun run = RunPyramid(in, p, nullptr);
+  const auto levels = OutputLevels(run);
+  ASSERT_EQ(levels.size(), 3u);
+  std::vector<Mesh> out(3);
+  for (size_t k = 0; k < 3; ++k) FillLodLayer(in, run, levels[k], k == 0, out[k]);
+  EXPECT_EQ(out[0].vn, 360);
+  EXPECT_EQ(out[1].vn, 90);
+  EXPECT_EQ(out[2].vn, 20);
+  for (size_t k = 1; k < 3; ++k)  // every coarser vertex is a vertex of the finer layer
+    for (const auto& v : out[k].vert)
+      EXPECT_TRUE(std::any_of(out[k - 1].vert.begin(), out[k - 1].vert.end(),
+                              [&](const CVertexO& w) { return w.cP() == v.cP(); }));
+  auto lod = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Scalarm>(out[0], "lod_level");
+  ASSERT_TRUE(vcg::tri::Allocator<CMeshO>::IsValidHandle(out[0], lod));
+  EXPECT_FALSE(vcg::tri::Allocator<CMeshO>::IsValidHandle(
+      out[1], vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Scalarm>(out[1], "lod_level")));
+  size_t coarsest = 0;
+  for (int i = 0; i < out[0].vn; ++i) coarsest += lod[i] == 2;
+  EXPECT_EQ(coarsest, 20u);
+  EXPECT_EQ(run.values.at("level_num").toInt(), 3);
+}
+
+TEST(LodFilters, NormalProjectionMeasuresBetweenTwoLayers) {
+  Mesh flat, lifted, cloud;
+  Bumpy(flat, 12, true);
+  Bumpy(lifted, 12, true);
+  Bumpy(cloud, 5);
+  for (auto& v : flat.vert) v.N() = Point3m(0, 0, 1);
+  for (auto& v : lifted.vert) v.P()[2] = 0.3;
+  MapSource p(flat, NormalProjectionParams, {&flat, &lifted, &cloud});
+  EXPECT_NEAR(p.number("maxdist"), 0.05 * flat.bbox.Diag(), 1e-12);
+  p.set("surfacemesh", 1).set("maxdist", 1.0);
+  const FilterDef& f = Filters().at(4);
+  EXPECT_EQ(f.pythonName(), "get_normal_projection_deviation");
+  EXPECT_EQ(f.output, Output::Values);
+  const LodRun run = f.run(flat, p, nullptr);
+  // Only the flat half (z = 0) lies exactly 0.3 below; the bumps are closer.
+  EXPECT_NEAR(run.values.at("max").toDouble(), 0.3, 1e-9);
+  EXPECT_LT(run.values.at("min").toDouble(), 0.3);
+  EXPECT_EQ(run.values.at("miss_fraction").toDouble(), 0.0);
+  EXPECT_EQ(run.values.at("point_num").toInt(), 144);
+  MapSource self(flat, NormalProjectionParams, {&flat});
+  self.set("maxdist", 1.0);
+  EXPECT_LT(f.run(flat, self, nullptr).values.at("max").toDouble(), 1e-9);
+  auto error = [&](MapSource& q) {
+    try {
+      f.run(flat, q, nullptr);
+    } catch (const MLException& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  MapSource noSurface(flat, NormalProjectionParams, {&flat, &lifted, &cloud});
+  noSurface.set("surfacemesh", 2);
+  EXPECT_EQ(error(noSurface), "Geodesic LOD: the surface layer has no triangles to project onto");
+  MapSource missing(flat, NormalProjectionParams, {&flat});
+  missing.set("surfacemesh", 7);
+  EXPECT_EQ(error(missing), "Geodesic LOD: surfacemesh: there is no such layer");
+  MapSource noNormals(flat, NormalProjectionParams, {&cloud, &lifted});
+  noNormals.set("surfacemesh", 1);
+  EXPECT_NE(error(noNormals).find("no valid vertex normals"), std::string::npos);
 }

@@ -11,6 +11,7 @@ from conftest import bumpy_points
 
 POISSON, FPS = "generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"
 CURVATURE = "compute_scalar_by_normal_variation"
+PYRAMID, DEVIATION = "generate_geodesic_lod_pyramid", "get_normal_projection_deviation"
 MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
 TRIANGLES = "Triangle mesh (geodesic Delaunay)"
 
@@ -62,6 +63,14 @@ def degenerate_faces():
 def unreferenced():
     pts, faces = grid()
     return layer(np.vstack([pts, [[3.0, 3.0, 3.0], [3.5, 3.0, 3.0]]]), faces)
+
+
+def cloud_and_surface():
+    ms = layer(bumpy_points(10))  # no normals
+    pts, faces = grid()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=pts, face_matrix=faces), "surface")
+    ms.set_current_mesh(0)
+    return ms
 
 
 def n_of(ms):
@@ -157,6 +166,29 @@ CASES = [
      "normalneighbors (16) must be smaller than the number of vertices (16)"),
     ("normalneighbors 0", lambda: layer(bumpy_points(4)), CURVATURE, {"normalneighbors": 0},
      "normalneighbors must be at least 1"),
+    ("target count negative", lambda: layer(bumpy_points(10)), POISSON, {"samplenum": pymeshlab.PureValue(-3)},
+     "samplenum must be 0 (use the radius) or a positive count"),
+    ("target count above n", lambda: layer(bumpy_points(10)), POISSON, {"samplenum": pymeshlab.PureValue(101)},
+     "samplenum must be between 1 and the number of vertices (100)"),
+    ("tolerance 100%", lambda: layer(bumpy_points(10)), POISSON,
+     {"samplenum": pymeshlab.PureValue(10), "tolerance": 100.0}, "tolerance must be at least 0 and below 100%"),
+    ("target count on a grid (the count jumps)", lambda: layer(bumpy_points(20) * [1, 1, 0]), POISSON,
+     {"samplenum": pymeshlab.PureValue(300), "metric": "Euclidean"}, lambda ms: n_of(ms) == 300 or pytest.fail()),
+    ("empty level list", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": ""}, "levels: '' is not a positive"),
+    ("level not a number", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": "50%,ten"},
+     "levels: 'ten' is not a positive percentage or count"),
+    ("level above 100%", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": "150%"}, "levels: 150% is above 100%"),
+    ("level above n", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": "500"},
+     "levels: 500 gives 500 samples; a level needs 1 to 100"),
+    ("levels getting finer", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": "10%,20%"},
+     "levels must get strictly coarser"),
+    ("pyramid of an empty layer", empty, PYRAMID, {"levels": "1"}, "levels: 1 gives 1 samples; a level needs 1 to 0"),
+    ("deviation onto a layer without faces", lambda: layer(bumpy_points(10), normals=np.tile([0, 0, 1.0], (100, 1))),
+     DEVIATION, {"referencemesh": 0, "surfacemesh": 0}, "the surface layer has no triangles to project onto"),
+    ("deviation of points without normals", cloud_and_surface, DEVIATION,
+     {"referencemesh": 0, "surfacemesh": 1}, "the reference layer has no valid vertex normals"),
+    ("deviation with a missing layer", lambda: layer(*grid()), DEVIATION, {"referencemesh": 0, "surfacemesh": 5},
+     "surfacemesh"),
 ]
 
 

@@ -76,6 +76,24 @@ def test_generated_cloud(meshlabserver, plugin, tmp_path):
     assert via_pymeshlab(plugin, inp, EXAMPLES / "fps_lod.mlx").vertex_number() == 5000
 
 
+def test_pyramid_script(meshlabserver, plugin, tmp_path):
+    """The pyramid example in both hosts: meshlabserver saves the current layer, the coarsest level."""
+    inp = tmp_path / "cloud.ply"
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=bumpy_points(80) * 0.2))
+    ms.save_current_mesh(str(inp), binary=True)
+    n = ms.current_mesh().vertex_number()
+    out = tmp_path / "coarsest.ply"
+    r = meshlabserver(inp, out, EXAMPLES / "lod_pyramid.mlx")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert check_output(inp, out).vertex_number() == round(0.02 * n)
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(inp))
+    ms.load_filter_script(str(EXAMPLES / "lod_pyramid.mlx"))
+    ms.apply_filter_script()
+    assert [ms.mesh(i).vertex_number() for i in range(1, 4)] == [round(r * n) for r in (0.10, 0.05, 0.02)]
+
+
 @pytest.mark.parametrize("script,data,faces", [
     ("poisson_lod.mlx", "bunny_scans_362k.ply", False),
     ("fps_lod.mlx", "dragon_scans_469k.ply", False),

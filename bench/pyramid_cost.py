@@ -1,0 +1,63 @@
+"""Cost of "Geodesic LOD pyramid" against running its levels one by one (Poisson-disk LOD with
+the same target counts), on one model, in one process.
+
+usage: bench/pyramid_cost.py [MODEL.ply] [--levels 50%,25%,10%,5%,2%] [--plugin PATH]
+Without a model it uses ../shared/data/bunny_scans_362k.ply, else a generated 300k-point cloud.
+"""
+import argparse
+import pathlib
+import time
+
+import numpy as np
+import pymeshlab
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+DEFAULT = ROOT.parent / "shared" / "data" / "bunny_scans_362k.ply"
+
+
+def load(ms, path):
+    if path and pathlib.Path(path).is_file():
+        ms.load_new_mesh(str(path))
+        return pathlib.Path(path).name
+    rng = np.random.default_rng(0)
+    xy = rng.random((300_000, 2))
+    z = 0.1 * np.sin(2 * np.pi * xy[:, 0]) + np.where(xy[:, 0] > 0.5, 0.01 * np.sin(60 * np.pi * xy[:, 1]), 0)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.column_stack([xy, z])), "generated")
+    return "generated 300k cloud"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("model", nargs="?", default=str(DEFAULT))
+    ap.add_argument("--levels", default="50%,25%,10%,5%,2%")
+    ap.add_argument("--plugin", default=str(ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+    a = ap.parse_args()
+    pymeshlab.load_plugin(a.plugin)
+    ms = pymeshlab.MeshSet()
+    name = load(ms, a.model)
+    n = ms.current_mesh().vertex_number()
+
+    t = time.perf_counter()
+    ms.apply_filter("generate_geodesic_lod_pyramid", levels=a.levels)
+    pyramid = time.perf_counter() - t
+    counts = [ms.mesh(i).vertex_number() for i in range(1, ms.mesh_number())]
+
+    single = []
+    for c in counts:
+        ms.set_current_mesh(0)
+        t = time.perf_counter()
+        ms.apply_filter("generate_geodesic_poisson_lod", samplenum=pymeshlab.PureValue(c))
+        single.append(time.perf_counter() - t)
+        assert ms.current_mesh().vertex_number() == c
+
+    print(f"{name}: {n} points, levels {a.levels} = {counts}")
+    print("| run | time (s) |\n|---|---|")
+    for c, s in zip(counts, single):
+        print(f"| Poisson-disk LOD, {c} samples | {s:.2f} |")
+    print(f"| levels one by one, total | {sum(single):.2f} |")
+    print(f"| Geodesic LOD pyramid, all levels | {pyramid:.2f} |")
+    print(f"ratio (one by one / pyramid): {sum(single) / pyramid:.1f}x")
+
+
+if __name__ == "__main__":
+    main()
