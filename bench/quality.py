@@ -9,6 +9,7 @@ call only runs what is missing. --fresh clears the cache first.
 """
 import argparse
 import json
+import os
 import pathlib
 import shutil
 import subprocess
@@ -298,7 +299,8 @@ def run_all(models, rates, methods, log):
                 target = max(1, round(rate * len(model.points)))
                 t = time.perf_counter()
                 row = evaluate(model, method, target)
-                row.update(model=key, method=method, rate=rate, input_count=len(model.points))
+                # The 1-minute load average: the machine is shared, times depend on it.
+                row.update(model=key, method=method, rate=rate, input_count=len(model.points), load=os.getloadavg()[0])
                 path.parent.mkdir(parents=True, exist_ok=True)
                 path.write_text(json.dumps(row, indent=1))
                 log(f"{key:12} {rate:5.0%} {method:18} {row.get('count', '-'):>7} "

@@ -8,6 +8,7 @@ import matplotlib
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt
+import matplotlib.ticker
 import numpy as np
 
 import quality as q
@@ -65,8 +66,12 @@ def table(runs, models, rates, methods, what, fmt, best=min):
 
 def section(runs, models, rates, title, what, ylabel, image, fmt):
     methods = list(q.METHODS)
-    return [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, image), "",
-            table(runs, models, rates, methods, what, fmt), ""]
+    lines = [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, image + ".png"), ""]
+    if what in ("recon", "plane"):
+        lines += ["The same divided by uniform random's error at each rate (below 1: better than random):", "",
+                  plot(runs, models, rates, methods, what, "error / uniform random's", image + "_relative.png",
+                       relative=True), ""]
+    return lines + [table(runs, models, rates, methods, what, fmt), ""]
 
 
 def summary_table(runs, models, rates):
@@ -80,6 +85,14 @@ def summary_table(runs, models, rates):
         every = [geomean([ratio(model, r, what) for model in models for r in rates]) for what in ("recon", "plane")]
         lines.append(f"| {label(meth)} | " + " | ".join(f"{x:.3f}" if np.isfinite(x) else "–" for x in cells + every) + " |")
     return "\n".join(lines)
+
+
+def load_text(runs):
+    loads = [row["load"] for row in runs.values() if "load" in row]
+    if not loads:
+        return f"1-minute load average {os.getloadavg()[0]:.1f} when this report was written"
+    return (f"1-minute load average {np.mean(loads):.1f} on average, {min(loads):.1f} to {max(loads):.1f}, "
+            f"over the {len(loads)} runs that recorded it")
 
 
 def count_table(runs, models, rates, methods):
@@ -98,16 +111,30 @@ def count_table(runs, models, rates, methods):
     return "\n".join(lines)
 
 
-def plot(runs, models, rates, methods, what, ylabel, name, logy=True):
+# One colour per method (ours first, in solid lines), none repeated.
+COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink",
+           "tab:gray", "tab:olive", "tab:cyan", "black", "goldenrod"]
+
+
+def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
+    """Per model, the measure against the rate, one line per method; relative: divided by
+    uniform random's at the same rate, on a linear axis."""
     fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 4), squeeze=False)
     for ax, model in zip(axes[0], models):
         for m in methods:
-            ys = [value(runs, model, m, r, what) * (1e3 if what in ("recon", "plane") else 1) for r in rates]
-            style = "-o" if m.startswith("ours") else "--."
-            ax.plot([100 * r for r in rates], ys, style, label=label(m), linewidth=2 if m.startswith("ours") else 1)
+            ys = np.array([value(runs, model, m, r, what) for r in rates])
+            if relative:
+                ys = ys / np.array([value(runs, model, "random", r, what) for r in rates])
+            elif what in ("recon", "plane"):
+                ys = ys * 1e3
+            ours = m.startswith("ours")
+            ax.plot([100 * r for r in rates], ys, "-o" if ours else "--.", label=label(m),
+                    color=COLOURS[list(q.METHODS).index(m)], linewidth=2 if ours else 1)
         ax.set_xscale("log")
-        if logy and ax.has_data() and any(np.isfinite(line.get_ydata()).any() for line in ax.get_lines()):
+        if not relative and any(np.isfinite(line.get_ydata()).any() for line in ax.get_lines()):
             ax.set_yscale("log")
+            ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
+            ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.set_xticks([100 * r for r in rates], [f"{100 * r:g}%" for r in rates])
         ax.minorticks_off()
         ax.set_title(model)
@@ -176,6 +203,7 @@ def tuning_plot(runs, models, rates, configs, values, param, name):
             ys = [value(runs, model, k, r, "recon") / base for k in configs]
             ax.plot(values, ys, "-o", label=f"{r:.0%}")
         ax.axhline(1.0, color="gray", linewidth=0.8)
+        ax.set_xlim(min(values) / 1.5, max(values) * 1.5)  # also where no run is cached yet
         ax.set_xscale("log")
         ax.set_title(model)
         ax.set_xlabel(param)
@@ -209,6 +237,31 @@ def loss_lines(lost, measure):
         return [f"{measure}: in no cell does a peer beat all four of our LODs."]
     return [f"{measure}: cells where a peer beats all four of our LODs (our best error / the peer's):", ""] + \
         [f"- {m}, {r:.0%}: {label(w)}, ours {x:.2f}x its error" for m, r, w, x in lost]
+
+
+def wins_line(runs, models, rates):
+    cells = wins = 0
+    for model in models:
+        for r in rates:
+            vals = {m: value(runs, model, m, r, "recon") for m in q.METHODS}
+            vals = {m: v for m, v in vals.items() if np.isfinite(v)}
+            if vals:
+                cells += 1
+                wins += min(vals, key=vals.get) in OURS
+    return f"One of our LODs has the lowest reconstruction error in {wins} of {cells} cells (model x rate)."
+
+
+def time_line(runs, models, rates):
+    """Which methods sample faster than ours (the curvature-density Poisson LOD) in every cell."""
+    faster, cells = [], [(m, r) for m in models for r in rates
+                         if np.isfinite(value(runs, m, "ours_density", r, "seconds"))]
+    for peer in PEERS:
+        ratios = [value(runs, m, "ours_density", r, "seconds") / value(runs, m, peer, r, "seconds") for m, r in cells]
+        ratios = [x for x in ratios if np.isfinite(x)]
+        if ratios and min(ratios) > 1:
+            faster.append(f"{label(peer)} ({np.median(ratios):.0f}x, median)")
+    return ("Time: our curvature-density Poisson LOD (one run, with its curvature) is slower in every cell than "
+            + (", ".join(faster) if faster else "none of the peers") + ".")
 
 
 def mean_rank(runs, models, rates, what):
@@ -305,8 +358,8 @@ def write(models, rates, measure, log):
         "",
         "Times are of one sampling run at the final parameter (not of the count search), on one "
         "thread, on a machine with "
-        f"{os.cpu_count()} cores shared with other work (load average {os.getloadavg()[0]:.2f} when this "
-        f"report was written; {platform.processor() or platform.machine()}). Ours and MeshLab's adaptive "
+        f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
+        "Ours and MeshLab's adaptive "
         "Poisson include their curvature computation. "
         f"All sampling and reconstruction runs together took {total_run / 60:.0f} min.",
         "",
@@ -314,16 +367,17 @@ def write(models, rates, measure, log):
         "",
         "Error divided by that of uniform random sampling at the same rate, geometric mean over the "
         "rates (per model: reconstruction error; last two columns: over all models and rates). Below 1 "
-        "is better than random.",
+        "is better than random. CGAL WLOP's means are over the rates it ran at (not above "
+        f"{q.WLOP_MAX_SAMPLES} samples).",
         "",
         summary_table(runs, models, rates),
         "",
     ]
     doc += section(runs, models, rates, "Reconstruction error (‰ of the diagonal, lower is better)", "recon",
-                   "reconstruction error (‰ of diagonal)", "bench_reconstruction_error.png", pm)
+                   "reconstruction error (‰ of diagonal)", "bench_reconstruction_error", pm)
     doc += section(runs, models, rates, "Plane-fit error (‰ of the diagonal, lower is better)", "plane",
-                   "plane-fit error (‰ of diagonal)", "bench_plane_fit_error.png", pm)
-    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", "bench_time.png", secs)
+                   "plane-fit error (‰ of diagonal)", "bench_plane_fit_error", pm)
+    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", "bench_time", secs)
     doc += [
         "## Mean rank over all models and rates (1 = lowest error)",
         "",
@@ -332,12 +386,12 @@ def write(models, rates, measure, log):
     ]
     for m in sorted(methods, key=lambda m: ranks[m][0] if np.isfinite(ranks[m][0]) else 99):
         doc.append(f"| {label(m)} | {ranks[m][0]:.1f} | {plane_ranks[m][0]:.1f} | {ranks[m][1]} |")
-    doc += ["", "## Where we lose", ""] + loss_lines(lost_recon, "Reconstruction error") + [""] + \
+    doc += ["", "## Where we lose", "",
+            f"Counts differ by up to {q.COUNT_TOLERANCE:.0%} between methods (more where a table below says so) "
+            "and every LOD comes from one seed: ratios within a few percent are not conclusive.", ""] + loss_lines(lost_recon, "Reconstruction error") + [""] + \
         loss_lines(lost_plane, "Plane-fit error")
+    doc += ["", wins_line(runs, models, rates), "", time_line(runs, models, rates), ""]
     doc += [
-        "",
-        "Time: see the table above; ours runs a geodesic search per sample and computes the curvature, "
-        "so it is slower than the grid and clustering methods at every rate.",
         "",
         "## Tuning the weighting",
         "",
