@@ -87,6 +87,14 @@ def summary_table(runs, models, rates):
     return "\n".join(lines)
 
 
+def total_text(runs):
+    rows = [row for key, row in runs.items() if key[1] != "all_points"]
+    if rows and all("wall_seconds" in row for row in rows):
+        return f"The {len(rows)} runs (searches, reconstructions and measures included) took {sum(r['wall_seconds'] for r in rows) / 60:.0f} min."
+    busy = sum(row.get("seconds", 0) + row.get("recon_seconds", 0) for row in rows)
+    return f"The final sampling runs and the reconstructions of the {len(rows)} runs took {busy / 60:.0f} min together."
+
+
 def load_text(runs):
     loads = [row["load"] for row in runs.values() if "load" in row]
     if not loads:
@@ -175,10 +183,12 @@ def sweep_section(runs, models, rates, title, configs, base, param, values):
     ratios = {k: v for k, v in ratios.items() if v}
     if not ratios:
         return "", None, {}
+    # Geometric means over the cells every setting has, so that they compare.
+    common = set.intersection(*(set(d) for d in ratios.values()))
     lines = [f"### {title}", "",
              "Reconstruction error divided by that of the unweighted geodesic Poisson LOD at the same "
              "rate (below 1: the weighting helps; above 1: it hurts, in italics).", "",
-             f"| {param} | " + " | ".join(f"{m} {r:.0%}" for m in models for r in rates) + " | geometric mean |",
+             f"| {param} | " + " | ".join(f"{m} {r:.0%}" for m in models for r in rates) + f" | geometric mean ({len(common)} cells) |",
              "|---:|" + "---:|" * (len(models) * len(rates) + 1)]
     gm = {}
     for key, v in zip(configs, values):
@@ -189,10 +199,23 @@ def sweep_section(runs, models, rates, title, configs, base, param, values):
             for r in rates:
                 x = ratios[key].get((m, r), np.nan)
                 cells.append("–" if not np.isfinite(x) else (f"*{x:.3f}*" if x > 1 else f"{x:.3f}"))
-        gm[v] = geomean(ratios[key].values())
+        gm[v] = geomean([ratios[key][cell] for cell in common])
         lines.append(f"| {v:g} | " + " | ".join(cells) + f" | {gm[v]:.3f} |")
     best = min(gm, key=gm.get)
     return "\n".join(lines), best, {k: ratios[k] for k in ratios}
+
+
+def best_per_rate(ratios, value_of, rates):
+    """[(rate, best setting, its geometric mean over the models at that rate)]."""
+    out = []
+    for r in rates:
+        models = set.intersection(*({m for (m, rr) in d if rr == r} for d in ratios.values()))
+        gm = {value_of[k]: geomean([d[(m, r)] for m in models]) for k, d in ratios.items()}
+        gm = {v: g for v, g in gm.items() if np.isfinite(g)}
+        if gm:
+            best = min(gm, key=gm.get)
+            out.append((r, best, gm[best]))
+    return out
 
 
 def tuning_plot(runs, models, rates, configs, values, param, name):
@@ -289,13 +312,10 @@ def write(models, rates, measure, log):
                                              [v for _, v in a_keys[1:]])
     c_text, c_best, c_ratios = sweep_section(runs, models, tune_rates, "Curvature exponent c (eq. 3)",
                                              [k for k, _ in c_keys], "ours_unweighted", "c", [v for _, v in c_keys])
-    hurts = sorted(((m, r, x, key) for key, d in a_ratios.items() for (m, r), x in d.items() if x > 1),
-                   key=lambda t: -t[2])
     lost_recon = losses(runs, models, rates, "recon")
     lost_plane = losses(runs, models, rates, "plane")
     ranks = mean_rank(runs, models, rates, "recon")
     plane_ranks = mean_rank(runs, models, rates, "plane")
-    total_run = sum(row.get("seconds", 0) + row.get("recon_seconds", 0) for row in runs.values())
 
     doc = [
         "# Quality benchmark",
@@ -359,9 +379,7 @@ def write(models, rates, measure, log):
         "Times are of one sampling run at the final parameter (not of the count search), on one "
         "thread, on a machine with "
         f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
-        "Ours and MeshLab's adaptive "
-        "Poisson include their curvature computation. "
-        f"All sampling and reconstruction runs together took {total_run / 60:.0f} min.",
+        "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
         "",
         "## Summary",
         "",
@@ -411,15 +429,19 @@ def write(models, rates, measure, log):
     if a_best is not None:
         doc.append(f"- adaptivity: a = {a_best:g} has the smallest geometric mean of the error ratio over the "
                    f"models and rates above (current default {q.DEFAULT_ADAPTIVITY:g}).")
+        doc += [f"  - at {r:.0%} alone the best is a = {v:g} (geometric mean {g:.3f} over the models)"
+                for r, v, g in best_per_rate(a_ratios, dict(a_keys), tune_rates)]
     if c_best is not None:
         doc.append(f"- curvature exponent: c = {c_best:g} has the smallest geometric mean for eq. 3 "
                    f"(current default {q.DEFAULT_EXPONENT:g}).")
-    if hurts:
-        doc += ["", "Cases where the curvature-density weighting does worse than no weighting "
-                "(ratio above 1, worst first):", ""]
-        doc += [f"- {m} at {r:.0%}, a = {label(k).split('= ')[-1]}: {x:.3f}" for m, r, x, k in hurts[:15]]
-        if len(hurts) > 15:
-            doc.append(f"- and {len(hurts) - 15} more in the table above")
+    if a_ratios:
+        doc += ["", "Where the curvature-density weighting does worse than no weighting (error ratio above 1), "
+                "per a:", ""]
+        a_of = dict(a_keys)
+        for key, d in a_ratios.items():
+            bad = sorted(((x, m, r) for (m, r), x in d.items() if x > 1), reverse=True)
+            cells = ", ".join(f"{m} {r:.0%} ({x:.2f})" for x, m, r in bad) or "nowhere"
+            doc.append(f"- a = {a_of[key]:g}: {cells} ({len(bad)} of {len(d)} cells)")
     doc += ["", "## Actual sample counts (deviation from the target)", "",
             count_table(runs, models, rates, methods), "",
             "## Parameters the searches found", "", "| model | method | rate | parameter |", "|---|---|---:|---|"]
