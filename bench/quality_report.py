@@ -68,7 +68,8 @@ def section(runs, models, rates, title, what, ylabel, image, fmt):
     methods = list(q.METHODS)
     lines = [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, image + ".png"), ""]
     if what in ("recon", "plane"):
-        lines += ["The same divided by uniform random's error at each rate (below 1: better than random):", "",
+        lines += ["The same divided by uniform random's error at each rate (below 1: better than random; "
+                  f"the axis stops at {RELATIVE_TOP:g}, the tables have every value):", "",
                   plot(runs, models, rates, methods, what, "error / uniform random's", image + "_relative.png",
                        relative=True), ""]
     return lines + [table(runs, models, rates, methods, what, fmt), ""]
@@ -93,6 +94,22 @@ def total_text(runs):
         return f"The {len(rows)} runs (searches, reconstructions and measures included) took {sum(r['wall_seconds'] for r in rows) / 60:.0f} min."
     busy = sum(row.get("seconds", 0) + row.get("recon_seconds", 0) for row in rows)
     return f"The final sampling runs and the reconstructions of the {len(rows)} runs took {busy / 60:.0f} min together."
+
+
+def missing_lines(runs, models, rates):
+    gone = missing_runs(runs, models, rates)
+    if not gone:
+        return []
+    listed = "; ".join(f"{m} {label(k)} {r:.0%}" for m, k, r in gone)
+    return [f"**Incomplete:** {len(gone)} runs were not in the cache when this report was written "
+            f"(their cells show –): {listed}.", ""]
+
+
+def missing_runs(runs, models, rates):
+    """The runs this report expects that are not in the cache (an interrupted run)."""
+    expect = [(m, k, r) for m in models for k in q.METHODS for r in rates] + \
+             [(m, k, r) for m in models for k in q.TUNING for r in q.TUNE_RATES if r in rates]
+    return [e for e in expect if e not in runs]
 
 
 def load_text(runs):
@@ -124,6 +141,9 @@ COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:
            "tab:gray", "tab:olive", "tab:cyan", "black", "goldenrod"]
 
 
+RELATIVE_TOP = 1.6  # relative plots stop here: one outlier would flatten the rest
+
+
 def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
     """Per model, the measure against the rate, one line per method; relative: divided by
     uniform random's at the same rate, on a linear axis."""
@@ -139,6 +159,8 @@ def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
             ax.plot([100 * r for r in rates], ys, "-o" if ours else "--.", label=label(m),
                     color=COLOURS[list(q.METHODS).index(m)], linewidth=2 if ours else 1)
         ax.set_xscale("log")
+        if relative:
+            ax.set_ylim(top=min(ax.get_ylim()[1], RELATIVE_TOP))
         if not relative and any(np.isfinite(line.get_ydata()).any() for line in ax.get_lines()):
             ax.set_yscale("log")
             ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
@@ -381,6 +403,7 @@ def write(models, rates, measure, log):
         f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
         "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
         "",
+        *missing_lines(runs, models, rates),
         "## Summary",
         "",
         "Error divided by that of uniform random sampling at the same rate, geometric mean over the "
