@@ -1,0 +1,347 @@
+"""Quality benchmark: LODs of the shared scans by our filters and by MeshLab's, CGAL's and
+Open3D's simplifications at the same sample counts, each scored by the error of a surface
+reconstructed from it (MeshLab's screened Poisson, the same settings for every method) and by
+a reconstruction-free measure. Writes docs/benchmarks.md and its plots (bench/quality_report.py).
+
+usage: bench/run_quality [--quick] [--no-tuning] [--report-only] [--fresh]
+Every run is cached in out/bench/runs/ (one JSON file per model, method and rate): a second
+call only runs what is missing. --fresh clears the cache first.
+"""
+import argparse
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pymeshlab
+from scipy.spatial import cKDTree
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+DATA = ROOT.parent / "shared" / "data"
+OUT = ROOT / "out" / "bench"
+PLUGIN = ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"
+PEER_TOOL = ROOT / "build" / "bench-peers" / "peer_simplify"
+
+# dragon_100k rather than the 437k-vertex dragon: the raw bunny scans (362k points) already
+# take half of the run.
+MODELS = {
+    "bunny": "bunny_35k.ply",
+    "dragon": "dragon_100k.ply",
+    "bunny scans": "bunny_scans_362k.ply",
+    "terrain": "terrain_n44w072_crop301x301.ply",
+}
+RATES = [0.5, 0.25, 0.10, 0.05, 0.02]
+QUICK_MODELS = ["bunny", "terrain"]
+QUICK_RATES = [0.10, 0.02]
+COUNT_TOLERANCE = 0.02  # searched counts land within 2% of the target
+
+# The same reconstruction for every method. threads=1: the machine is shared, and one
+# thread keeps its time steady.
+RECONSTRUCTION = dict(depth=8, preclean=True, threads=1)
+PLANE_NEIGHBOURS = 8  # LOD points per plane of the reconstruction-free measure
+WLOP_MAX_SAMPLES = 10000  # WLOP costs seconds per thousand samples: larger LODs are not run
+MESHLAB_RADIUS_VARIANCE = 3.0  # adaptive Poisson: radii from r to 3 r by curvature
+DENSITY = "Curvature-density geodesic"
+EQ3 = "Weighted geodesic (eq. 3)"
+UNWEIGHTED = "Geodesic (unweighted)"
+DEFAULT_ADAPTIVITY, DEFAULT_EXPONENT = 10.0, 1.0
+
+# Tuning sweeps (ours, Poisson), at the rates where the weighting matters most.
+TUNE_ADAPTIVITY = [1.0, 3.0, 10.0, 30.0, 100.0]
+TUNE_EXPONENT = [0.5, 1.0, 2.0]
+TUNE_RATES = [0.10, 0.05, 0.02]
+
+
+def ours_poisson(metric, **params):
+    return lambda ctx, target: ctx.ours_poisson(target, metric=metric, **params)
+
+
+# method key -> (label, runner(ctx, target) -> LOD dict)
+METHODS = {
+    "ours_density": (f"ours, Poisson, curvature-density (a = {DEFAULT_ADAPTIVITY:g})",
+                     ours_poisson(DENSITY, adaptivity=DEFAULT_ADAPTIVITY)),
+    "ours_eq3": (f"ours, Poisson, weighted eq. 3 (c = {DEFAULT_EXPONENT:g})",
+                 ours_poisson(EQ3, curvatureexponent=DEFAULT_EXPONENT)),
+    "ours_unweighted": ("ours, Poisson, unweighted geodesic", ours_poisson(UNWEIGHTED)),
+    "ours_fps": (f"ours, FPS, curvature-density (a = {DEFAULT_ADAPTIVITY:g})",
+                 lambda ctx, target: ctx.ours_fps(target, metric=DENSITY, adaptivity=DEFAULT_ADAPTIVITY)),
+    "meshlab_simplify": ("MeshLab point cloud simplification", lambda ctx, target: ctx.meshlab_simplify(target)),
+    "meshlab_adaptive": ("MeshLab adaptive Poisson (curvature)", lambda ctx, target: ctx.meshlab_adaptive(target)),
+    "cgal_hierarchy": ("CGAL hierarchy", lambda ctx, target: ctx.peer("cgal_hierarchy", target)),
+    "cgal_wlop": ("CGAL WLOP", lambda ctx, target: ctx.peer("cgal_wlop", target)),
+    "cgal_grid": ("CGAL grid", lambda ctx, target: ctx.peer("cgal_grid", target)),
+    "open3d_fps": ("Open3D farthest point", lambda ctx, target: ctx.peer("open3d_fps", target)),
+    "open3d_voxel": ("Open3D voxel", lambda ctx, target: ctx.peer("open3d_voxel", target)),
+    "random": ("uniform random", lambda ctx, target: ctx.random(target)),
+}
+TUNING = {
+    **{f"tune_a{a:g}": (f"curvature-density, a = {a:g}", ours_poisson(DENSITY, adaptivity=a))
+       for a in TUNE_ADAPTIVITY if a != DEFAULT_ADAPTIVITY},
+    **{f"tune_c{c:g}": (f"eq. 3, c = {c:g}", ours_poisson(EQ3, curvatureexponent=c))
+       for c in TUNE_EXPONENT if c != DEFAULT_EXPONENT},
+}
+
+
+class Model:
+    """One shared scan with normals (layer 0 of a MeshSet), and the samplers run on it."""
+
+    def __init__(self, key):
+        self.key = key
+        self.path = OUT / "inputs" / (key.replace(" ", "_") + ".ply")
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        if not self.path.is_file():
+            self._prepare(DATA / MODELS[key])
+        self.ms = pymeshlab.MeshSet()
+        self.ms.load_new_mesh(str(self.path))
+        m = self.ms.current_mesh()
+        self.points, self.normals = m.vertex_matrix(), m.vertex_normal_matrix()
+        self.diag = m.bounding_box().diagonal()
+        self.faces = m.face_number()
+        self._tree = None
+
+    def _prepare(self, src):
+        """Normals for every method: the triangles' for meshes (unreferenced vertices dropped:
+        they have none), MeshLab's estimate from 10 neighbours for point clouds."""
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(src))
+        if ms.current_mesh().face_number():
+            ms.meshing_remove_unreferenced_vertices()
+            ms.compute_normal_per_vertex()
+        else:
+            ms.compute_normal_for_point_clouds(k=10)
+        ms.save_current_mesh(str(self.path), binary=True, save_vertex_normal=True)
+
+    def _layer(self, apply):
+        """Runs apply() on layer 0, returns the new layer's points and normals and the time."""
+        self.ms.set_current_mesh(0)
+        t = time.perf_counter()
+        res = apply()
+        dt = time.perf_counter() - t
+        m = self.ms.current_mesh()
+        lod = dict(points=m.vertex_matrix(), normals=m.vertex_normal_matrix(), seconds=dt, result=res)
+        self.ms.delete_current_mesh()
+        return lod
+
+    # --- ours ---------------------------------------------------------------------------
+    def ours_fps(self, target, **params):
+        return self._layer(lambda: self.ms.apply_filter("generate_geodesic_fps_lod", samplenum=target, **params))
+
+    def ours_poisson(self, target, **params):
+        if poisson_takes_samplenum(self.ms):
+            lod = self._layer(lambda: self.ms.apply_filter("generate_geodesic_poisson_lod", samplenum=target, **params))
+            lod["parameter"] = f"radius {lod['result']['radius']:.4g}"
+            return lod
+        # Until generate_geodesic_poisson_lod takes a sample count (being added on main):
+        # delete this line, poisson_takes_samplenum and the lines that use it then.
+        return self.radius_search(target, lambda r: self.ms.apply_filter(
+            "generate_geodesic_poisson_lod", radius=pymeshlab.PureValue(r), **params))
+
+    def radius_search(self, target, apply_at):
+        """The LOD of apply_at(radius) nearest to the target count: secant steps on log(count)
+        against log(radius) (count ~ radius^-2 on a surface), kept inside the bracket found so
+        far. The time reported is that of the final run alone."""
+        lo, hi = (0.0, np.inf), (np.inf, 0.0)  # (radius, count) with count above / below target
+        r = self.diag * 0.6 / np.sqrt(target)
+        best, runs = None, 0
+        for runs in range(1, 16):
+            lod = self._layer(lambda: apply_at(r))
+            n = len(lod["points"])
+            if best is None or abs(n - target) < abs(len(best["points"]) - target):
+                best, best_r = lod, r
+            if abs(n - target) <= COUNT_TOLERANCE * target:
+                break
+            if n > target:
+                lo = max(lo, (r, n))
+            else:
+                hi = min(hi, (r, n))
+            r_next = r * (n / target) ** 0.5
+            if np.isfinite(hi[0]) and lo[0] > 0:
+                # log-log interpolation between the bracket's ends
+                slope = np.log(hi[1] / lo[1]) / np.log(hi[0] / lo[0])
+                r_next = lo[0] * np.exp(np.log(target / lo[1]) / slope) if slope < 0 else np.sqrt(lo[0] * hi[0])
+                if not lo[0] < r_next < hi[0]:
+                    r_next = np.sqrt(lo[0] * hi[0])
+            r = r_next
+        best["parameter"] = f"radius {best_r:.4g} ({runs} runs)"
+        return best
+
+    # --- MeshLab ------------------------------------------------------------------------
+    # Both by our radius search: generate_simplified_point_cloud ignores exactnumflag (it sets
+    # the radius before testing it for 0), and one search for both keeps their times alike.
+    def meshlab_simplify(self, target):
+        return self.radius_search(target, lambda r: self.ms.generate_simplified_point_cloud(
+            radius=pymeshlab.PureValue(r)))
+
+    def meshlab_adaptive(self, target):
+        """Poisson-disk pruning of the vertices with radii from r to 3 r, the smallest where
+        eq. 1's curvature (our filter, into the quality) is highest: MeshLab gives high
+        quality the largest radius, so the quality is negated first. Timed with the curvature."""
+        def apply_at(r):
+            self.ms.apply_filter("compute_scalar_by_normal_variation")
+            self.ms.compute_scalar_by_function_per_vertex(q="-q")
+            self.ms.set_current_mesh(0)  # the scalar filters leave it current; made explicit
+            return self.ms.generate_sampling_poisson_disk(
+                radius=pymeshlab.PureValue(r), subsample=True, radiusvariance=MESHLAB_RADIUS_VARIANCE)
+        lod = self.radius_search(target, apply_at)
+        lod["parameter"] += f", radius variance {MESHLAB_RADIUS_VARIANCE:g}"
+        return lod
+
+    # --- peers and random ---------------------------------------------------------------
+    def peer(self, method, target):
+        if method == "cgal_wlop" and target > WLOP_MAX_SAMPLES:
+            return None
+        out = OUT / "tmp" / f"{self.path.stem}_{method}.ply"  # one file per model and method
+        out.parent.mkdir(parents=True, exist_ok=True)
+        proc = subprocess.run([str(PEER_TOOL), str(self.path), str(out), method, str(target),
+                               "--tolerance", str(COUNT_TOLERANCE)], capture_output=True, text=True, check=True)
+        info = json.loads(proc.stdout.strip().splitlines()[-1])
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(out))
+        m = ms.current_mesh()
+        points = m.vertex_matrix()
+        normals = m.vertex_normal_matrix() if info["normals"] else self.nearest_normals(points)
+        param = info["parameter"] + ("" if info["normals"] else "; normals of the nearest input points")
+        return dict(points=points, normals=normals, seconds=info["seconds"], parameter=param)
+
+    def random(self, target):
+        t = time.perf_counter()
+        idx = np.random.default_rng(0).choice(len(self.points), target, replace=False)
+        return dict(points=self.points[idx], normals=self.normals[idx], seconds=time.perf_counter() - t,
+                    parameter="seed 0")
+
+    def nearest_normals(self, points):
+        if self._tree is None:
+            self._tree = cKDTree(self.points)
+        return self.normals[self._tree.query(points)[1]]
+
+
+_SAMPLENUM = {}
+
+
+def poisson_takes_samplenum(ms):
+    """Whether the loaded plugin's Poisson filter takes a sample count (asked once)."""
+    if "yes" not in _SAMPLENUM:
+        probe = pymeshlab.MeshSet()
+        probe.add_mesh(pymeshlab.Mesh(vertex_matrix=np.random.default_rng(0).random((50, 3))))
+        try:
+            probe.apply_filter("generate_geodesic_poisson_lod", samplenum=5)
+            _SAMPLENUM["yes"] = True
+        except pymeshlab.PyMeshLabException:
+            _SAMPLENUM["yes"] = False
+    return _SAMPLENUM["yes"]
+
+
+# --- error measures ---------------------------------------------------------------------
+def plane_fit_error(points, lod):
+    """Distance from each original point to the plane fitted (least squares) through its
+    nearest LOD points: no reconstruction involved."""
+    k = min(PLANE_NEIGHBOURS, len(lod))
+    _, idx = cKDTree(lod).query(points, k=k)
+    nb = lod[idx]
+    centred = nb - nb.mean(axis=1, keepdims=True)
+    _, vecs = np.linalg.eigh(np.einsum("nki,nkj->nij", centred, centred))
+    normal = vecs[:, :, 0]
+    return np.abs(np.einsum("ni,ni->n", points - nb.mean(axis=1), normal))
+
+
+def measure_name():
+    if "get_normal_projection_deviation" in pymeshlab.filter_list():
+        return "normal-projection deviation"
+    return "Hausdorff distance"
+
+
+def reconstruction_error(model, lod):
+    """Screened Poisson surface from the LOD; then the deviation of the original points from
+    it: the normal-projection deviation filter where the plugin has it, else MeshLab's
+    Hausdorff distance (original vertices to their closest surface points)."""
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=model.points, v_normals_matrix=model.normals))
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=lod["points"], v_normals_matrix=lod["normals"]))
+    t = time.perf_counter()
+    ms.generate_surface_reconstruction_screened_poisson(**RECONSTRUCTION)
+    seconds = time.perf_counter() - t
+    if measure_name() == "normal-projection deviation":
+        res = ms.apply_filter("get_normal_projection_deviation", measuredmesh=0, refmesh=2)
+        low = {k.lower(): v for k, v in res.items()}
+        pick = lambda word: next((v for k, v in low.items() if word in k), float("nan"))
+        err = dict(mean=pick("mean"), rms=pick("rms"), max=pick("max"), miss=pick("miss"))
+    else:
+        res = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=2, samplevert=True, sampleface=False,
+                                        samplenum=len(model.points), maxdist=pymeshlab.PercentageValue(50))
+        err = dict(mean=res["mean"], rms=res["RMS"], max=res["max"], miss=float("nan"))
+    return {k: v / model.diag for k, v in err.items()}, seconds
+
+
+def evaluate(model, method, target):
+    lod = METHODS.get(method, TUNING.get(method))[1](model, target)
+    if lod is None:
+        return dict(skipped=f"not run above {WLOP_MAX_SAMPLES} samples")
+    plane = plane_fit_error(model.points, lod["points"]) / model.diag
+    recon, recon_seconds = reconstruction_error(model, lod)
+    return dict(count=len(lod["points"]), target=target, seconds=lod["seconds"], parameter=lod.get("parameter", ""),
+                recon=recon, recon_seconds=recon_seconds, measure=measure_name(),
+                plane=dict(mean=float(plane.mean()), rms=float(np.sqrt((plane ** 2).mean())), max=float(plane.max())))
+
+
+def run_all(models, rates, methods, log):
+    for key in models:
+        model = None
+        for rate in rates:
+            for method in methods:
+                path = OUT / "runs" / key.replace(" ", "_") / f"{method}_{rate:g}.json"
+                if path.is_file():
+                    continue
+                if model is None:
+                    model = Model(key)
+                target = max(1, round(rate * len(model.points)))
+                t = time.perf_counter()
+                row = evaluate(model, method, target)
+                # The 1-minute load average: the machine is shared, times depend on it.
+                row.update(model=key, method=method, rate=rate, input_count=len(model.points), load=os.getloadavg()[0],
+                           wall_seconds=time.perf_counter() - t)
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_text(json.dumps(row, indent=1))
+                log(f"{key:12} {rate:5.0%} {method:18} {row.get('count', '-'):>7} "
+                    f"err {row.get('recon', {}).get('mean', float('nan')) * 1e3:7.3f} "
+                    f"({time.perf_counter() - t:5.1f} s)")
+        if model is not None:
+            full = OUT / "runs" / key.replace(" ", "_") / "all_points.json"
+            if not full.is_file():
+                recon, secs = reconstruction_error(model, dict(points=model.points, normals=model.normals))
+                full.write_text(json.dumps(dict(model=key, recon=recon, recon_seconds=secs,
+                                                input_count=len(model.points), faces=model.faces)))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help=f"models {QUICK_MODELS}, rates {QUICK_RATES}")
+    ap.add_argument("--no-tuning", action="store_true", help="skip the sweeps of a and c")
+    ap.add_argument("--report-only", action="store_true", help="only rewrite the report from the cache")
+    ap.add_argument("--fresh", action="store_true", help="clear the cache of runs first")
+    ap.add_argument("--plugin", default=str(PLUGIN))
+    ap.add_argument("--peer-tool", default=str(ROOT / "build" / "bench-peers" / "peer_simplify"))
+    args = ap.parse_args()
+    pymeshlab.load_plugin(args.plugin)
+    global PEER_TOOL
+    PEER_TOOL = pathlib.Path(args.peer_tool)
+    if args.fresh:
+        shutil.rmtree(OUT / "runs", ignore_errors=True)
+    models = QUICK_MODELS if args.quick else list(MODELS)
+    rates = QUICK_RATES if args.quick else RATES
+    start = time.perf_counter()
+    log = lambda s: print(f"[{time.perf_counter() - start:6.0f} s] {s}", flush=True)
+    if not args.report_only:
+        run_all(models, rates, list(METHODS), log)
+        if not args.no_tuning:
+            run_all(models, [r for r in TUNE_RATES if r in rates], list(TUNING), log)
+    sys.path.insert(0, str(ROOT / "bench"))
+    import quality_report
+    quality_report.write(models, rates, measure_name(), log)
+
+
+if __name__ == "__main__":
+    main()

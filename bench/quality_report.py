@@ -1,0 +1,478 @@
+"""docs/benchmarks.md and its plots from the cached runs of bench/quality.py."""
+import json
+import os
+import platform
+import time
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt
+import matplotlib.ticker
+import numpy as np
+
+import quality as q
+
+DOC = q.ROOT / "docs" / "benchmarks.md"
+IMAGES = q.ROOT / "docs" / "images"
+OURS = [k for k in q.METHODS if k.startswith("ours")]
+PEERS = [k for k in q.METHODS if not k.startswith("ours")]
+
+
+def load_runs():
+    runs = {}
+    for path in (q.OUT / "runs").glob("*/*.json"):
+        row = json.loads(path.read_text())
+        if path.stem == "all_points":
+            runs[(row["model"], "all_points", 1.0)] = row
+        else:
+            runs[(row["model"], row["method"], row["rate"])] = row
+    return runs
+
+
+def value(runs, model, method, rate, what):
+    """what: 'recon', 'plane' (mean error per diagonal), 'seconds' or 'count'; NaN if absent."""
+    row = runs.get((model, method, rate))
+    if row is None or "skipped" in row:
+        return np.nan
+    return row[what]["mean"] if what in ("recon", "plane") else row[what]
+
+
+def label(method):
+    return q.METHODS.get(method, q.TUNING.get(method, (method,)))[0]
+
+
+def rate_header(rates):
+    return " | ".join(f"{r:.0%}" for r in rates)
+
+
+def table(runs, models, rates, methods, what, fmt, best=min):
+    """Methods x rates for each model; the best of each column in bold."""
+    lines = [f"| model | method | {rate_header(rates)} |", "|---|---|" + "---:|" * len(rates)]
+    for model in models:
+        cols = {r: [value(runs, model, m, r, what) for m in methods] for r in rates}
+        for i, m in enumerate(methods):
+            cells = []
+            for r in rates:
+                v = cols[r][i]
+                finite = [x for x in cols[r] if np.isfinite(x)]
+                cell = "–" if not np.isfinite(v) else fmt(v)
+                if best and np.isfinite(v) and v == best(finite):
+                    cell = f"**{cell}**"
+                cells.append(cell)
+            lines.append(f"| {model if i == 0 else ''} | {label(m)} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def section(runs, models, rates, title, what, ylabel, image, fmt):
+    methods = list(q.METHODS)
+    lines = [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, image + ".png"), ""]
+    if what in ("recon", "plane"):
+        lines += ["The same divided by uniform random's error at each rate (below 1: better than random; "
+                  f"the axis stops at {RELATIVE_TOP:g}, the tables have every value):", "",
+                  plot(runs, models, rates, methods, what, "error / uniform random's", image + "_relative.png",
+                       relative=True), ""]
+    return lines + [table(runs, models, rates, methods, what, fmt), ""]
+
+
+def summary_table(runs, models, rates):
+    """Per method and model, the geometric mean over the rates of its error divided by uniform
+    random's, for both measures: one number per cell, below 1 is better than random."""
+    head = " | ".join(f"{m}" for m in models)
+    lines = [f"| method | {head} | all (reconstruction) | all (plane fit) |", "|---|" + "---:|" * (len(models) + 2)]
+    for meth in q.METHODS:
+        ratio = lambda model, r, what: value(runs, model, meth, r, what) / value(runs, model, "random", r, what)
+        cells = [geomean([ratio(model, r, "recon") for r in rates]) for model in models]
+        every = [geomean([ratio(model, r, what) for model in models for r in rates]) for what in ("recon", "plane")]
+        lines.append(f"| {label(meth)} | " + " | ".join(f"{x:.3f}" if np.isfinite(x) else "–" for x in cells + every) + " |")
+    return "\n".join(lines)
+
+
+def total_text(runs):
+    rows = [row for key, row in runs.items() if key[1] != "all_points"]
+    if rows and all("wall_seconds" in row for row in rows):
+        return f"The {len(rows)} runs (searches, reconstructions and measures included) took {sum(r['wall_seconds'] for r in rows) / 60:.0f} min."
+    busy = sum(row.get("seconds", 0) + row.get("recon_seconds", 0) for row in rows)
+    return f"The final sampling runs and the reconstructions of the {len(rows)} runs took {busy / 60:.0f} min together."
+
+
+def missing_lines(runs, models, rates):
+    gone = missing_runs(runs, models, rates)
+    if not gone:
+        return []
+    listed = "; ".join(f"{m} {label(k)} {r:.0%}" for m, k, r in gone)
+    return [f"**Incomplete:** {len(gone)} runs were not in the cache when this report was written "
+            f"(their cells show –): {listed}.", ""]
+
+
+def missing_runs(runs, models, rates):
+    """The runs this report expects that are not in the cache (an interrupted run)."""
+    expect = [(m, k, r) for m in models for k in q.METHODS for r in rates] + \
+             [(m, k, r) for m in models for k in q.TUNING for r in q.TUNE_RATES if r in rates]
+    return [e for e in expect if e not in runs]
+
+
+def load_text(runs):
+    loads = [row["load"] for row in runs.values() if "load" in row]
+    if not loads:
+        return f"1-minute load average {os.getloadavg()[0]:.1f} when this report was written"
+    return (f"1-minute load average {np.mean(loads):.1f} on average, {min(loads):.1f} to {max(loads):.1f}, "
+            f"over the {len(loads)} runs that recorded it")
+
+
+def count_table(runs, models, rates, methods):
+    """Actual counts, as the deviation from the target in percent."""
+    lines = [f"| model | method | {rate_header(rates)} |", "|---|---|" + "---:|" * len(rates)]
+    for model in models:
+        for i, m in enumerate(methods):
+            cells = []
+            for r in rates:
+                row = runs.get((model, m, r))
+                if row is None or "skipped" in row:
+                    cells.append("–")
+                else:
+                    cells.append(f"{row['count']} ({100 * (row['count'] / row['target'] - 1):+.1f}%)")
+            lines.append(f"| {model if i == 0 else ''} | {label(m)} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+# One colour per method (ours first, in solid lines), none repeated.
+COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink",
+           "tab:gray", "tab:olive", "tab:cyan", "black", "goldenrod"]
+
+
+RELATIVE_TOP = 1.6  # relative plots stop here: one outlier would flatten the rest
+
+
+def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
+    """Per model, the measure against the rate, one line per method; relative: divided by
+    uniform random's at the same rate, on a linear axis."""
+    fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 4), squeeze=False)
+    for ax, model in zip(axes[0], models):
+        for m in methods:
+            ys = np.array([value(runs, model, m, r, what) for r in rates])
+            if relative:
+                ys = ys / np.array([value(runs, model, "random", r, what) for r in rates])
+            elif what in ("recon", "plane"):
+                ys = ys * 1e3
+            ours = m.startswith("ours")
+            ax.plot([100 * r for r in rates], ys, "-o" if ours else "--.", label=label(m),
+                    color=COLOURS[list(q.METHODS).index(m)], linewidth=2 if ours else 1)
+        ax.set_xscale("log")
+        if relative:
+            ax.set_ylim(top=min(ax.get_ylim()[1], RELATIVE_TOP))
+        if not relative and any(np.isfinite(line.get_ydata()).any() for line in ax.get_lines()):
+            ax.set_yscale("log")
+            ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
+            ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.set_xticks([100 * r for r in rates], [f"{100 * r:g}%" for r in rates])
+        ax.minorticks_off()
+        ax.set_title(model)
+        ax.set_xlabel("sampling rate")
+        ax.grid(True, alpha=0.3)
+    axes[0][0].set_ylabel(ylabel)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
+    fig.tight_layout(rect=(0, 0.14, 1, 1))
+    IMAGES.mkdir(parents=True, exist_ok=True)
+    fig.savefig(IMAGES / name, dpi=90)
+    plt.close(fig)
+    return f"![{ylabel}](images/{name})"
+
+
+def ratio_sweep(runs, models, rates, configs, base):
+    """{config: {(model, rate): error / base error}} on the reconstruction error."""
+    out = {}
+    for key in configs:
+        out[key] = {}
+        for model in models:
+            for r in rates:
+                a, b = value(runs, model, key, r, "recon"), value(runs, model, base, r, "recon")
+                if np.isfinite(a) and np.isfinite(b):
+                    out[key][(model, r)] = a / b
+    return out
+
+
+def geomean(xs):
+    xs = [x for x in xs if np.isfinite(x)]
+    return float(np.exp(np.mean(np.log(xs)))) if xs else np.nan
+
+
+def sweep_section(runs, models, rates, title, configs, base, param, values):
+    """A table of error ratios to the unweighted geodesic per setting, and the setting
+    with the smallest geometric mean."""
+    ratios = ratio_sweep(runs, models, rates, configs, base)
+    ratios = {k: v for k, v in ratios.items() if v}
+    if not ratios:
+        return "", None, {}
+    # Geometric means over the cells every setting has, so that they compare.
+    common = set.intersection(*(set(d) for d in ratios.values()))
+    lines = [f"### {title}", "",
+             "Reconstruction error divided by that of the unweighted geodesic Poisson LOD at the same "
+             "rate (below 1: the weighting helps; above 1: it hurts, in italics).", "",
+             f"| {param} | " + " | ".join(f"{m} {r:.0%}" for m in models for r in rates) + f" | geometric mean ({len(common)} cells) |",
+             "|---:|" + "---:|" * (len(models) * len(rates) + 1)]
+    gm = {}
+    for key, v in zip(configs, values):
+        if key not in ratios:
+            continue
+        cells = []
+        for m in models:
+            for r in rates:
+                x = ratios[key].get((m, r), np.nan)
+                cells.append("–" if not np.isfinite(x) else (f"*{x:.3f}*" if x > 1 else f"{x:.3f}"))
+        gm[v] = geomean([ratios[key][cell] for cell in common])
+        lines.append(f"| {v:g} | " + " | ".join(cells) + f" | {gm[v]:.3f} |")
+    best = min(gm, key=gm.get)
+    return "\n".join(lines), best, {k: ratios[k] for k in ratios}
+
+
+def best_per_rate(ratios, value_of, rates):
+    """[(rate, best setting, its geometric mean over the models at that rate)]."""
+    out = []
+    for r in rates:
+        models = set.intersection(*({m for (m, rr) in d if rr == r} for d in ratios.values()))
+        gm = {value_of[k]: geomean([d[(m, r)] for m in models]) for k, d in ratios.items()}
+        gm = {v: g for v, g in gm.items() if np.isfinite(g)}
+        if gm:
+            best = min(gm, key=gm.get)
+            out.append((r, best, gm[best]))
+    return out
+
+
+def tuning_plot(runs, models, rates, configs, values, param, name):
+    fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False)
+    for ax, model in zip(axes[0], models):
+        for r in rates:
+            base = value(runs, model, "ours_unweighted", r, "recon")
+            ys = [value(runs, model, k, r, "recon") / base for k in configs]
+            ax.plot(values, ys, "-o", label=f"{r:.0%}")
+        ax.axhline(1.0, color="gray", linewidth=0.8)
+        ax.set_xlim(min(values) / 1.5, max(values) * 1.5)  # also where no run is cached yet
+        ax.set_xscale("log")
+        ax.set_title(model)
+        ax.set_xlabel(param)
+        ax.grid(True, alpha=0.3)
+    axes[0][0].set_ylabel("error / unweighted geodesic")
+    axes[0][0].legend(title="rate", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(IMAGES / name, dpi=90)
+    plt.close(fig)
+    return f"![{param} sweep](images/{name})"
+
+
+def losses(runs, models, rates, what):
+    """Cells where some peer beats every one of our methods: (model, rate, peer, ratio)."""
+    out = []
+    for model in models:
+        for r in rates:
+            ours = np.nanmin([value(runs, model, m, r, what) for m in OURS] + [np.inf])
+            peers = {m: value(runs, model, m, r, what) for m in PEERS}
+            peers = {m: v for m, v in peers.items() if np.isfinite(v)}
+            if not peers or not np.isfinite(ours):
+                continue
+            winner = min(peers, key=peers.get)
+            if peers[winner] < ours:
+                out.append((model, r, winner, ours / peers[winner]))
+    return out
+
+
+def loss_lines(lost, measure):
+    if not lost:
+        return [f"{measure}: in no cell does a peer beat all four of our LODs."]
+    return [f"{measure}: cells where a peer beats all four of our LODs (our best error / the peer's):", ""] + \
+        [f"- {m}, {r:.0%}: {label(w)}, ours {x:.2f}x its error" for m, r, w, x in lost]
+
+
+def wins_line(runs, models, rates):
+    cells = wins = 0
+    for model in models:
+        for r in rates:
+            vals = {m: value(runs, model, m, r, "recon") for m in q.METHODS}
+            vals = {m: v for m, v in vals.items() if np.isfinite(v)}
+            if vals:
+                cells += 1
+                wins += min(vals, key=vals.get) in OURS
+    return f"One of our LODs has the lowest reconstruction error in {wins} of {cells} cells (model x rate)."
+
+
+def time_line(runs, models, rates):
+    """Which methods sample faster than ours (the curvature-density Poisson LOD) in every cell."""
+    faster, cells = [], [(m, r) for m in models for r in rates
+                         if np.isfinite(value(runs, m, "ours_density", r, "seconds"))]
+    for peer in PEERS:
+        ratios = [value(runs, m, "ours_density", r, "seconds") / value(runs, m, peer, r, "seconds") for m, r in cells]
+        ratios = [x for x in ratios if np.isfinite(x)]
+        if ratios and min(ratios) > 1:
+            faster.append(f"{label(peer)} ({np.median(ratios):.0f}x, median)")
+    return ("Time: our curvature-density Poisson LOD (one run, with its curvature) is slower in every cell than "
+            + (", ".join(faster) if faster else "none of the peers") + ".")
+
+
+def mean_rank(runs, models, rates, what):
+    ranks = {m: [] for m in q.METHODS}
+    for model in models:
+        for r in rates:
+            vals = {m: value(runs, model, m, r, what) for m in q.METHODS}
+            ordered = sorted((v, m) for m, v in vals.items() if np.isfinite(v))
+            for i, (_, m) in enumerate(ordered):
+                ranks[m].append(i + 1)
+    return {m: (np.mean(v) if v else np.nan, len(v)) for m, v in ranks.items()}
+
+
+def write(models, rates, measure, log):
+    runs = load_runs()
+    methods = list(q.METHODS)
+    pm = lambda v: f"{1e3 * v:.3f}"
+    secs = lambda v: f"{v:.2f}" if v < 10 else f"{v:.0f}"
+    tune_rates = [r for r in q.TUNE_RATES if r in rates]
+    a_keys = [("ours_unweighted", 0.0)] + [
+        ("ours_density" if a == q.DEFAULT_ADAPTIVITY else f"tune_a{a:g}", a) for a in q.TUNE_ADAPTIVITY]
+    c_keys = [("ours_eq3" if c == q.DEFAULT_EXPONENT else f"tune_c{c:g}", c) for c in q.TUNE_EXPONENT]
+    a_text, a_best, a_ratios = sweep_section(runs, models, tune_rates, "Adaptivity a (curvature-density geodesic)",
+                                             [k for k, _ in a_keys[1:]], "ours_unweighted", "a",
+                                             [v for _, v in a_keys[1:]])
+    c_text, c_best, c_ratios = sweep_section(runs, models, tune_rates, "Curvature exponent c (eq. 3)",
+                                             [k for k, _ in c_keys], "ours_unweighted", "c", [v for _, v in c_keys])
+    lost_recon = losses(runs, models, rates, "recon")
+    lost_plane = losses(runs, models, rates, "plane")
+    ranks = mean_rank(runs, models, rates, "recon")
+    plane_ranks = mean_rank(runs, models, rates, "plane")
+
+    doc = [
+        "# Quality benchmark",
+        "",
+        "Generated by `bench/run_quality` (this file and the plots in `docs/images/bench_*.png`); "
+        "every number below is computed by that run. Re-run it to refresh them.",
+        "",
+        "## Setup",
+        "",
+        "Models (from `../shared/data`; normals computed once and given to every method: the "
+        "triangles' for meshes, MeshLab's 10-neighbour estimate for the raw scans):",
+        "",
+        "| model | file | points | faces | reconstruction error from all points (‰ of diagonal) |",
+        "|---|---|---:|---:|---:|",
+    ]
+    for model in models:
+        full = runs.get((model, "all_points", 1.0))
+        doc.append(f"| {model} | `{q.MODELS[model]}` | {full['input_count'] if full else '?'} | "
+                   f"{full['faces'] if full else '?'} | {pm(full['recon']['mean']) if full else '–'} |")
+    doc += [
+        "",
+        f"Sampling rates: {', '.join(f'{r:.0%}' for r in rates)} of the input points; each method is "
+        f"asked for the same count (within {q.COUNT_TOLERANCE:.0%} where it takes no count; actual "
+        "counts below).",
+        "",
+        "Methods:",
+        "",
+        f"- ours: `generate_geodesic_poisson_lod` in three metrics (curvature-density with a = "
+        f"{q.DEFAULT_ADAPTIVITY:g}, eq. 3 with c = {q.DEFAULT_EXPONENT:g}, unweighted geodesic) and "
+        "`generate_geodesic_fps_lod` (exact count), seed 0, default neighbour counts; meshes use "
+        "fast marching over their triangles, clouds the point graph. Poisson takes a radius: the count "
+        "is reached by a search on the radius (secant steps in log-log space).",
+        "- MeshLab: `generate_simplified_point_cloud` (Euclidean Poisson-disk pruning of the points) and "
+        "`generate_sampling_poisson_disk` with `subsample` and `radiusvariance` = "
+        f"{q.MESHLAB_RADIUS_VARIANCE:g} on the vertex quality set to minus eq. 1's curvature "
+        "(`compute_scalar_by_normal_variation`): disk radii from r at the highest curvature to "
+        f"{q.MESHLAB_RADIUS_VARIANCE:g} r at the lowest. Both reach the count by the same radius search "
+        "(the point cloud simplification ignores its own `exactnumflag`).",
+        "- CGAL 5.5 (Debian's `libcgal-dev`), `bench/peers/peer_simplify.cpp`: "
+        "`hierarchy_simplify_point_set` (cluster size searched, variation 1/3), "
+        "`grid_simplify_point_set` (cell size searched), `wlop_simplify_and_regularize_point_set` "
+        f"(retained percentage = rate, default neighbour radius; not run above {q.WLOP_MAX_SAMPLES} "
+        "samples, where one run takes minutes). WLOP makes new points without normals: each takes "
+        "the normal of its nearest input point.",
+        "- Open3D 0.16 (Debian's `libopen3d-dev`): `FarthestPointDownSample` (exact count) and "
+        "`VoxelDownSample` (voxel size searched; points and normals are voxel averages, "
+        "normals renormalized).",
+        "- uniform random: a random subset, seed 0.",
+        "",
+        "Error measures, both as the mean over all input points, in ‰ of the model's bounding-box diagonal:",
+        "",
+        f"- reconstruction error: a screened Poisson surface from the LOD points and normals "
+        f"(`generate_surface_reconstruction_screened_poisson`, {', '.join(f'{k}={v}' for k, v in q.RECONSTRUCTION.items())}, "
+        f"the same for every method), then the {measure} of the input points from it"
+        + (" (MeshLab's `get_hausdorff_distance` from the input vertices to the surface; the "
+           "normal-projection deviation filter replaces it once the plugin has it)" if measure == "Hausdorff distance" else "")
+        + ". The paper's measure (Hou et al. 2015, Table 1).",
+        f"- plane-fit error (no reconstruction): the distance from each input point to the "
+        f"least-squares plane through its {q.PLANE_NEIGHBOURS} nearest LOD points.",
+        "",
+        "Times are of one sampling run at the final parameter (not of the count search), on one "
+        "thread, on a machine with "
+        f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
+        "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
+        "",
+        *missing_lines(runs, models, rates),
+        "## Summary",
+        "",
+        "Error divided by that of uniform random sampling at the same rate, geometric mean over the "
+        "rates (per model: reconstruction error; last two columns: over all models and rates). Below 1 "
+        "is better than random. CGAL WLOP's means are over the rates it ran at (not above "
+        f"{q.WLOP_MAX_SAMPLES} samples).",
+        "",
+        summary_table(runs, models, rates),
+        "",
+    ]
+    doc += section(runs, models, rates, "Reconstruction error (‰ of the diagonal, lower is better)", "recon",
+                   "reconstruction error (‰ of diagonal)", "bench_reconstruction_error", pm)
+    doc += section(runs, models, rates, "Plane-fit error (‰ of the diagonal, lower is better)", "plane",
+                   "plane-fit error (‰ of diagonal)", "bench_plane_fit_error", pm)
+    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", "bench_time", secs)
+    doc += [
+        "## Mean rank over all models and rates (1 = lowest error)",
+        "",
+        "| method | reconstruction error | plane-fit error | cells |",
+        "|---|---:|---:|---:|",
+    ]
+    for m in sorted(methods, key=lambda m: ranks[m][0] if np.isfinite(ranks[m][0]) else 99):
+        doc.append(f"| {label(m)} | {ranks[m][0]:.1f} | {plane_ranks[m][0]:.1f} | {ranks[m][1]} |")
+    doc += ["", "## Where we lose", "",
+            f"Counts differ by up to {q.COUNT_TOLERANCE:.0%} between methods (more where a table below says so) "
+            "and every LOD comes from one seed: ratios within a few percent are not conclusive.", ""] + loss_lines(lost_recon, "Reconstruction error") + [""] + \
+        loss_lines(lost_plane, "Plane-fit error")
+    doc += ["", wins_line(runs, models, rates), "", time_line(runs, models, rates), ""]
+    doc += [
+        "",
+        "## Tuning the weighting",
+        "",
+        f"Poisson LODs on the same models at {', '.join(f'{r:.0%}' for r in tune_rates)}.",
+        "",
+    ]
+    if a_text:
+        doc += [a_text, "",
+                tuning_plot(runs, models, tune_rates, [k for k, _ in a_keys], [max(v, 0.3) for _, v in a_keys],
+                            "adaptivity a", "bench_tuning_adaptivity.png"),
+                "", "(a = 0 is drawn at 0.3 on the log axis.)", ""]
+    if c_text:
+        doc += [c_text, "",
+                tuning_plot(runs, models, tune_rates, [k for k, _ in c_keys], [v for _, v in c_keys],
+                            "exponent c", "bench_tuning_exponent.png"), ""]
+    doc += ["### Recommendation", ""]
+    if a_best is not None:
+        doc.append(f"- adaptivity: a = {a_best:g} has the smallest geometric mean of the error ratio over the "
+                   f"models and rates above (current default {q.DEFAULT_ADAPTIVITY:g}).")
+        doc += [f"  - at {r:.0%} alone the best is a = {v:g} (geometric mean {g:.3f} over the models)"
+                for r, v, g in best_per_rate(a_ratios, dict(a_keys), tune_rates)]
+    if c_best is not None:
+        doc.append(f"- curvature exponent: c = {c_best:g} has the smallest geometric mean for eq. 3 "
+                   f"(current default {q.DEFAULT_EXPONENT:g}).")
+    if a_ratios:
+        doc += ["", "Where the curvature-density weighting does worse than no weighting (error ratio above 1), "
+                "per a:", ""]
+        a_of = dict(a_keys)
+        for key, d in a_ratios.items():
+            bad = sorted(((x, m, r) for (m, r), x in d.items() if x > 1), reverse=True)
+            cells = ", ".join(f"{m} {r:.0%} ({x:.2f})" for x, m, r in bad) or "nowhere"
+            doc.append(f"- a = {a_of[key]:g}: {cells} ({len(bad)} of {len(d)} cells)")
+    doc += ["", "## Actual sample counts (deviation from the target)", "",
+            count_table(runs, models, rates, methods), "",
+            "## Parameters the searches found", "", "| model | method | rate | parameter |", "|---|---|---:|---|"]
+    for model in models:
+        for m in methods:
+            for r in rates:
+                row = runs.get((model, m, r))
+                if row and row.get("parameter"):
+                    doc.append(f"| {model} | {label(m)} | {r:.0%} | {row['parameter']} |")
+    DOC.write_text("\n".join(doc) + "\n")
+    log(f"wrote {DOC.relative_to(q.ROOT)} ({time.strftime('%Y-%m-%d %H:%M')})")
