@@ -131,14 +131,11 @@ class Model:
         return self._layer(lambda: self.ms.apply_filter("generate_geodesic_fps_lod", samplenum=target, **params))
 
     def ours_poisson(self, target, **params):
-        if poisson_takes_samplenum(self.ms):
-            lod = self._layer(lambda: self.ms.apply_filter("generate_geodesic_poisson_lod", samplenum=target, **params))
-            lod["parameter"] = f"radius {lod['result']['radius']:.4g}"
-            return lod
-        # Until generate_geodesic_poisson_lod takes a sample count (being added on main):
-        # delete this line, poisson_takes_samplenum and the lines that use it then.
-        return self.radius_search(target, lambda r: self.ms.apply_filter(
-            "generate_geodesic_poisson_lod", radius=pymeshlab.PureValue(r), **params))
+        # The filter finds the radius itself; its time includes that search.
+        lod = self._layer(lambda: self.ms.apply_filter(
+            "generate_geodesic_poisson_lod", samplenum=pymeshlab.PureValue(target), **params))
+        lod["parameter"] = f"radius {lod['result']['radius']:.4g}"
+        return lod
 
     def radius_search(self, target, apply_at):
         """The LOD of apply_at(radius) nearest to the target count: secant steps on log(count)
@@ -219,22 +216,6 @@ class Model:
         return self.normals[self._tree.query(points)[1]]
 
 
-_SAMPLENUM = {}
-
-
-def poisson_takes_samplenum(ms):
-    """Whether the loaded plugin's Poisson filter takes a sample count (asked once)."""
-    if "yes" not in _SAMPLENUM:
-        probe = pymeshlab.MeshSet()
-        probe.add_mesh(pymeshlab.Mesh(vertex_matrix=np.random.default_rng(0).random((50, 3))))
-        try:
-            probe.apply_filter("generate_geodesic_poisson_lod", samplenum=5)
-            _SAMPLENUM["yes"] = True
-        except pymeshlab.PyMeshLabException:
-            _SAMPLENUM["yes"] = False
-    return _SAMPLENUM["yes"]
-
-
 # --- error measures ---------------------------------------------------------------------
 def plane_fit_error(points, lod):
     """Distance from each original point to the plane fitted (least squares) through its
@@ -265,15 +246,14 @@ def reconstruction_error(model, lod):
     ms.generate_surface_reconstruction_screened_poisson(**RECONSTRUCTION)
     seconds = time.perf_counter() - t
     if measure_name() == "normal-projection deviation":
-        res = ms.apply_filter("get_normal_projection_deviation", measuredmesh=0, refmesh=2)
-        low = {k.lower(): v for k, v in res.items()}
-        pick = lambda word: next((v for k, v in low.items() if word in k), float("nan"))
-        err = dict(mean=pick("mean"), rms=pick("rms"), max=pick("max"), miss=pick("miss"))
+        res = ms.apply_filter("get_normal_projection_deviation", referencemesh=0, surfacemesh=2,
+                              maxdist=pymeshlab.PureValue(0.5 * model.diag))
+        err = dict(mean=res["mean"], rms=res["rms"], max=res["max"], miss=res["miss_fraction"])
     else:
         res = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=2, samplevert=True, sampleface=False,
                                         samplenum=len(model.points), maxdist=pymeshlab.PercentageValue(50))
         err = dict(mean=res["mean"], rms=res["RMS"], max=res["max"], miss=float("nan"))
-    return {k: v / model.diag for k, v in err.items()}, seconds
+    return {k: v if k == "miss" else v / model.diag for k, v in err.items()}, seconds
 
 
 def evaluate(model, method, target):

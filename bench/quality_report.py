@@ -368,8 +368,8 @@ def write(models, rates, measure, log):
         f"- ours: `generate_geodesic_poisson_lod` in three metrics (curvature-density with a = "
         f"{q.DEFAULT_ADAPTIVITY:g}, eq. 3 with c = {q.DEFAULT_EXPONENT:g}, unweighted geodesic) and "
         "`generate_geodesic_fps_lod` (exact count), seed 0, default neighbour counts; meshes use "
-        "fast marching over their triangles, clouds the point graph. Poisson takes a radius: the count "
-        "is reached by a search on the radius (secant steps in log-log space).",
+        "fast marching over their triangles, clouds the point graph. Poisson gets the count as "
+        "`samplenum` and finds its radius itself (its time includes that search).",
         "- MeshLab: `generate_simplified_point_cloud` (Euclidean Poisson-disk pruning of the points) and "
         "`generate_sampling_poisson_disk` with `subsample` and `radiusvariance` = "
         f"{q.MESHLAB_RADIUS_VARIANCE:g} on the vertex quality set to minus eq. 1's curvature "
@@ -392,8 +392,9 @@ def write(models, rates, measure, log):
         f"- reconstruction error: a screened Poisson surface from the LOD points and normals "
         f"(`generate_surface_reconstruction_screened_poisson`, {', '.join(f'{k}={v}' for k, v in q.RECONSTRUCTION.items())}, "
         f"the same for every method), then the {measure} of the input points from it"
-        + (" (MeshLab's `get_hausdorff_distance` from the input vertices to the surface; the "
-           "normal-projection deviation filter replaces it once the plugin has it)" if measure == "Hausdorff distance" else "")
+        + (" (MeshLab's `get_hausdorff_distance` from the input vertices to the surface; runs cached "
+           "before the plugin had the normal-projection deviation filter)" if measure == "Hausdorff distance"
+           else " (`get_normal_projection_deviation`: along each input point's normal line)")
         + ". The paper's measure (Hou et al. 2015, Table 1).",
         f"- plane-fit error (no reconstruction): the distance from each input point to the "
         f"least-squares plane through its {q.PLANE_NEIGHBOURS} nearest LOD points.",

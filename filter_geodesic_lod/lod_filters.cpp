@@ -71,8 +71,9 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "Distance the samples are spread by. Weighted geodesic: paper eq. 3, edges weighted by "
                "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
                "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
-               "Euclidean: straight-line distance (for comparison).",
-               0, 0, 0, kMetricNames});
+               "Euclidean: straight-line distance (for comparison). The default is the one with the lowest "
+               "reconstruction error in the quality benchmark (docs/benchmarks.md).",
+               1, 0, 0, kMetricNames});
   p.push_back({ParamKind::Enum, "geodesicmode", "Geodesics",
                "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
                "faces, else Dijkstra on the k-nearest-neighbour graph of the points. Mesh mode leaves out "
@@ -82,7 +83,8 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.", 1.0});
   p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
-               "only by that metric. 0 gives the unweighted geodesic.", 10.0});
+               "only by that metric. 0 gives the unweighted geodesic; 3 did best in the quality benchmark, "
+               "10 and more over-sample noisy scans.", 3.0});
   p.push_back(NormalNeighborsParam());
   p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
