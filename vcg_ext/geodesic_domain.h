@@ -42,7 +42,7 @@ class GeodesicDomain {
     bool useInputNormals = true;     ///< keep the input's valid normals
   };
 
-  /// Numbered in the kd-tree's leaf order, near points at near numbers
+  /// Numbered in the cells' Morton order, near points at near numbers
   /// (`points.vertIndex` maps back to the mesh); in Mesh mode the vertices of
   /// usable triangles only. `points.normal` is emptied: `normal` replaces it.
   PointSet<Scalar> points;
@@ -108,13 +108,13 @@ class GeodesicDomain {
     np.k = p.normalNeighbors;
     np.useInputNormals = p.useInputNormals;
     {
-      // One kd-tree and one kNN table serve the normals, eq. 1 and the graph.
+      // One grid and one kNN table serve the normals, eq. 1 and the graph.
       KnnTable<Scalar> knn;
       {
-        KdIndex<Scalar> tree(d.points.pos);
-        SpatialOrder(tree.TakeLeafOrder(), d.points, d.triangles);
-        knn = KnnTable<Scalar>::Compute(tree, d.points.pos, graph ? std::max(p.normalNeighbors, p.graphNeighbors)
-                                                                  : p.normalNeighbors, progress.Sub(0, 35));
+        const int k = graph ? std::max(p.normalNeighbors, p.graphNeighbors) : p.normalNeighbors;
+        CellGrid<Scalar> grid(d.points.pos, KnnTable<Scalar>::CellSide(d.points.pos, k));
+        SpatialOrder(grid.TakeOrder(), d.points, d.triangles);
+        knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35));
       }
       auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
       d.normal = std::move(nr.normal);

@@ -56,7 +56,7 @@ TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
 
     FPS::Param fp;
     common(fp);
-    fp.sampleNum = 2000;
+    fp.sampleNum = 300;
     const auto c = OnThreads(1, [&] { return FPS::Compute(m, fp); });
     const auto d = OnThreads(2, [&] { return FPS::Compute(m, fp); });
     EXPECT_EQ(c.vertIndex, d.vertIndex);
