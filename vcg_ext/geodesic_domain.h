@@ -121,7 +121,10 @@ class GeodesicDomain {
       d.estimatedNormals = nr.estimated;
       d.points.normal = std::vector<Coord>();  // d.normal holds them now
       d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbors, progress.Sub(50, 55));
-      if (graph) d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbors, progress.Sub(55, 75));
+      if (graph) {
+        knn.KeepColumns(p.graphNeighbors);  // the graph's columns only: a lower peak while it is built
+        d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbors, progress.Sub(55, 75));
+      }
     }  // the table is freed before the weights are stored
     EdgeWeight<Scalar> wf;
     wf.metric = p.metric;

@@ -26,6 +26,15 @@ class KnnTable {
   std::vector<int> idx;       ///< n*k neighbour indices, by increasing distance per row
 
   size_t size() const { return k ? idx.size() / k : 0; }
+
+  /// Keeps the first `c` columns (the c nearest) and frees the rest.
+  void KeepColumns(int c) {
+    if (c >= k) return;
+    std::vector<int> kept(size() * c);
+    for (size_t i = 0; i < size(); ++i) std::copy(Row(i), Row(i) + c, kept.begin() + i * c);
+    idx.swap(kept);
+    k = c;
+  }
   const int* Row(size_t i) const { return &idx[i * k]; }
 
   /// kNN of all points, excluding the point itself; 1 <= k < pos.size().

@@ -43,7 +43,9 @@ class NeighbourGraph {
   static NeighbourGraph FromKnn(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
     const size_t n = knn.size();
     // oneWay[i k + c]: the arc i -> knn(i)[c] has no reverse arc in the table.
-    std::vector<char> oneWay(n * k);
+    // One bit each; chunks start at multiples of 1024 rows, so no two threads
+    // write the same word.
+    std::vector<bool> oneWay(n * k);
     ParallelChunks(n, progress.Sub(0, 50), "Building the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c) {
@@ -52,21 +54,26 @@ class NeighbourGraph {
         }
     });
     NeighbourGraph g;
-    std::vector<int64_t> start(n + 1, 0);
+    g.offset.assign(n + 1, 0);
     for (size_t i = 0; i < n; ++i)
-      for (int c = 0; c < k; ++c) start[knn.Row(i)[c] + 1] += oneWay[i * k + c];
-    for (size_t i = 0; i < n; ++i) start[i + 1] += start[i] + k;
-    if (start[n] > std::numeric_limits<int>::max()) throw std::bad_alloc();  // offsets are int
-    g.offset.assign(start.begin(), start.end());
-    g.adj.resize(size_t(start[n]));
+      for (int c = 0; c < k; ++c) g.offset[knn.Row(i)[c] + 1] += oneWay[i * k + c];
+    int64_t total = 0;
     for (size_t i = 0; i < n; ++i) {
-      for (int c = 0; c < k; ++c) g.adj[start[i] + c] = knn.Row(i)[c];
-      start[i] += k;
+      total += g.offset[i + 1] + k;
+      if (total > std::numeric_limits<int>::max()) throw std::bad_alloc();  // offsets are int
+      g.offset[i + 1] = int(total);
+    }
+    g.adj.resize(size_t(total));
+    std::vector<int> fill(g.offset.begin(), g.offset.end() - 1);
+    for (size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < k; ++c) g.adj[fill[i] + c] = knn.Row(i)[c];
+      fill[i] += k;
     }
     for (size_t i = 0; i < n; ++i)
       for (int c = 0; c < k; ++c)
-        if (oneWay[i * k + c]) g.adj[start[knn.Row(i)[c]]++] = int(i);
-    oneWay = std::vector<char>();
+        if (oneWay[i * k + c]) g.adj[fill[knn.Row(i)[c]]++] = int(i);
+    oneWay = std::vector<bool>();
+    fill = std::vector<int>();
     ParallelChunks(n, progress.Sub(50, 100), "Building the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) std::sort(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1]);
     });
