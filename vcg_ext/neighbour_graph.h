@@ -53,10 +53,20 @@ class NeighbourGraph {
           oneWay[i * k + c] = std::find(back, back + k, int(i)) == back + k;
         }
     });
+    // Rows get their one-way arcs from other rows: counted and placed with
+    // atomic steps, in an order that varies with the threads, then each row is
+    // sorted, so the graph does not.
     NeighbourGraph g;
     g.offset.assign(n + 1, 0);
-    for (size_t i = 0; i < n; ++i)
-      for (int c = 0; c < k; ++c) g.offset[knn.Row(i)[c] + 1] += oneWay[i * k + c];
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < k; ++c)
+          if (oneWay[i * k + c]) {
+            int& count = g.offset[knn.Row(i)[c] + 1];
+#pragma omp atomic
+            ++count;
+          }
+    });
     int64_t total = 0;
     for (size_t i = 0; i < n; ++i) {
       total += g.offset[i + 1] + k;
@@ -64,14 +74,24 @@ class NeighbourGraph {
       g.offset[i + 1] = int(total);
     }
     g.adj.resize(size_t(total));
-    std::vector<int> fill(g.offset.begin(), g.offset.end() - 1);
-    for (size_t i = 0; i < n; ++i) {
-      for (int c = 0; c < k; ++c) g.adj[fill[i] + c] = knn.Row(i)[c];
-      fill[i] += k;
-    }
-    for (size_t i = 0; i < n; ++i)
-      for (int c = 0; c < k; ++c)
-        if (oneWay[i * k + c]) g.adj[fill[knn.Row(i)[c]]++] = int(i);
+    std::vector<int> fill(n);
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) {
+        std::copy(knn.Row(i), knn.Row(i) + k, g.adj.begin() + g.offset[i]);
+        fill[i] = g.offset[i] + k;
+      }
+    });
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < k; ++c)
+          if (oneWay[i * k + c]) {
+            int& next = fill[knn.Row(i)[c]];
+            int slot;
+#pragma omp atomic capture
+            slot = next++;
+            g.adj[slot] = int(i);
+          }
+    });
     oneWay = std::vector<bool>();
     fill = std::vector<int>();
     ParallelChunks(n, progress.Sub(50, 100), "Building the neighbour graph", [&](size_t b, size_t e) {
