@@ -89,7 +89,9 @@ class GeodesicDomain {
     return Build(std::move(ps), std::move(tris), p, progress);
   }
 
-  /// Cost O(n k log n) for the kNN queries, O(n k) for the rest.
+  /// Cost O(n log n) for the grid's sort, O(n k) for the rest on well-sampled
+  /// surfaces; the row-independent passes on all threads (the same result for
+  /// any thread count).
   static GeodesicDomain Build(PointSet<Scalar> ps, MeshTriangles tris, const Param& p,
                               Progress progress = Progress(nullptr)) {
     Check(ps, !tris.tri.empty(), p);
