@@ -42,7 +42,10 @@ class GeodesicDomain {
     bool useInputNormals = true;     ///< keep the input's valid normals
   };
 
-  PointSet<Scalar> points;          ///< in Mesh mode: the vertices of usable triangles only
+  /// Numbered in the cells' Morton order, near points at near numbers
+  /// (`points.vertIndex` maps back to the mesh); in Mesh mode the vertices of
+  /// usable triangles only. `points.normal` is emptied: `normal` replaces it.
+  PointSet<Scalar> points;
   std::vector<Coord> normal;        ///< n_i, unit
   size_t estimatedNormals = 0;
   std::vector<Scalar> curvature;    ///< v_i, eq. 1
@@ -86,7 +89,9 @@ class GeodesicDomain {
     return Build(std::move(ps), std::move(tris), p, progress);
   }
 
-  /// Cost O(n k log n) for the kNN queries, O(n k) for the rest.
+  /// Cost O(n log n) for the grid's sort, O(n k) for the rest on well-sampled
+  /// surfaces; the row-independent passes on all threads (the same result for
+  /// any thread count).
   static GeodesicDomain Build(PointSet<Scalar> ps, MeshTriangles tris, const Param& p,
                               Progress progress = Progress(nullptr)) {
     Check(ps, !tris.tri.empty(), p);
@@ -100,24 +105,37 @@ class GeodesicDomain {
     }
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
+    const bool graph = p.metric != Metric::Euclidean && !d.meshGeodesics;
     typename PointNormals<Scalar>::Param np;
     np.k = p.normalNeighbors;
     np.useInputNormals = p.useInputNormals;
-    auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, np, progress.Sub(0, 50));
-    d.normal = std::move(nr.normal);
-    d.estimatedNormals = nr.estimated;
-    const bool graph = p.metric != Metric::Euclidean && !d.meshGeodesics;
-    const int k = graph ? std::max(p.normalNeighbors, p.graphNeighbors) : p.normalNeighbors;
-    KnnTable<Scalar> knn = KnnTable<Scalar>::Compute(d.points.pos, k, progress.Sub(50, 90));
-    d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbors);
+    {
+      // One grid and one kNN table serve the normals, eq. 1 and the graph.
+      KnnTable<Scalar> knn;
+      {
+        const int k = graph ? std::max(p.normalNeighbors, p.graphNeighbors) : p.normalNeighbors;
+        CellGrid<Scalar> grid(d.points.pos, KnnTable<Scalar>::CellSide(d.points.pos, k));
+        SpatialOrder(grid.TakeOrder(), d.points, d.triangles);
+        knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35));
+      }
+      auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
+      d.normal = std::move(nr.normal);
+      d.estimatedNormals = nr.estimated;
+      d.points.normal = std::vector<Coord>();  // d.normal holds them now
+      d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbors, progress.Sub(50, 55));
+      if (graph) {
+        knn.KeepColumns(p.graphNeighbors);  // the graph's columns only: a lower peak while it is built
+        d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbors, progress.Sub(55, 75));
+      }
+    }  // the table is freed before the weights are stored
     EdgeWeight<Scalar> wf;
     wf.metric = p.metric;
     wf.exponent = p.curvatureExponent;
     wf.adaptivity = p.adaptivity;
     wf.curvature = &d.curvature;
-    progress(90, 100, "Building the geodesic domain");
+    progress(75, 100, "Building the geodesic domain");
     if (graph) {
-      d.graph = NeighbourGraph<Scalar>::Compute(d.points.pos, knn, p.graphNeighbors, wf);
+      d.graph.SetWeights(d.points.pos, wf, progress.Sub(75, 95));
       d.components = d.graph.ComponentCount();
     } else if (d.meshGeodesics) {
       // Vertices a mesh repeats (seams, split normals) are joined at no cost.
@@ -129,6 +147,14 @@ class GeodesicDomain {
   }
 
   size_t size() const { return points.size(); }
+
+  /// The point number of each mesh vertex (index in m.vert, below
+  /// `vertexCount`), -1 for vertices the domain left out. O(vertexCount).
+  std::vector<int> PointOfVertex(size_t vertexCount) const {
+    std::vector<int> p(vertexCount, -1);
+    for (size_t i = 0; i < points.size(); ++i) p[points.vertIndex[i]] = int(i);
+    return p;
+  }
 
   /// Calls f(search) with the distance search of this domain's metric and
   /// geodesics: BoundedDijkstra, FastMarching or EuclideanBall, each with
@@ -148,6 +174,24 @@ class GeodesicDomain {
   }
 
  private:
+  // Renumbers the points in the order given (order[new] = old), and the
+  // triangles with them.
+  static void SpatialOrder(const std::vector<int>& order, PointSet<Scalar>& ps, std::vector<std::array<int, 3>>& tri) {
+    Permute(order, ps.pos);
+    Permute(order, ps.normal);
+    Permute(order, ps.vertIndex);
+    if (tri.empty()) return;
+    std::vector<int> newIndex(order.size());
+    for (size_t i = 0; i < order.size(); ++i) newIndex[order[i]] = int(i);
+    for (auto& t : tri)
+      for (int& c : t) c = newIndex[c];
+  }
+  template <class T>
+  static void Permute(const std::vector<int>& order, std::vector<T>& v) {
+    std::vector<T> out(order.size());
+    for (size_t i = 0; i < order.size(); ++i) out[i] = v[order[i]];
+    v.swap(out);
+  }
   static bool UsesPointGraph(bool hasTriangles, const Param& p) {
     return p.mode == GeodesicMode::PointGraph || (p.mode == GeodesicMode::Auto && !hasTriangles);
   }

@@ -28,7 +28,7 @@ struct EdgeWeight {
     switch (metric) {
       case Metric::WeightedEq3: {  // eq. 3 (eq. 2 sums these along the path)
         const double dv = std::abs(double((*curvature)[i]) - double((*curvature)[j]));
-        return Scalar(std::exp(std::pow(dv, exponent)) * len);
+        return Scalar(std::exp(exponent == 1.0 ? dv : std::pow(dv, exponent)) * len);  // pow is slow
       }
       case Metric::CurvatureDensity:
         return Scalar((1.0 + adaptivity * 0.5 * (double((*curvature)[i]) + double((*curvature)[j]))) * len);

@@ -1,10 +1,16 @@
 #ifndef VCG_EXT_KNN_TABLE_H
 #define VCG_EXT_KNN_TABLE_H
-// The k nearest neighbours of every point, from vcglib's kd-tree.
+// The k nearest neighbours of every point, from a grid of cells (vcglib's
+// kd-tree for the few points the grid cannot answer).
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
 #include <utility>
 #include <vector>
 #include <vcg/space/index/kdtree/kdtree.h>
+#include "cell_grid.h"
+#include "parallel.h"
 #include "progress.h"
 
 namespace vcg_ext {
@@ -20,28 +26,107 @@ class KnnTable {
   std::vector<int> idx;       ///< n*k neighbour indices, by increasing distance per row
 
   size_t size() const { return k ? idx.size() / k : 0; }
+
+  /// Keeps the first `c` columns (the c nearest) and frees the rest.
+  void KeepColumns(int c) {
+    if (c >= k) return;
+    std::vector<int> kept(size() * c);
+    for (size_t i = 0; i < size(); ++i) std::copy(Row(i), Row(i) + c, kept.begin() + i * c);
+    idx.swap(kept);
+    k = c;
+  }
   const int* Row(size_t i) const { return &idx[i * k]; }
 
   /// kNN of all points, excluding the point itself; 1 <= k < pos.size().
-  /// Cost O(n k log n).
+  /// Exact. Cost O(n k) on well-sampled surfaces, on all threads; the same
+  /// table for any thread count.
   static KnnTable Compute(const std::vector<Coord>& pos, int k, Progress progress = Progress(nullptr)) {
+    const CellGrid<Scalar> grid(pos, CellSide(pos, k));
+    return Compute(grid, pos, k, progress);
+  }
+
+  /// A cell side for Compute: about 2k points of a surface within one side of a point.
+  static double CellSide(const std::vector<Coord>& pos, int k) {
+    return CellGrid<Scalar>::SurfaceCellSide(pos, int(std::ceil(2 * k / M_PI)) + 1);
+  }
+
+  /// The same on a grid of `pos` (numbered as `pos`). Each point is answered
+  /// from the cells around it, growing the block until its k nearest lie
+  /// closer than the block's boundary; the few points still unsure (isolated
+  /// outliers) are asked of a kd-tree.
+  static KnnTable Compute(const CellGrid<Scalar>& grid, const std::vector<Coord>& pos, int k,
+                          Progress progress = Progress(nullptr)) {
+    constexpr int kMaxRing = 3;
     KnnTable t;
     t.k = k;
-    const size_t n = pos.size();
-    t.idx.resize(n * k);
-    vcg::ConstDataWrapper<Coord> dw(pos.data(), n);
-    vcg::KdTree<Scalar> tree(dw);
-    typename vcg::KdTree<Scalar>::PriorityQueue heap;
-    std::vector<std::pair<Scalar, int>> row;
-    for (size_t i = 0; i < n; ++i) {
-      tree.doQueryK(pos[i], k + 1, heap);
-      row.clear();
-      for (int h = 0; h < heap.getNofElements(); ++h)
-        if (heap.getIndex(h) != int(i)) row.emplace_back(heap.getWeight(h), heap.getIndex(h));
-      // Ties (duplicate points) are broken by index so the table is deterministic.
-      std::sort(row.begin(), row.end());
-      for (int j = 0; j < k; ++j) t.idx[i * k + j] = row[j].second;
-      if ((i & 4095) == 0) progress(i, n, "Finding nearest neighbours");
+    t.idx.assign(pos.size() * k, -1);
+    ParallelChunks(pos.size(), progress, "Finding nearest neighbours", [&](size_t b, size_t e) {
+      std::vector<double> bx, by, bz, d2;  // the block of cells searched: positions, numbers
+      std::vector<int> bi;
+      std::vector<std::pair<double, int>> cand;
+      typename CellGrid<Scalar>::Cell last = {-2, -2, -2};
+      int lastRing = 0;
+      double hint = std::numeric_limits<double>::infinity();  // the previous point's k-th d^2
+      for (size_t r = b; r < e; ++r) {
+        const int i = grid.Point(r);
+        const typename CellGrid<Scalar>::Cell cell = grid.CellOf(pos[i]);
+        for (int ring = 1; ring <= kMaxRing; ++ring) {
+          if (cell != last || ring != lastRing) {  // near points share their cell's block
+            bx.clear(), by.clear(), bz.clear(), bi.clear();
+            grid.ForBlock(cell, ring, [&](int s, int t2) {
+              for (int c = s; c < t2; ++c) {
+                const int j = grid.Point(c);
+                bx.push_back(pos[j][0]), by.push_back(pos[j][1]), bz.push_back(pos[j][2]), bi.push_back(j);
+              }
+            });
+            last = cell, lastRing = ring;
+          }
+          const double qx = pos[i][0], qy = pos[i][1], qz = pos[i][2], m = grid.Margin(pos[i], cell, ring);
+          d2.resize(bx.size());
+          for (size_t c = 0; c < bx.size(); ++c)
+            d2[c] = (bx[c] - qx) * (bx[c] - qx) + (by[c] - qy) * (by[c] - qy) + (bz[c] - qz) * (bz[c] - qz);
+          // Only points nearer than the block's boundary are sure; a near
+          // point's k-th distance, a little enlarged, usually bounds them tighter.
+          size_t found = 0;
+          for (double bound : {std::min(m * m, 1.44 * hint), m * m}) {
+            cand.resize(bx.size());
+            found = 0;
+            for (size_t c = 0; c < bx.size(); ++c) {
+              cand[found] = {d2[c], bi[c]};
+              found += d2[c] <= bound && bi[c] != i;
+            }
+            if (found >= size_t(k)) break;
+          }
+          if (found < size_t(k)) continue;  // some of the k nearest may lie beyond the block
+          // Ties (duplicate points) are broken by index so the table is deterministic.
+          std::nth_element(cand.begin(), cand.begin() + (k - 1), cand.begin() + found);
+          std::sort(cand.begin(), cand.begin() + k);
+          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = cand[c].second;
+          hint = cand[k - 1].first;
+          break;
+        }
+      }
+    });
+    std::vector<int> rest;
+    for (size_t i = 0; i < pos.size(); ++i)
+      if (t.idx[i * k] < 0) rest.push_back(int(i));
+    if (!rest.empty()) {
+      vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())));
+      ParallelChunks(rest.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+        typename vcg::KdTree<Scalar>::PriorityQueue heap;
+        std::vector<std::pair<double, int>> row;
+        for (size_t r = b; r < e; ++r) {
+          const int i = rest[r];
+          tree.doQueryK(pos[i], k + 1, heap);
+          row.clear();
+          for (int h = 0; h < heap.getNofElements(); ++h)
+            if (heap.getIndex(h) != i)
+              row.emplace_back((vcg::Point3d::Construct(pos[heap.getIndex(h)]) - vcg::Point3d::Construct(pos[i])).SquaredNorm(),
+                               heap.getIndex(h));
+          std::sort(row.begin(), row.end());
+          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = row[c].second;
+        }
+      });
     }
     return t;
   }

@@ -2,9 +2,14 @@
 #define VCG_EXT_NEIGHBOUR_GRAPH_H
 // Symmetric k-nearest-neighbour graph with weighted edges (compressed rows).
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <new>
 #include <numeric>
 #include <vector>
 #include "knn_table.h"
+#include "parallel.h"
 
 namespace vcg_ext {
 
@@ -13,25 +18,86 @@ class NeighbourGraph {
  public:
   std::vector<int> offset;   ///< n+1 row starts
   std::vector<int> adj;      ///< neighbour indices, ascending per row
-  std::vector<Scalar> w;     ///< edge weights g_ij, w[e] for adj[e]
+  /// Edge weights g_ij, w[e] for adj[e]. Stored as float, rounded up, to halve
+  /// the graph's largest array: distances are still summed in Scalar, and
+  /// rounding up keeps every g_ij >= |p_i - p_j| exactly.
+  std::vector<float> w;
 
   size_t size() const { return offset.empty() ? 0 : offset.size() - 1; }
 
   /// Edge (i, j) exists iff j is among the k nearest of i or i among the k
   /// nearest of j (symmetric, so graph distances are symmetric). Uses the
   /// first k columns of `knn` (k <= knn.k). `weight(i, j, |p_i - p_j|)` gives
-  /// g_ij. Memory: about 2k (4 + sizeof(Scalar)) bytes per point.
+  /// g_ij. Memory: about 1.4k (4 + 4) bytes per point. O(n k^2), on all threads.
   template <class WeightFn>
-  static NeighbourGraph Compute(const std::vector<vcg::Point3<Scalar>>& pos,
-                                const KnnTable<Scalar>& knn, int k, const WeightFn& weight) {
-    std::vector<std::pair<int, int>> pairs;
-    pairs.reserve(knn.size() * k * 2);
-    for (size_t i = 0; i < knn.size(); ++i)
-      for (int c = 0; c < k; ++c) {
-        pairs.emplace_back(int(i), knn.Row(i)[c]);
-        pairs.emplace_back(knn.Row(i)[c], int(i));
+  static NeighbourGraph Compute(const std::vector<vcg::Point3<Scalar>>& pos, const KnnTable<Scalar>& knn, int k,
+                                const WeightFn& weight, Progress progress = Progress(nullptr)) {
+    NeighbourGraph g = FromKnn(knn, k, progress.Sub(0, 50));
+    g.SetWeights(pos, weight, progress.Sub(50, 100));
+    return g;
+  }
+
+  /// The edges of Compute, without weights (the table may be freed before
+  /// SetWeights). Each row is kNN(i) plus the points having i among their k
+  /// nearest but not among i's: no duplicates to sort out, no pair list.
+  static NeighbourGraph FromKnn(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
+    const size_t n = knn.size();
+    // oneWay[i k + c]: the arc i -> knn(i)[c] has no reverse arc in the table.
+    // One bit each; chunks start at multiples of 1024 rows, so no two threads
+    // write the same word.
+    std::vector<bool> oneWay(n * k);
+    ParallelChunks(n, progress.Sub(0, 50), "Building the neighbour graph", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < k; ++c) {
+          const int* back = knn.Row(knn.Row(i)[c]);
+          oneWay[i * k + c] = std::find(back, back + k, int(i)) == back + k;
+        }
+    });
+    // Rows get their one-way arcs from other rows: counted and placed with
+    // atomic steps, in an order that varies with the threads, then each row is
+    // sorted, so the graph does not.
+    NeighbourGraph g;
+    g.offset.assign(n + 1, 0);
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < k; ++c)
+          if (oneWay[i * k + c]) {
+            int& count = g.offset[knn.Row(i)[c] + 1];
+#pragma omp atomic
+            ++count;
+          }
+    });
+    int64_t total = 0;
+    for (size_t i = 0; i < n; ++i) {
+      total += g.offset[i + 1] + k;
+      if (total > std::numeric_limits<int>::max()) throw std::bad_alloc();  // offsets are int
+      g.offset[i + 1] = int(total);
+    }
+    g.adj.resize(size_t(total));
+    std::vector<int> fill(n);
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) {
+        std::copy(knn.Row(i), knn.Row(i) + k, g.adj.begin() + g.offset[i]);
+        fill[i] = g.offset[i] + k;
       }
-    return FromPairs(pos, knn.size(), pairs, weight);
+    });
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < k; ++c)
+          if (oneWay[i * k + c]) {
+            int& next = fill[knn.Row(i)[c]];
+            int slot;
+#pragma omp atomic capture
+            slot = next++;
+            g.adj[slot] = int(i);
+          }
+    });
+    oneWay = std::vector<bool>();
+    fill = std::vector<int>();
+    ParallelChunks(n, progress.Sub(50, 100), "Building the neighbour graph", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) std::sort(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1]);
+    });
+    return g;
   }
 
   /// The graph of the directed pairs (i, j), duplicates merged, on n points;
@@ -58,15 +124,29 @@ class NeighbourGraph {
     g.offset[n] = out;
     g.adj.resize(out);
     g.adj.shrink_to_fit();
-    g.w.resize(out);
-    for (size_t i = 0; i < n; ++i)
-      for (int e = g.offset[i]; e < g.offset[i + 1]; ++e)
-        g.w[e] = weight(int(i), g.adj[e], vcg::Distance(pos[i], pos[g.adj[e]]));
+    g.SetWeights(pos, weight);
     return g;
   }
 
+  /// w[e] = weight(i, adj[e], |p_i - p_adj[e]|), rounded up to float. On all
+  /// threads; w_ij == w_ji when the weight is symmetric.
+  template <class WeightFn>
+  void SetWeights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
+                  Progress progress = Progress(nullptr)) {
+    w.resize(adj.size());
+    ParallelChunks(size(), progress, "Weighting the neighbour graph", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i)
+        for (int a = offset[i]; a < offset[i + 1]; ++a) {
+          const double x = double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]])));
+          float f = float(x);
+          if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+          w[a] = f;
+        }
+    });
+  }
+
   /// g_ij of the edge (i, j), which must exist. Cost O(log degree).
-  Scalar Weight(int i, int j) const {
+  float Weight(int i, int j) const {
     const auto b = adj.begin() + offset[i], e = adj.begin() + offset[i + 1];
     return w[std::lower_bound(b, e, j) - adj.begin()];
   }

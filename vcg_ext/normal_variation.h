@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 #include "knn_table.h"
+#include "parallel.h"
 
 namespace vcg_ext {
 
@@ -12,18 +13,20 @@ class NormalVariation {
  public:
   /// Eq. 1: v_i = sum_{j in kNN(i)} (1 - |n_i . n_j|) / k, over the k nearest
   /// other points (the first k columns of the table, k <= knn.k; all by
-  /// default). 0 on a plane, at most 1; unit normals expected.
+  /// default). 0 on a plane, at most 1; unit normals expected. O(n k), on
+  /// all threads.
   static std::vector<Scalar> Compute(const std::vector<vcg::Point3<Scalar>>& normal,
-                                     const KnnTable<Scalar>& knn, int k = 0) {
+                                     const KnnTable<Scalar>& knn, int k = 0, Progress progress = Progress(nullptr)) {
     if (k <= 0) k = knn.k;
-    const size_t n = normal.size();
-    std::vector<Scalar> v(n);
-    for (size_t i = 0; i < n; ++i) {
-      const int* row = knn.Row(i);
-      double s = 0;
-      for (int j = 0; j < k; ++j) s += 1.0 - std::abs(double(normal[i].dot(normal[row[j]])));
-      v[i] = Scalar(std::max(0.0, s / k));
-    }
+    std::vector<Scalar> v(normal.size());
+    ParallelChunks(normal.size(), progress, "Normal variation", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) {
+        const int* row = knn.Row(i);
+        double s = 0;
+        for (int j = 0; j < k; ++j) s += 1.0 - std::abs(double(normal[i].dot(normal[row[j]])));
+        v[i] = Scalar(std::max(0.0, s / k));
+      }
+    });
     return v;
   }
 };

@@ -131,9 +131,10 @@ TEST(GeodesicMesh, RepeatedSeamVerticesAreCrossedAtNoCost) {
   const auto d = LOD::Domain::FromMesh(m, p);
   EXPECT_EQ(d.components, 1);
   vcg_ext::FastMarching<float> fm(d.fmMesh);
-  const auto dist = fm.Distances(0 * 11 + 5);  // (0, 0.5) on the left grid
-  const size_t far = base + 10 * 11 + 5;       // (2, 0.5) on the right grid
-  EXPECT_NEAR(dist[far], 2.0f, 0.02f);
+  const std::vector<int> point = d.PointOfVertex(m.vert.size());
+  const auto dist = fm.Distances(point[0 * 11 + 5]);  // (0, 0.5) on the left grid
+  const size_t far = base + 10 * 11 + 5;              // (2, 0.5) on the right grid
+  EXPECT_NEAR(dist[point[far]], 2.0f, 0.02f);
 }
 
 TEST(GeodesicMesh, DelaunayFacesOnlyWhereSamplesReach) {

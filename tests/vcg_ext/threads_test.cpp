@@ -1,0 +1,83 @@
+// The whole pipeline on one thread and on two gives the same LOD for the same
+// seed: every parallel pass computes each row from that row's inputs alone.
+#include <gtest/gtest.h>
+#include <cstring>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "test_mesh.h"
+
+namespace {
+using Poisson = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+
+// Byte-wise equality of normals and curvature (NaN-safe, no tolerance).
+template <class T>
+bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Runs f with the given number of threads, then restores the default.
+template <class F>
+auto OnThreads(int threads, F&& f) {
+#ifdef _OPENMP
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  auto r = f();
+  omp_set_num_threads(before);
+  return r;
+#else
+  (void)threads;
+  return f();
+#endif
+}
+}  // namespace
+
+TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: one thread only";
+#endif
+  // Over 65536 points, so every parallel pass splits into several blocks and many chunks.
+  test::TMesh m;
+  test::HeightField(m, 300, [](float x, float y) { return test::HalfBumpy(x, y, 0.05f, 12.f); });
+  for (vcg_ext::Metric metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity}) {
+    auto common = [&](auto& p) { p.domain.metric = metric; p.seed = 3; };
+    Poisson::Param pp;
+    common(pp);
+    pp.radius = 0.01;
+    const auto a = OnThreads(1, [&] { return Poisson::Compute(m, pp); });
+    const auto b = OnThreads(2, [&] { return Poisson::Compute(m, pp); });
+    EXPECT_GT(a.vertIndex.size(), 1000u);
+    EXPECT_EQ(a.vertIndex, b.vertIndex);
+    EXPECT_TRUE(SameBytes(a.normal, b.normal));
+    EXPECT_TRUE(SameBytes(a.curvature, b.curvature));
+
+    FPS::Param fp;
+    common(fp);
+    fp.sampleNum = 300;
+    const auto c = OnThreads(1, [&] { return FPS::Compute(m, fp); });
+    const auto d = OnThreads(2, [&] { return FPS::Compute(m, fp); });
+    EXPECT_EQ(c.vertIndex, d.vertIndex);
+    EXPECT_TRUE(SameBytes(c.coveringRadius, d.coveringRadius));
+    EXPECT_TRUE(SameBytes(c.normal, d.normal));
+  }
+}
+
+TEST(Threads, GeodesicDomainIsIdenticalOnOneAndTwoThreads) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: one thread only";
+#endif
+  test::TMesh m;
+  test::HeightField(m, 280, [](float x, float y) { return test::HalfBumpy(x, y); });
+  Poisson::Domain::Param p;
+  const auto a = OnThreads(1, [&] { return Poisson::Domain::FromMesh(m, p); });
+  const auto b = OnThreads(2, [&] { return Poisson::Domain::FromMesh(m, p); });
+  EXPECT_EQ(a.points.vertIndex, b.points.vertIndex);
+  EXPECT_TRUE(SameBytes(a.normal, b.normal));
+  EXPECT_TRUE(SameBytes(a.curvature, b.curvature));
+  EXPECT_EQ(a.graph.offset, b.graph.offset);
+  EXPECT_EQ(a.graph.adj, b.graph.adj);
+  EXPECT_TRUE(SameBytes(a.graph.w, b.graph.w));
+}

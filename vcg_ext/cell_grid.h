@@ -1,0 +1,140 @@
+#ifndef VCG_EXT_CELL_GRID_H
+#define VCG_EXT_CELL_GRID_H
+// Points bucketed in cubic cells stored in Morton (Z-curve) order: near cells
+// at near positions, and a cell's points contiguous.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+#include <vector>
+#include <vcg/space/box3.h>
+#include <vcg/space/index/kdtree/kdtree.h>
+#ifdef _OPENMP
+#include <parallel/algorithm>
+#endif
+
+namespace vcg_ext {
+
+template <class Scalar>
+class CellGrid {
+ public:
+  typedef vcg::Point3<Scalar> Coord;
+  typedef std::array<int64_t, 3> Cell;
+  static constexpr int kBits = 21;  ///< per axis: Morton keys of 63 bits
+
+  /// Cells of side `h` (made larger when the box would need over 2^21 cells
+  /// per axis). Cost O(n log n), the sort on all threads.
+  CellGrid(const std::vector<Coord>& pos, double h) {
+    vcg::Box3d box;
+    for (const Coord& p : pos) box.Add(vcg::Point3d::Construct(p));
+    origin_ = box.min;
+    const double extent = std::max({box.DimX(), box.DimY(), box.DimZ()});
+    h_ = std::max(h, extent / double((1 << kBits) - 2));
+    if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1;  // all points coincide: one cell
+    std::vector<std::pair<uint64_t, int>> kp(pos.size());
+    for (size_t i = 0; i < pos.size(); ++i) kp[i] = {Key(CellOf(pos[i])), int(i)};
+#ifdef _OPENMP
+    __gnu_parallel::sort(kp.begin(), kp.end());  // keys with indices are unique: the same order on any thread count
+#else
+    std::sort(kp.begin(), kp.end());
+#endif
+    pts_.resize(kp.size());
+    for (size_t r = 0; r < kp.size(); ++r) {
+      pts_[r] = kp[r].second;
+      if (r == 0 || kp[r].first != kp[r - 1].first) {
+        key_.push_back(kp[r].first);
+        start_.push_back(int(r));
+      }
+    }
+    start_.push_back(int(kp.size()));
+  }
+
+  double CellSide() const { return h_; }
+  size_t size() const { return pts_.size(); }
+  /// The r-th point in cell order.
+  int Point(size_t r) const { return pts_[r]; }
+
+  /// order[i] = the point that comes i-th in cell order. From then on the grid
+  /// numbers points by that order (renumber `pos` the same way).
+  std::vector<int> TakeOrder() {
+    std::vector<int> order = std::move(pts_);
+    pts_.resize(order.size());
+    std::iota(pts_.begin(), pts_.end(), 0);
+    return order;
+  }
+
+  Cell CellOf(const Coord& p) const {
+    Cell c;
+    for (int a = 0; a < 3; ++a) c[a] = int64_t(std::floor((double(p[a]) - origin_[a]) / h_));
+    return c;
+  }
+  /// Distance from p (inside cell c) to the outside of the block of cells
+  /// within `ring` cells of c: nothing outside is nearer.
+  double Margin(const Coord& p, const Cell& c, int ring) const {
+    double m = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      const double x = double(p[a]) - origin_[a];
+      m = std::min({m, x - double(c[a] - ring) * h_, double(c[a] + ring + 1) * h_ - x});
+    }
+    return m;
+  }
+  /// Calls f(begin, end) with the ranges (in cell order) of the non-empty
+  /// cells within `ring` cells of c along every axis.
+  template <class F>
+  void ForBlock(const Cell& c, int ring, F&& f) const {
+    const int64_t top = (int64_t(1) << kBits) - 1;
+    for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
+      for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
+        for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
+          if (x < 0 || y < 0 || z < 0 || x > top || y > top || z > top) continue;
+          const uint64_t k = Key({x, y, z});
+          const auto it = std::lower_bound(key_.begin(), key_.end(), k);
+          if (it != key_.end() && *it == k) f(start_[it - key_.begin()], start_[it - key_.begin() + 1]);
+        }
+  }
+
+  /// A cell side holding about `perCell` points of a surface sampled like
+  /// `pos` (m^2 density): from the 8th-nearest distances within a strided
+  /// subsample, which scale with the full set's density. O(n) and small.
+  static double SurfaceCellSide(const std::vector<Coord>& pos, int perCell) {
+    const size_t n = pos.size(), m = std::min<size_t>(n, 1 << 16), j = std::min<size_t>(8, m - 1);
+    std::vector<Coord> sub(m);
+    for (size_t i = 0; i < m; ++i) sub[i] = pos[i * n / m];
+    vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(sub.data(), int(m)));
+    typename vcg::KdTree<Scalar>::PriorityQueue q;
+    std::vector<double> d2;
+    for (size_t i = 0; i < m; i += std::max<size_t>(1, m / 4096)) {
+      tree.doQueryK(sub[i], int(j + 1), q);
+      d2.push_back(double(q.getTopWeight()));  // the farthest of the j + 1 (the point itself included)
+    }
+    std::nth_element(d2.begin(), d2.begin() + d2.size() / 2, d2.end());
+    // On a surface of density rho the j-th nearest of a fraction f lies at
+    // d^2 ~ (j - 1/3) / (pi f rho); a cell of side h holds rho h^2 points.
+    const double f = double(m) / double(n), rhoInv = d2[d2.size() / 2] * M_PI * f / (double(j) - 1.0 / 3.0);
+    return std::sqrt(perCell * rhoInv);
+  }
+
+ private:
+  static uint64_t Spread(uint64_t v) {  // 21 bits to every third bit
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  }
+  static uint64_t Key(const Cell& c) { return Spread(c[0]) | Spread(c[1]) << 1 | Spread(c[2]) << 2; }
+
+  vcg::Point3d origin_;
+  double h_ = 1;
+  std::vector<uint64_t> key_;  ///< non-empty cells, ascending
+  std::vector<int> start_;     ///< per cell, its first position in cell order; one past the end last
+  std::vector<int> pts_;       ///< point numbers in cell order
+};
+
+}  // namespace vcg_ext
+#endif
