@@ -4,6 +4,7 @@
 // progressive (FPS) order.
 #include <cstdint>
 #include <stdexcept>
+#include <vector>
 #include "farthest_point.h"
 #include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
@@ -27,11 +28,14 @@ class GeodesicFpsLOD {
     std::vector<double> coveringRadius;  ///< [k]: covering radius of the first k+1 samples
   };
 
+  /// Farthest points of the domain, among `candidates` when given.
   static FarthestPoint::Result Sample(const Domain& d, size_t sampleNum, uint64_t seed,
-                                      Progress progress = Progress(nullptr)) {
+                                      Progress progress = Progress(nullptr),
+                                      const std::vector<int>* candidates = nullptr) {
     FarthestPoint::Param fp;
     fp.sampleNum = sampleNum;
     fp.seed = seed;
+    fp.candidates = candidates;
     FarthestPoint::Result r;
     d.WithSearch([&](auto& search) { r = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); });
     return r;

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-#include "farthest_point.h"
+#include "geodesic_fps_lod.h"
 #include "geodesic_delaunay.h"
 #include "geodesic_poisson_lod.h"
 
@@ -84,12 +84,7 @@ class GeodesicLodPyramid {
   // The first `count` samples in farthest-point order among `samples`, then the rest.
   static std::vector<int> Nested(const Domain& d, const std::vector<int>& samples, size_t count, uint64_t seed,
                                  Progress progress) {
-    FarthestPoint::Param fp;
-    fp.sampleNum = count;
-    fp.seed = seed;
-    fp.candidates = &samples;
-    FarthestPoint::Result f;
-    d.WithSearch([&](auto& search) { f = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); });
+    FarthestPoint::Result f = GeodesicFpsLOD<MeshType>::Sample(d, count, seed, progress, &samples);
     std::vector<char> taken(d.size(), 0);
     for (int s : f.samples) taken[s] = 1;
     std::vector<int> order = std::move(f.samples);
