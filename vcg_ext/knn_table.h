@@ -114,16 +114,26 @@ class KnnTable {
       vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())));
       ParallelChunks(rest.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
         typename vcg::KdTree<Scalar>::PriorityQueue heap;
+        std::vector<unsigned int> ball;
+        std::vector<Scalar> ballD2;
         std::vector<std::pair<double, int>> row;
         for (size_t r = b; r < e; ++r) {
           const int i = rest[r];
+          const vcg::Point3d q = vcg::Point3d::Construct(pos[i]);
+          auto d2 = [&](int j) { return (vcg::Point3d::Construct(pos[j]) - q).SquaredNorm(); };
+          // The tree breaks ties at the k-th distance arbitrarily: take every
+          // point as near as the k-th (a little more, for rounding), then rank
+          // them exactly, ties by index, like the grid.
           tree.doQueryK(pos[i], k + 1, heap);
+          double kth = 0;
+          for (int h = 0; h < heap.getNofElements(); ++h) kth = std::max(kth, d2(heap.getIndex(h)));
+          ball.clear(), ballD2.clear();  // the query appends
+          tree.doQueryDist(pos[i], Scalar(std::sqrt(kth) * (1 + 1e-5) + 1e-30), ball, ballD2);
           row.clear();
-          for (int h = 0; h < heap.getNofElements(); ++h)
-            if (heap.getIndex(h) != i)
-              row.emplace_back((vcg::Point3d::Construct(pos[heap.getIndex(h)]) - vcg::Point3d::Construct(pos[i])).SquaredNorm(),
-                               heap.getIndex(h));
-          std::sort(row.begin(), row.end());
+          for (unsigned int j : ball)
+            if (int(j) != i) row.emplace_back(d2(int(j)), int(j));
+          std::nth_element(row.begin(), row.begin() + (k - 1), row.end());
+          std::sort(row.begin(), row.begin() + k);
           for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = row[c].second;
         }
       });

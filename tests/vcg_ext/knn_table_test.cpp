@@ -1,0 +1,61 @@
+// The cell-grid kNN table is exact: every row equals a brute-force search,
+// nearest first, ties broken by index, on clouds built to be awkward for a
+// grid (duplicates, ties on a lattice, far outliers, a thin line).
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <random>
+#include <utility>
+#include <vector>
+#include <vcg_ext/knn_table.h>
+
+namespace {
+typedef vcg::Point3f P;
+
+std::vector<std::vector<int>> BruteForce(const std::vector<P>& pos, int k) {
+  std::vector<std::vector<int>> rows(pos.size());
+  std::vector<std::pair<double, int>> all;
+  for (size_t i = 0; i < pos.size(); ++i) {
+    all.clear();
+    for (size_t j = 0; j < pos.size(); ++j) {
+      if (j == i) continue;
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += (double(pos[j][a]) - double(pos[i][a])) * (double(pos[j][a]) - double(pos[i][a]));
+      all.emplace_back(d2, int(j));
+    }
+    std::partial_sort(all.begin(), all.begin() + k, all.end());
+    for (int c = 0; c < k; ++c) rows[i].push_back(all[c].second);
+  }
+  return rows;
+}
+
+void ExpectExact(const std::vector<P>& pos, int k) {
+  const auto t = vcg_ext::KnnTable<float>::Compute(pos, k);
+  ASSERT_EQ(t.size(), pos.size());
+  const auto want = BruteForce(pos, k);
+  size_t wrong = 0;
+  for (size_t i = 0; i < pos.size(); ++i) wrong += !std::equal(want[i].begin(), want[i].end(), t.Row(i));
+  EXPECT_EQ(wrong, 0u) << "of " << pos.size() << " rows, k = " << k;
+}
+}  // namespace
+
+TEST(KnnTable, EqualsBruteForceOnANoisyBumpySurface) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<P> pos;
+  for (int i = 0; i < 4000; ++i) {
+    const float x = u(rng), y = u(rng);
+    pos.emplace_back(x, y, 0.1f * std::sin(9 * x) * std::cos(7 * y) + 0.002f * u(rng));
+  }
+  for (int k : {1, 10, 20}) ExpectExact(pos, k);
+}
+
+TEST(KnnTable, EqualsBruteForceWithDuplicatesLatticeTiesAndOutliers) {
+  std::vector<P> pos;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) pos.emplace_back(i * 0.01f, j * 0.01f, 0.f);  // equal distances everywhere
+  for (int d = 0; d < 30; ++d) pos.emplace_back(0.2f, 0.2f, 0.f);              // 30 copies of one lattice point
+  for (int d = 0; d < 25; ++d) pos.emplace_back(0.33f, 0.21f, 0.f);            // a pile off the lattice
+  for (int o = 0; o < 6; ++o) pos.emplace_back(5.f + o, -3.f * o, 2.f);        // far, lonely outliers
+  for (int l = 0; l < 300; ++l) pos.emplace_back(-1.f, 0.f, l * 1e-3f);        // a thin line
+  for (int k : {1, 20, 30}) ExpectExact(pos, k);
+}
