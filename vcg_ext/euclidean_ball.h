@@ -44,7 +44,7 @@ class EuclideanBall {
 
  private:
   const std::vector<Coord>& pos_;
-  std::unique_ptr<vcg::KdTree<Scalar>> tree_;
+  std::shared_ptr<vcg::KdTree<Scalar>> tree_;  // shared by copies: its queries write no member
   std::vector<unsigned int> idx_;
   std::vector<Scalar> sq_;
 };

@@ -1,10 +1,14 @@
 #ifndef VCG_EXT_POISSON_DISK_H
 #define VCG_EXT_POISSON_DISK_H
 // Poisson-disk sampling by disk searches in any metric.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 #include "progress.h"
 #include "seeded_order.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace vcg_ext {
 
@@ -24,25 +28,70 @@ class PoissonDisk {
   };
 
   /// DiskSearch: `Visit(int src, Scalar r, F f)` calling f(i, d) for the points
-  /// within r of src (BoundedDijkstra, EuclideanBall). Cost: the sum of the
-  /// disks' sizes, about n times the points per disk.
+  /// within r of src (BoundedDijkstra, EuclideanBall, FastMarching), and
+  /// copyable: each further thread searches with its own copy. Cost: the sum
+  /// of the disks' sizes, about n times the points per disk.
+  ///
+  /// On several threads the disks of a batch of candidates (the next points
+  /// in the order still uncovered) are searched in parallel, then taken in
+  /// order: a candidate covered by an earlier one of its batch is dropped with
+  /// its disk. A disk does not depend on the samples before it, so the result
+  /// is the same as one point at a time, on any number of threads.
   template <class DiskSearch>
   static Result Compute(size_t n, DiskSearch& disk, const Param& p, Progress progress = Progress(nullptr)) {
     Result r;
     r.owner.assign(n, -1);
-    size_t covered = 0;
     const std::vector<int> order = SeededOrder(n, p.seed);
-    for (size_t o = 0; o < n; ++o) {
-      const int s = order[o];
-      if (r.owner[s] >= 0) continue;
-      const int id = int(r.samples.size());
-      r.samples.push_back(s);
-      disk.Visit(s, p.radius, [&](int i, double) {
-        if (r.owner[i] < 0) { r.owner[i] = id; ++covered; }
-      });
+    const int threads = Threads();
+    std::vector<DiskSearch> copies(size_t(threads - 1), disk);
+    std::vector<int> cand;
+    std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
+    size_t covered = 0, o = 0, searched = 0, reached = 0;
+    while (o < n) {
+      // Batches small enough that their disks rarely overlap: their total
+      // expected size is at most an eighth of the points still uncovered.
+      const size_t perDisk = searched ? std::max<size_t>(1, reached / searched) : n;
+      const size_t batch = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, (n - covered) / (8 * perDisk)));
+      cand.clear();
+      for (; o < n && cand.size() < batch; ++o)
+        if (r.owner[order[o]] < 0) cand.push_back(order[o]);
+      if (members.size() < cand.size()) members.resize(cand.size());
+      const long long m = (long long)cand.size();
+#pragma omp parallel for schedule(dynamic, 8) if (m > 1)
+      for (long long c = 0; c < m; ++c) {
+        DiskSearch& search = ThreadIndex() == 0 ? disk : copies[size_t(ThreadIndex() - 1)];
+        std::vector<int>& list = members[size_t(c)];
+        list.clear();
+        search.Visit(cand[size_t(c)], p.radius, [&](int i, double) { list.push_back(i); });
+      }
+      for (size_t c = 0; c < cand.size(); ++c) {
+        searched += 1, reached += members[c].size();
+        if (r.owner[cand[c]] >= 0) continue;
+        const int id = int(r.samples.size());
+        r.samples.push_back(cand[c]);
+        for (int i : members[c])
+          if (r.owner[i] < 0) r.owner[i] = id, ++covered;
+      }
       progress(covered, n, "Poisson-disk sampling");
     }
     return r;
+  }
+
+ private:
+  static constexpr size_t kMaxBatch = 4096;
+  static int Threads() {
+#ifdef _OPENMP
+    return std::max(1, omp_get_max_threads());
+#else
+    return 1;
+#endif
+  }
+  static int ThreadIndex() {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
   }
 };
 

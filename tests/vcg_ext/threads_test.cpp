@@ -81,3 +81,30 @@ TEST(Threads, GeodesicDomainIsIdenticalOnOneAndTwoThreads) {
   EXPECT_EQ(a.graph.adj, b.graph.adj);
   EXPECT_TRUE(SameBytes(a.graph.w, b.graph.w));
 }
+
+// Poisson-disk sampling searches a batch of disks in parallel (one search copy
+// per thread): the same samples and regions for all three searches, for small
+// disks (large batches) and for disks of a tenth of the points (batches of one).
+TEST(Threads, PoissonDisksAreIdenticalOnOneAndTwoThreadsForEverySearch) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: one thread only";
+#endif
+  test::TMesh cloud, mesh;
+  test::HeightField(cloud, 200, [](float x, float y) { return test::HalfBumpy(x, y); });
+  test::GridMesh(mesh, 120, [](float x, float y) { return test::HalfBumpy(x, y); });
+  struct Case { test::TMesh* m; vcg_ext::Metric metric; double radius; };
+  for (const Case& c : {Case{&cloud, vcg_ext::Metric::Euclidean, 0.01}, Case{&cloud, vcg_ext::Metric::CurvatureDensity, 0.01},
+                        Case{&cloud, vcg_ext::Metric::WeightedEq3, 0.2}, Case{&mesh, vcg_ext::Metric::WeightedEq3, 0.015},
+                        Case{&mesh, vcg_ext::Metric::Geodesic, 0.25}}) {
+    Poisson::Param p;
+    p.domain.metric = c.metric;
+    p.radius = c.radius;
+    p.seed = 11;
+    p.regions = vcg_ext::Regions::Disk;
+    const auto a = OnThreads(1, [&] { return Poisson::Compute(*c.m, p); });
+    const auto b = OnThreads(2, [&] { return Poisson::Compute(*c.m, p); });
+    EXPECT_GT(a.vertIndex.size(), c.radius < 0.1 ? 500u : 3u);
+    EXPECT_EQ(a.vertIndex, b.vertIndex);
+    EXPECT_EQ(a.regionOf, b.regionOf);
+  }
+}
