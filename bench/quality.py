@@ -48,7 +48,7 @@ MESHLAB_RADIUS_VARIANCE = 3.0  # adaptive Poisson: radii from r to 3 r by curvat
 DENSITY = "Curvature-density geodesic"
 EQ3 = "Weighted geodesic (eq. 3)"
 UNWEIGHTED = "Geodesic (unweighted)"
-DEFAULT_ADAPTIVITY, DEFAULT_EXPONENT = 10.0, 1.0
+DEFAULT_ADAPTIVITY, DEFAULT_EXPONENT = 3.0, 1.0  # the plugin's defaults
 
 # Tuning sweeps (ours, Poisson), at the rates where the weighting matters most.
 TUNE_ADAPTIVITY = [1.0, 3.0, 10.0, 30.0, 100.0]
