@@ -103,9 +103,34 @@ class NormalProjection {
     void Mark(const Tri*) const {}
   };
 
+  // Line-triangle crossing (Moeller-Trumbore, either face, in double) for the
+  // grid's ray walk. vcglib's own test calls a line parallel when the
+  // determinant is below an absolute 1e-6, which rejects every triangle
+  // shorter than about 1e-3 units (a scan in metres): here "parallel" is
+  // relative to the triangle's size. A tiny margin on the barycentric bounds
+  // keeps a line through a shared edge or corner from slipping between
+  // neighbouring triangles by rounding.
+  struct LineHit {
+    template <class S>
+    bool operator()(const Tri& f, const vcg::Ray3<S>& ray, S& t) const {
+      const vcg::Point3d o = vcg::Point3d::Construct(ray.Origin()), d = vcg::Point3d::Construct(ray.Direction());
+      const vcg::Point3d v0 = vcg::Point3d::Construct(f.p[0]);
+      const vcg::Point3d e1 = vcg::Point3d::Construct(f.p[1]) - v0, e2 = vcg::Point3d::Construct(f.p[2]) - v0;
+      const vcg::Point3d pv = d ^ e2;
+      const double det = e1 * pv;
+      if (!(std::abs(det) > 1e-12 * e1.Norm() * e2.Norm())) return false;  // parallel, or a degenerate triangle
+      const double inv = 1.0 / det, eps = 1e-9;
+      const vcg::Point3d tv = o - v0, qv = tv ^ e1;
+      const double u = (tv * pv) * inv, v = (d * qv) * inv, hit = (e2 * qv) * inv;
+      if (u < -eps || v < -eps || u + v > 1 + eps || hit < 0) return false;
+      t = S(hit);
+      return true;
+    }
+  };
+
   // Distance along the unit direction d to the first crossing, +inf if none within maxDist.
   static double Cross(vcg::GridStaticPtr<Tri, Scalar>& grid, const Coord& o, const Coord& d, double maxDist) {
-    vcg::RayTriangleIntersectionFunctor<true> hit;
+    LineHit hit;
     NoMark mark;
     Scalar t = 0;
     const vcg::Ray3<Scalar> ray(o, d);

@@ -79,20 +79,24 @@ TEST(NormalProjection, CountsTheLinesThatMissASmallerSurface) {
   for (size_t i = 0; i < ref.vert.size(); ++i) EXPECT_EQ(std::isnan(r.distance[i]), !below(ref.vert[i]));
 }
 
-TEST(NormalProjection, MatchesTheGapBetweenConcentricSpheres) {
-  const float r1 = 1.0f, r2 = 1.25f;
-  test::TMesh ref, surf;
-  test::Sphere(ref, 2000, r1);
-  for (auto& v : ref.vert) v.N() = v.P() / v.P().Norm();
-  vcg::tri::Sphere(surf, 5);  // 20 * 4^5 triangles on the unit sphere
-  for (auto& v : surf.vert) v.P() *= r2;
-  const auto r = NP::Compute(ref, surf, MaxDist(1));
-  EXPECT_EQ(r.hitNum, ref.vert.size());
-  // Flat triangles lie inside the sphere by at most the sagitta of an edge.
-  const double edge = r2 * 1.1 / 32, sagitta = edge * edge / (2 * r2);
-  EXPECT_GT(r.min, r2 - r1 - sagitta);
-  EXPECT_LE(r.max, r2 - r1 + 1e-5);
-  EXPECT_NEAR(r.mean, r2 - r1, sagitta);
+// At any scale: a scan in metres has triangles of a millimetre, where a test
+// with an absolute epsilon would miss them all.
+TEST(NormalProjection, MatchesTheGapBetweenConcentricSpheresAtAnyScale) {
+  for (const float scale : {1.f, 1e-3f, 1e3f}) {
+    const float r1 = 1.0f * scale, r2 = 1.25f * scale;
+    test::TMesh ref, surf;
+    test::Sphere(ref, 2000, r1);
+    for (auto& v : ref.vert) v.N() = v.P() / v.P().Norm();
+    vcg::tri::Sphere(surf, 5);  // 20 * 4^5 triangles on the unit sphere
+    for (auto& v : surf.vert) v.P() *= r2;
+    const auto r = NP::Compute(ref, surf, MaxDist(scale));
+    EXPECT_EQ(r.hitNum, ref.vert.size()) << "scale " << scale;
+    // Flat triangles lie inside the sphere by at most the sagitta of an edge.
+    const double edge = r2 * 1.1 / 32, sagitta = edge * edge / (2 * r2);
+    EXPECT_GT(r.min, r2 - r1 - sagitta) << "scale " << scale;
+    EXPECT_LE(r.max, (r2 - r1) * (1 + 1e-5)) << "scale " << scale;
+    EXPECT_NEAR(r.mean, r2 - r1, sagitta) << "scale " << scale;
+  }
 }
 
 TEST(NormalProjection, NamesBadInputs) {
