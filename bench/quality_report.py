@@ -19,6 +19,18 @@ OURS = [k for k in q.METHODS if k.startswith("ours")]
 PEERS = [k for k in q.METHODS if not k.startswith("ours")]
 
 
+def speed_section():
+    """The speed table and time-against-size plot of bench/speed.py (docs/benchmarks-speed.md),
+    so this page holds both halves of the benchmark."""
+    speed = q.ROOT / "docs" / "benchmarks-speed.md"
+    if not speed.is_file():
+        return ["", "## Speed and scale", "", "Not measured yet: run `bench/speed.py`."]
+    body = speed.read_text().split("\n", 1)[1].strip()  # without its title
+    return ["", "## Speed and scale (1M to 14M points)", "",
+            "Copied from `docs/benchmarks-speed.md`, which `bench/speed.py` writes (a separate run: it needs an "
+            "otherwise idle machine).", "", body.replace("\n## ", "\n### ")]
+
+
 def load_runs():
     runs = {}
     for path in (q.OUT / "runs").glob("*/*.json"):
@@ -475,5 +487,6 @@ def write(models, rates, measure, log):
                 row = runs.get((model, m, r))
                 if row and row.get("parameter"):
                     doc.append(f"| {model} | {label(m)} | {r:.0%} | {row['parameter']} |")
+    doc += speed_section()
     DOC.write_text("\n".join(doc) + "\n")
     log(f"wrote {DOC.relative_to(q.ROOT)} ({time.strftime('%Y-%m-%d %H:%M')})")
