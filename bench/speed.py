@@ -8,9 +8,13 @@ Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of 
   MeshLab                   pymeshlab, the scan without normals, at the count ours produced
   lod_cli                   the standalone C++ driver (bench/lod_cli.cpp), normals estimated:
                             the pipeline without MeshLab's mesh (about 100 bytes a vertex)
+  peers                     CGAL's grid and hierarchy simplification, Open3D's voxel and farthest-point
+                            down-sampling (bench/peers/peer_simplify, when built: bench/run_quality
+                            builds it), at ours' count; a method that does not finish in
+                            --peer-timeout is not run on larger scans
 The disk radius r = 0.00283 sqrt(1e6 / n) gives about 10% of the points on these scans.
 
-usage: bench/speed.py [--sizes 1e6 5e6 14e6] [--scans DIR] [--timeout S] > run.jsonl
+usage: bench/speed.py [--sizes 1e6 5e6 14e6] [--scans DIR] [--timeout S] [--peer-timeout S] > run.jsonl
        bench/speed.py --replot FILE   (the table and plot again, from a run's log; docs/benchmarks-speed.jsonl is the last)
 writes docs/benchmarks-speed.md and docs/images/speed_vs_size.png; each size's results are also
 printed as one JSON line (the log).
@@ -26,6 +30,10 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PLUGIN = ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"
 CLI = ROOT / "build" / "lod_cli"
+PEER_TOOL = ROOT / "build" / "bench-peers" / "peer_simplify"
+PEERS = {"cgal_grid": "CGAL grid", "cgal_hierarchy": "CGAL hierarchy", "open3d_voxel": "Open3D voxel",
+         "open3d_fps": "Open3D farthest point"}
+PEER_TOLERANCE = 0.1  # the grid-like peers search a cell size for the count: within 10%, as MeshLab's
 sys.path.insert(0, str(ROOT / "bench"))
 
 
@@ -94,6 +102,22 @@ def measure_cli(ply, n, timeout):
             "peak_mb": float(kv["peak_rss_mb"]), "load": load, "stages": stages, "wall": time.perf_counter() - t}
 
 
+def measure_peer(method, ply, count, out, timeout):
+    """One peer in a fresh process: the time of its final run (at the size its search found),
+    the whole search's, and the process's peak memory (GNU time's maximum resident set)."""
+    load = load1()
+    try:
+        proc = subprocess.run(["/usr/bin/time", "-f", "peak_kb %M", str(PEER_TOOL), ply, out, method, str(count),
+                               "--tolerance", str(PEER_TOLERANCE)], capture_output=True, text=True, timeout=timeout,
+                              check=True)
+    except subprocess.TimeoutExpired:
+        return None
+    info = json.loads(proc.stdout.strip().splitlines()[-1])
+    peak_kb = next(int(line.split()[1]) for line in proc.stderr.splitlines() if line.startswith("peak_kb"))
+    return {"time": info["seconds"], "search": info["search_seconds"], "samples": info["count"],
+            "peak_mb": peak_kb / 1024, "load": load}
+
+
 def scan_file(scans, n, normals):
     from make_scan import make_scan, write_ply
     path = scans / f"scan_{n}{'_normals' if normals else ''}.ply"
@@ -113,6 +137,7 @@ def main():
     ap.add_argument("--sizes", type=float, nargs="+", default=[1e6, 5e6, 14e6])
     ap.add_argument("--scans", default="/tmp/geodesic-lod-scans")
     ap.add_argument("--timeout", type=float, default=900)
+    ap.add_argument("--peer-timeout", type=float, default=300)
     ap.add_argument("--replot", metavar="LOG", help="rebuild the table and plot from a run's JSON lines")
     args = ap.parse_args()
     if args.replot:
@@ -136,7 +161,13 @@ def main():
         count = est["samples"] if est else int(0.1 * n)
         ml = measure(me + ["meshlab", bare, str(n), str(count)], args.timeout)
         cli = measure_cli(bare, n, args.timeout)
-        rows.append({"n": n, "est": est, "given": given, "meshlab": ml, "cli": cli})
+        peers = {}
+        for method in PEERS if PEER_TOOL.is_file() else []:
+            if any(method in r["peers"] and r["peers"][method] is None for r in rows):
+                continue  # did not finish on a smaller scan
+            peers[method] = measure_peer(method, withn, count, str(scans / "peer_out.ply"), args.peer_timeout)
+        rows.append({"n": n, "est": est, "given": given, "meshlab": ml, "cli": cli, "peers": peers,
+                     "peer_timeout": args.peer_timeout})
         print(json.dumps(rows[-1]), flush=True)
 
     write_table(rows)
@@ -166,6 +197,21 @@ def write_table(rows):
                      f"{fmt(given, 'time', '{:.1f} s')} | {fmt(ml, 'time', '{:.1f} s')} | {ratio} | "
                      f"{fmt(est, 'peak_mb', '{:.0f} MB')} | {bpp} | {fmt(cli, 'time', '{:.1f} s')} | "
                      f"{fmt(cli, 'peak_mb', '{:.0f} MB')} | {cbpp} | {loads} |")
+    if any(r.get("peers") for r in rows):
+        lines += ["", "Peers (`bench/peers/peer_simplify`, the scan with normals, asked for ours' count; the grid-like "
+                  f"ones search their cell size until within {PEER_TOLERANCE:.0%} of it). Time is one run at the size "
+                  "found, as for ours; the whole search is given beside it:", "",
+                  "| points | method | samples | time | whole search | peak | load |", "|---|---|---|---|---|---|---|"]
+        for r in rows:
+            for method, label in PEERS.items():
+                if method not in r.get("peers", {}):
+                    continue
+                p = r["peers"][method]
+                if p is None:
+                    lines.append(f"| {r['n'] / 1e6:g}M | {label} | | did not finish in {r['peer_timeout']:.0f} s | | | |")
+                else:
+                    lines.append(f"| {r['n'] / 1e6:g}M | {label} | {p['samples']} | {p['time']:.1f} s | "
+                                 f"{p['search']:.1f} s | {p['peak_mb']:.0f} MB | {p['load']:.1f} |")
     last = rows[-1]["cli"]
     if last:
         lines += ["", f"Where the time goes (lod_cli, {rows[-1]['n'] / 1e6:g}M points, normals estimated):", "",
@@ -186,6 +232,10 @@ def plot(rows):
         pts = [(r["n"] / 1e6, r[key]["time"]) for r in rows if r[key]]
         if pts:
             ax.plot(*zip(*pts), style, label=label)
+    for method, label in PEERS.items():
+        pts = [(r["n"] / 1e6, r["peers"][method]["time"]) for r in rows if (r.get("peers") or {}).get(method)]
+        if pts:
+            ax.plot(*zip(*pts), ":", marker=".", label=label + " (one run)")
     ax.set_xlabel("points (millions)")
     ax.set_ylabel("time (s)")
     ax.set_title("Poisson-disk LOD at ~10% of the points, 2 cores")
