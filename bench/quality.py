@@ -85,6 +85,18 @@ TUNING = {
        for c in TUNE_EXPONENT if c != DEFAULT_EXPONENT},
 }
 
+# The spread over seeds: two more seeds of ours and of random, at the tuning rates on the two
+# smaller models (seed 0 is the main run).
+SEEDS = [1, 2]
+SEED_MODELS = ["bunny", "dragon"]
+SEED_RUNS = {
+    **{f"seed{s}_ours_density": (f"ours, curvature-density, seed {s}",
+                                 ours_poisson(DENSITY, adaptivity=DEFAULT_ADAPTIVITY, seed=s)) for s in SEEDS},
+    **{f"seed{s}_random": (f"uniform random, seed {s}", lambda ctx, target, s=s: ctx.random(target, seed=s))
+       for s in SEEDS},
+}
+ALL_RUNS = {**METHODS, **TUNING, **SEED_RUNS}
+
 
 class Model:
     """One shared scan with normals (layer 0 of a MeshSet), and the samplers run on it."""
@@ -204,11 +216,11 @@ class Model:
         param = info["parameter"] + ("" if info["normals"] else "; normals of the nearest input points")
         return dict(points=points, normals=normals, seconds=info["seconds"], parameter=param)
 
-    def random(self, target):
+    def random(self, target, seed=0):
         t = time.perf_counter()
-        idx = np.random.default_rng(0).choice(len(self.points), target, replace=False)
+        idx = np.random.default_rng(seed).choice(len(self.points), target, replace=False)
         return dict(points=self.points[idx], normals=self.normals[idx], seconds=time.perf_counter() - t,
-                    parameter="seed 0")
+                    parameter=f"seed {seed}")
 
     def nearest_normals(self, points):
         if self._tree is None:
@@ -257,7 +269,7 @@ def reconstruction_error(model, lod):
 
 
 def evaluate(model, method, target):
-    lod = METHODS.get(method, TUNING.get(method))[1](model, target)
+    lod = ALL_RUNS[method][1](model, target)
     if lod is None:
         return dict(skipped=f"not run above {WLOP_MAX_SAMPLES} samples")
     plane = plane_fit_error(model.points, lod["points"]) / model.diag
@@ -299,7 +311,7 @@ def run_all(models, rates, methods, log):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help=f"models {QUICK_MODELS}, rates {QUICK_RATES}")
-    ap.add_argument("--no-tuning", action="store_true", help="skip the sweeps of a and c")
+    ap.add_argument("--no-tuning", action="store_true", help="skip the sweeps of a and c, and the seeds")
     ap.add_argument("--report-only", action="store_true", help="only rewrite the report from the cache")
     ap.add_argument("--fresh", action="store_true", help="clear the cache of runs first")
     ap.add_argument("--plugin", default=str(PLUGIN))
@@ -318,6 +330,7 @@ def main():
         run_all(models, rates, list(METHODS), log)
         if not args.no_tuning:
             run_all(models, [r for r in TUNE_RATES if r in rates], list(TUNING), log)
+            run_all([m for m in models if m in SEED_MODELS], [r for r in TUNE_RATES if r in rates], list(SEED_RUNS), log)
     sys.path.insert(0, str(ROOT / "bench"))
     import quality_report
     quality_report.write(models, rates, measure_name(), log)

@@ -51,7 +51,32 @@ def value(runs, model, method, rate, what):
 
 
 def label(method):
-    return q.METHODS.get(method, q.TUNING.get(method, (method,)))[0]
+    return q.ALL_RUNS.get(method, (method,))[0]
+
+
+def seed_section(runs, models, rates):
+    """Mean reconstruction error over seeds 0, 1, 2 and its spread, for ours and for random."""
+    models = [m for m in models if m in q.SEED_MODELS]
+    lines = ["## Spread over seeds", "",
+             f"Seeds 0, {', '.join(map(str, q.SEEDS))} of ours (curvature-density, a = {q.DEFAULT_ADAPTIVITY:g}) and of "
+             "uniform random: mean reconstruction error (‰ of the diagonal) and spread ((max - min) / mean).", "",
+             "| model | rate | ours, mean | ours, spread | random, mean | random, spread | ours below random for every seed |",
+             "|---|---:|---:|---:|---:|---:|---|"]
+    found = False
+    for m in models:
+        for r in rates:
+            errs = {}
+            for base in ("ours_density", "random"):
+                keys = [base] + [f"seed{s}_{base}" for s in q.SEEDS]
+                errs[base] = [runs[(m, k, r)]["recon"]["mean"] for k in keys if (m, k, r) in runs]
+            if len(errs["ours_density"]) < 2 or len(errs["random"]) < 2:
+                continue
+            found = True
+            o, u = np.array(errs["ours_density"]), np.array(errs["random"])
+            below = "yes" if o.max() < u.min() else "no"
+            lines.append(f"| {m} | {r:.0%} | {1e3 * o.mean():.3f} | {np.ptp(o) / o.mean():.0%} | {1e3 * u.mean():.3f} | "
+                         f"{np.ptp(u) / u.mean():.0%} | {below} |")
+    return lines + [""] if found else []
 
 
 def rate_header(rates):
@@ -478,7 +503,8 @@ def write(models, rates, measure, log):
             bad = sorted(((x, m, r) for (m, r), x in d.items() if x > 1), reverse=True)
             cells = ", ".join(f"{m} {r:.0%} ({x:.2f})" for x, m, r in bad) or "nowhere"
             doc.append(f"- a = {a_of[key]:g}: {cells} ({len(bad)} of {len(d)} cells)")
-    doc += ["", "## Actual sample counts (deviation from the target)", "",
+    doc += [""] + seed_section(runs, models, tune_rates)
+    doc += ["## Actual sample counts (deviation from the target)", "",
             count_table(runs, models, rates, methods), "",
             "## Parameters the searches found", "", "| model | method | rate | parameter |", "|---|---|---:|---|"]
     for model in models:
