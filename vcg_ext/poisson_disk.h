@@ -3,6 +3,7 @@
 // Poisson-disk sampling by disk searches in any metric.
 #include <algorithm>
 #include <cstdint>
+#include <new>
 #include <vector>
 #include "progress.h"
 #include "seeded_order.h"
@@ -57,13 +58,20 @@ class PoissonDisk {
         if (r.owner[order[o]] < 0) cand.push_back(order[o]);
       if (members.size() < cand.size()) members.resize(cand.size());
       const long long m = (long long)cand.size();
+      bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
 #pragma omp parallel for schedule(dynamic, 8) if (m > 1)
       for (long long c = 0; c < m; ++c) {
         DiskSearch& search = ThreadIndex() == 0 ? disk : copies[size_t(ThreadIndex() - 1)];
         std::vector<int>& list = members[size_t(c)];
         list.clear();
-        search.Visit(cand[size_t(c)], p.radius, [&](int i, double) { list.push_back(i); });
+        try {
+          search.Visit(cand[size_t(c)], p.radius, [&](int i, double) { list.push_back(i); });
+        } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+          outOfMemory = true;
+        }
       }
+      if (outOfMemory) throw std::bad_alloc();
       for (size_t c = 0; c < cand.size(); ++c) {
         searched += 1, reached += members[c].size();
         if (r.owner[cand[c]] >= 0) continue;
