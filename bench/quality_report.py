@@ -436,8 +436,9 @@ def write(models, rates, measure, log):
         f"- plane-fit error (no reconstruction): the distance from each input point to the "
         f"least-squares plane through its {q.PLANE_NEIGHBOURS} nearest LOD points.",
         "",
-        "Times are of one sampling run at the final parameter (not of the count search), on one "
-        "thread, on a machine with "
+        "Times: ours, the whole filter call (Poisson with its radius search for the count), on all threads (OpenMP); "
+        "the others, one run at the parameter their count search found (the search not counted), as their tools run it "
+        "(MeshLab's and CGAL's on one thread), on a machine with "
         f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
         "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
         "",

@@ -23,6 +23,7 @@ import argparse
 import json
 import os
 import pathlib
+import signal
 import subprocess
 import sys
 import time
@@ -106,14 +107,21 @@ def measure_peer(method, ply, count, out, timeout):
     """One peer in a fresh process: the time of its final run (at the size its search found),
     the whole search's, and the process's peak memory (GNU time's maximum resident set)."""
     load = load1()
+    # Its own process group: on a timeout the tool itself must stop, not only GNU time above it,
+    # or it would keep a core busy under the next measurements.
+    proc = subprocess.Popen(["/usr/bin/time", "-f", "peak_kb %M", str(PEER_TOOL), ply, out, method, str(count),
+                             "--tolerance", str(PEER_TOLERANCE)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
     try:
-        proc = subprocess.run(["/usr/bin/time", "-f", "peak_kb %M", str(PEER_TOOL), ply, out, method, str(count),
-                               "--tolerance", str(PEER_TOLERANCE)], capture_output=True, text=True, timeout=timeout,
-                              check=True)
+        stdout, stderr = proc.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
         return None
-    info = json.loads(proc.stdout.strip().splitlines()[-1])
-    peak_kb = next(int(line.split()[1]) for line in proc.stderr.splitlines() if line.startswith("peak_kb"))
+    if proc.returncode:
+        raise subprocess.CalledProcessError(proc.returncode, proc.args, stdout, stderr)
+    info = json.loads(stdout.strip().splitlines()[-1])
+    peak_kb = next(int(line.split()[1]) for line in stderr.splitlines() if line.startswith("peak_kb"))
     return {"time": info["seconds"], "search": info["search_seconds"], "samples": info["count"],
             "peak_mb": peak_kb / 1024, "load": load}
 
@@ -212,6 +220,7 @@ def write_table(rows):
                 else:
                     lines.append(f"| {r['n'] / 1e6:g}M | {label} | {p['samples']} | {p['time']:.1f} s | "
                                  f"{p['search']:.1f} s | {p['peak_mb']:.0f} MB | {p['load']:.1f} |")
+        lines += [f"\n{r['note']}" for r in rows if r.get("note")]
     last = rows[-1]["cli"]
     if last:
         lines += ["", f"Where the time goes (lod_cli, {rows[-1]['n'] / 1e6:g}M points, normals estimated):", "",
