@@ -50,3 +50,9 @@ def mesh_set(points, normals=None):
         ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(points, dtype=np.float64),
                                    v_normals_matrix=np.asarray(normals, dtype=np.float64)), "cloud")
     return ms
+
+
+
+def parameter_defaults(name):
+    """A filter's parameters and their defaults on a small cloud, as pymeshlab reports them."""
+    return mesh_set(bumpy_points(10)).filter_parameter_values(name)

@@ -2,15 +2,14 @@
 import numpy as np
 import pymeshlab
 
-from conftest import bumpy_points, mesh_set
+from conftest import bumpy_points, mesh_set, parameter_defaults
 
 FILTER = "compute_scalar_by_normal_variation"
 
 
-def test_listed_with_its_parameters(plugin, capfd):
+def test_listed_with_its_parameters(plugin):
     assert FILTER in pymeshlab.filter_list()
-    pymeshlab.print_filter_parameter_list(FILTER)
-    out = capfd.readouterr().out
+    out = parameter_defaults(FILTER)
     assert "normalneighbors" in out and "recomputenormals" in out
 
 

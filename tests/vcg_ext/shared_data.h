@@ -12,6 +12,12 @@
 
 namespace test {
 
+/// CI=true: every test must run there, so a missing scan fails instead of skipping.
+inline bool InCi() {
+  const char* ci = std::getenv("CI");
+  return ci && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
 inline std::string SharedData(const std::string& name) {
   const char* env = std::getenv("GEODESIC_LOD_SHARED_DATA");
   return std::string(env ? env : GEODESIC_LOD_SHARED_DATA_DIR) + "/" + name;
@@ -51,4 +57,15 @@ inline bool ReadSharedPly(const std::string& path, TMesh& m) {
 }
 
 }  // namespace test
+
+/// Reads the shared scan `name` into the TMesh `m`, or skips the test saying
+/// why (fails in CI, where the scans must be).
+#define READ_SHARED_SCAN_OR_SKIP(name, m)                                                  \
+  do {                                                                                     \
+    const std::string path_ = test::SharedData(name);                                      \
+    if (!test::ReadSharedPly(path_, m)) {                                                  \
+      if (test::InCi()) FAIL() << "CI=true but the shared scan " << path_ << " is missing"; \
+      GTEST_SKIP() << "needs the shared scan " << path_ << " (present in CI, not in a user's clone)"; \
+    }                                                                                      \
+  } while (0)
 #endif

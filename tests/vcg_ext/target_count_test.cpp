@@ -137,8 +137,7 @@ TEST(TargetCount, RegionsCoverEveryPointAndHoldTheirSample) {
 
 TEST(TargetCount, ExactCountsOnTheBunnyScan) {
   test::TMesh m;
-  const std::string path = test::SharedData("bunny_35k.ply");
-  if (!test::ReadSharedPly(path, m)) GTEST_SKIP() << "needs the shared scan " << path << " (present in CI, not in a user's clone)";
+  READ_SHARED_SCAN_OR_SKIP("bunny_35k.ply", m);
   for (double rate : {0.5, 0.25, 0.10, 0.05, 0.02}) {
     const size_t n = size_t(rate * m.vn);
     LOD::Param p = Target(n);

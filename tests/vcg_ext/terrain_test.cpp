@@ -7,8 +7,7 @@
 
 TEST(Terrain, MeshFastMarchingAndPointGraphAgree) {
   test::TMesh m;
-  const std::string path = test::SharedData("terrain_n44w072_crop301x301.ply");
-  if (!test::ReadSharedPly(path, m)) GTEST_SKIP() << "needs the shared scan " << path << " (present in CI, not in a user's clone)";
+  READ_SHARED_SCAN_OR_SKIP("terrain_n44w072_crop301x301.ply", m);
   ASSERT_EQ(m.vn, 301 * 301);
   using Domain = vcg_ext::GeodesicDomain<float>;
   Domain::Param p;  // the paper's weighted metric, eq. 3
