@@ -1,7 +1,10 @@
 #ifndef VCG_EXT_CELL_GRID_H
 #define VCG_EXT_CELL_GRID_H
 // Points bucketed in cubic cells stored in Morton (Z-curve) order: near cells
-// at near positions, and a cell's points contiguous.
+// at near positions, and a cell's points contiguous. Cells keep the side asked
+// for however far apart the points lie: a key holds a cell's coordinates modulo
+// 2^21, so cells 2^21 sides apart share a key (a far outlier adds a point to
+// some cell's block, not a coarser grid for everyone).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,14 +28,14 @@ class CellGrid {
   typedef std::array<int64_t, 3> Cell;
   static constexpr int kBits = 21;  ///< per axis: Morton keys of 63 bits
 
-  /// Cells of side `h` (made larger when the box would need over 2^21 cells
-  /// per axis). Cost O(n log n), the sort on all threads.
+  /// Cells of side `h` (when h is not positive, the box's extent over 2^21).
+  /// Cost O(n log n), the sort on all threads.
   CellGrid(const std::vector<Coord>& pos, double h) {
     vcg::Box3d box;
     for (const Coord& p : pos) box.Add(vcg::Point3d::Construct(p));
     origin_ = box.min;
     const double extent = std::max({box.DimX(), box.DimY(), box.DimZ()});
-    h_ = std::max(h, extent / double((1 << kBits) - 2));
+    h_ = h > 0 ? h : extent / double(1 << kBits);
     if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1;  // all points coincide: one cell
     std::vector<std::pair<uint64_t, int>> kp(pos.size());
     for (size_t i = 0; i < pos.size(); ++i) kp[i] = {Key(CellOf(pos[i])), int(i)};
@@ -54,6 +57,12 @@ class CellGrid {
 
   double CellSide() const { return h_; }
   size_t size() const { return pts_.size(); }
+  /// The most points under one key: what a block search can cost.
+  size_t LargestCell() const {
+    size_t m = 0;
+    for (size_t c = 0; c + 1 < start_.size(); ++c) m = std::max(m, size_t(start_[c + 1] - start_[c]));
+    return m;
+  }
   /// The r-th point in cell order.
   int Point(size_t r) const { return pts_[r]; }
 
@@ -66,9 +75,11 @@ class CellGrid {
     return order;
   }
 
+  /// The cell holding p (coordinates from 0; a point beyond 2^62 cells gets a
+  /// cell that does not hold it, so Margin is negative and nothing is certified).
   Cell CellOf(const Coord& p) const {
     Cell c;
-    for (int a = 0; a < 3; ++a) c[a] = int64_t(std::floor((double(p[a]) - origin_[a]) / h_));
+    for (int a = 0; a < 3; ++a) c[a] = int64_t(std::min(std::floor((double(p[a]) - origin_[a]) / h_), 0x1p62));
     return c;
   }
   /// Distance from p (inside cell c) to the outside of the block of cells
@@ -82,14 +93,14 @@ class CellGrid {
     return m;
   }
   /// Calls f(begin, end) with the ranges (in cell order) of the non-empty
-  /// cells within `ring` cells of c along every axis.
+  /// cells within `ring` cells of c along every axis (with the points of
+  /// cells sharing their keys: farther away, so never wrongly certified).
   template <class F>
   void ForBlock(const Cell& c, int ring, F&& f) const {
-    const int64_t top = (int64_t(1) << kBits) - 1;
     for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
       for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
         for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
-          if (x < 0 || y < 0 || z < 0 || x > top || y > top || z > top) continue;
+          if (x < 0 || y < 0 || z < 0) continue;
           const uint64_t k = Key({x, y, z});
           const auto it = std::lower_bound(key_.begin(), key_.end(), k);
           if (it != key_.end() && *it == k) f(start_[it - key_.begin()], start_[it - key_.begin() + 1]);
@@ -118,7 +129,7 @@ class CellGrid {
   }
 
  private:
-  static uint64_t Spread(uint64_t v) {  // 21 bits to every third bit
+  static uint64_t Spread(uint64_t v) {  // the low 21 bits to every third bit
     v &= 0x1fffff;
     v = (v | v << 32) & 0x1f00000000ffffULL;
     v = (v | v << 16) & 0x1f0000ff0000ffULL;

@@ -59,3 +59,24 @@ TEST(KnnTable, EqualsBruteForceWithDuplicatesLatticeTiesAndOutliers) {
   for (int l = 0; l < 300; ++l) pos.emplace_back(-1.f, 0.f, l * 1e-3f);        // a thin line
   for (int k : {1, 20, 30}) ExpectExact(pos, k);
 }
+
+// A single stray point far away (a bird, a multipath return) must not make the
+// cells coarse: a grid sized to the bounding box put the whole scan into one
+// cell, and every query searched all of it (quadratic).
+TEST(KnnTable, AFarOutlierKeepsTheCellsSmallAndTheTableExact) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> g(0, 1);
+  std::vector<P> pos;
+  for (int i = 0; i < 6000; ++i) {
+    P p(g(rng), g(rng), g(rng));
+    pos.push_back(p / p.Norm());
+  }
+  for (float far : {1e9f, -3e7f}) {
+    std::vector<P> withOutlier = pos;
+    withOutlier.emplace_back(far, 0.5f * far, 2.f);
+    const int k = 20;
+    const vcg_ext::CellGrid<float> grid(withOutlier, vcg_ext::KnnTable<float>::CellSide(withOutlier, k));
+    EXPECT_LT(grid.LargestCell(), withOutlier.size() / 50) << "outlier at " << far;
+    ExpectExact(withOutlier, k);
+  }
+}
