@@ -9,9 +9,18 @@
 
 namespace geodesic_lod {
 
+/// Removes a layer: MeshLab 2020.09 by pointer, 2025.07 by id.
+template <class MeshDocument, class MeshModel>
+auto RemoveLayer(MeshDocument& md, MeshModel* m) -> decltype(md.delMesh(m), void()) { md.delMesh(m); }
+template <class MeshDocument, class MeshModel>
+auto RemoveLayer(MeshDocument& md, MeshModel* m) -> decltype(md.delMesh((unsigned int)m->id()), void()) {
+  md.delMesh((unsigned int)m->id());
+}
+
 /// All the work happens before any layer is made or changed, so a failure (an
 /// MLException) leaves the document as it was. `log(std::string)` writes to
-/// the host's log. Returns the run and whether the current layer's vertex
+/// the host's log. The output layers are all added or, when writing one fails,
+/// none (those added are removed again). Returns the run and whether the current layer's vertex
 /// colours changed.
 template <class MeshDocument, class Log>
 LodRun ApplyLod(size_t filter, MeshDocument& md, const ParamSource& params, vcg::CallBackPos* cb, Log&& log,
@@ -25,23 +34,37 @@ LodRun ApplyLod(size_t filter, MeshDocument& md, const ParamSource& params, vcg:
     for (size_t k = 0; k < run.result.vertIndex.size(); ++k)
       src->cm.vert[run.result.vertIndex[k]].Q() = run.result.curvature[k];
   if (Filters()[filter].output == Output::NewLayers) {
-    bool first = true;
-    for (const LodLevel& level : OutputLevels(run)) {
-      auto* out = md.addNewMesh("", src->label() + level.suffix, true);
-      out->updateDataMask(src);
-      const QStringList skipped = FillLodLayer(src->cm, run, level, first, out->cm);
-      if (first && !skipped.isEmpty())
-        log("Attributes of unsupported types not copied: " + skipped.join(", ").toStdString());
-      first = false;
+    // All the layers or none: a failure while writing a later level removes the earlier ones.
+    std::vector<MeshModel*> added;
+    try {
+      Guarded([&] {
+        const std::vector<LodLevel> levels = OutputLevels(run);
+        added.reserve(levels.size());  // so that no layer is made and then not recorded
+        bool first = true;
+        for (const LodLevel& level : levels) {
+          added.push_back(md.addNewMesh("", src->label() + level.suffix, true));
+          MeshModel* out = added.back();
+          out->updateDataMask(src);
+          const QStringList skipped = FillLodLayer(src->cm, run, level, first, out->cm);
+          if (first && !skipped.isEmpty())
+            log("Attributes of unsupported types not copied: " + skipped.join(", ").toStdString());
+          first = false;
+        }
+        // The input's colours were copied first: only now are they replaced by the regions'.
+        const std::vector<int>& region = run.result.regionOf;
+        if (!region.empty()) {
+          src->updateDataMask(MeshModel::MM_VERTCOLOR);
+          for (size_t i = 0; i < region.size(); ++i)
+            if (region[i] >= 0) src->cm.vert[i].C() = RegionColour(region[i]);
+        }
+        if (colouredInput) *colouredInput = !region.empty();
+      });
+    } catch (...) {
+      for (MeshModel* m : added)
+        if (m) RemoveLayer(md, m);
+      md.setCurrentMesh(src->id());
+      throw;
     }
-    // The input's colours were copied first: only now are they replaced by the regions'.
-    const std::vector<int>& region = run.result.regionOf;
-    if (!region.empty()) {
-      src->updateDataMask(MeshModel::MM_VERTCOLOR);
-      for (size_t i = 0; i < region.size(); ++i)
-        if (region[i] >= 0) src->cm.vert[i].C() = RegionColour(region[i]);
-    }
-    if (colouredInput) *colouredInput = !region.empty();
   }
   log(run.summary.toStdString());
   return run;

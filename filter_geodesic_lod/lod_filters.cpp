@@ -24,18 +24,19 @@ const QStringList kOutputNames = {"Points", "Triangle mesh (geodesic Delaunay)"}
 const QStringList kPoissonRegionNames = {"None", "Disk regions", "Voronoi regions"};
 const QStringList kFpsRegionNames = {"None", "Voronoi regions"};
 
-// Runs f, turning every failure into an MLException the hosts can show.
-template <class F>
-auto Guarded(F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const std::invalid_argument& e) {
-    throw MLException(QString("Geodesic LOD: ") + e.what());
-  } catch (const vcg_ext::Cancelled&) {
-    throw MLException("Geodesic LOD: stopped on request; no layer was created");
-  } catch (const std::bad_alloc&) {
-    throw MLException("Geodesic LOD: not enough memory for this layer (see the README for the memory needed per point)");
-  }
+// An empty layer is named as such before any count is read.
+void RequireVertices(const CMeshO& in) {
+  if (in.vn == 0) vcg_ext::GeodesicDomain<Scalarm>::Check({}, false, {});
+}
+
+// A count of at least 1 as a size_t, refused while still a double when it
+// exceeds the layer's vertices (no conversion of a value like 1e19).
+size_t Count(const char* name, double x, const CMeshO& in) {
+  RequireVertices(in);
+  if (!(x <= double(in.vn)))
+    throw std::invalid_argument(std::string(name) + " must be between 1 and the number of vertices (" +
+                                std::to_string(in.vn) + "), got " + QString::number(x).toStdString());
+  return size_t(x);
 }
 
 int Choice(const ParamSource& src, const char* name, const QStringList& names) {
@@ -167,9 +168,11 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     if (!(target >= 0) || !std::isfinite(target))
       throw std::invalid_argument("samplenum must be 0 (use the radius) or a positive count (got " +
                                   std::to_string(target) + ")");
-    p.sampleNum = size_t(std::llround(target));
-    if (target > 0 && p.sampleNum == 0) p.sampleNum = 1;
+    p.sampleNum = target > 0 ? Count("samplenum", std::max(1.0, std::round(target)), in) : 0;
     p.tolerance = src.number("tolerance") / 100;
+    if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
+      throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
+                                  QString::number(src.number("tolerance")).toStdString() + "%)");
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
     p.regions = vcg_ext::Regions(Choice(src, "regions", kPoissonRegionNames));
     const auto r = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
@@ -193,7 +196,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     vcg_ext::GeodesicFpsLOD<CMeshO>::Param p;
     const double n = src.number("samplenum");
     if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
-    p.sampleNum = size_t(n);
+    p.sampleNum = Count("samplenum", n, in);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
     p.regions = Choice(src, "regions", kFpsRegionNames) ? vcg_ext::Regions::Voronoi : vcg_ext::Regions::None;
     auto r = vcg_ext::GeodesicFpsLOD<CMeshO>::Compute(in, p, cb);
@@ -253,10 +256,11 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
     if (!ok || !std::isfinite(x) || !(x > 0) || (!percent && x != std::floor(x)))
       throw std::invalid_argument("levels: '" + item.toStdString() + "' is not a positive percentage or count" +
                                   example);
-    const double count = percent ? std::round(x / 100 * double(n)) : x;
     if (percent && x > 100) throw std::invalid_argument("levels: " + item.toStdString() + " is above 100%");
-    if (count < 1 || count > double(n))
-      throw std::invalid_argument("levels: " + item.toStdString() + " gives " + std::to_string(int64_t(count)) +
+    const double count = percent ? std::round(x / 100 * double(n)) : x;  // at most n or x: no overflow here
+    if (count < 1 || count > double(n))  // compared as doubles, converted only once in range
+      throw std::invalid_argument("levels: " + item.toStdString() + " gives " +
+                                  (count < 1 ? std::string("no") : "more than " + std::to_string(n)) +
                                   " samples; a level needs 1 to " + std::to_string(n) + " (the layer's vertices)");
     LodLevel l;
     l.count = size_t(count);
@@ -281,6 +285,7 @@ std::vector<ParamSpec> PyramidParams(const CMeshO&) {
 LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
     vcg_ext::GeodesicLodPyramid<CMeshO>::Param p;
+    RequireVertices(in);
     std::vector<LodLevel> levels = ParseLevels(src.text("levels"), size_t(in.vn));
     for (const LodLevel& l : levels) p.counts.push_back(l.count);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);

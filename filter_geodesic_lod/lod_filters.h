@@ -8,12 +8,29 @@
 #include <QVariant>
 #include <array>
 #include <map>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 #include "meshlab_mesh.h"
 #include <vcg_ext/lod_result.h>
+#include <vcg_ext/progress.h>
 
 namespace geodesic_lod {
+
+/// Runs f, turning every failure into an MLException the hosts can show.
+template <class F>
+auto Guarded(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    throw MLException(QString("Geodesic LOD: ") + e.what());
+  } catch (const vcg_ext::Cancelled&) {
+    throw MLException("Geodesic LOD: stopped on request; no layer was created");
+  } catch (const std::bad_alloc&) {
+    throw MLException("Geodesic LOD: not enough memory for this layer (see the README for the memory needed per point)");
+  }
+}
 
 enum class ParamKind { Percentage, Float, Int, Bool, Enum, String, Mesh };
 
