@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   double radius = 0, radiusPct = 0.5;
   size_t fps = 0;
   uint64_t seed = 0;
-  std::string metric = "eq3", samplesOut;
+  std::string metric, samplesOut;  // no --metric: the product default
   bool recompute = false;
   for (int a = 2; a < argc; ++a) {
     const std::string o = argv[a];
@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, vcg_ext::Metric> metrics = {
       {"eq3", vcg_ext::Metric::WeightedEq3}, {"density", vcg_ext::Metric::CurvatureDensity},
       {"geodesic", vcg_ext::Metric::Geodesic}, {"euclidean", vcg_ext::Metric::Euclidean}};
-  if (!metrics.count(metric)) { std::fprintf(stderr, "unknown metric %s\n", metric.c_str()); return 2; }
+  if (!metric.empty() && !metrics.count(metric)) { std::fprintf(stderr, "unknown metric %s\n", metric.c_str()); return 2; }
 
   const auto t0 = Clock::now();
   CMesh m;
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
   std::vector<int> samples;
   try {
     vcg_ext::GeodesicDomain<float>::Param dp;
-    dp.metric = metrics.at(metric);
+    if (!metric.empty()) dp.metric = metrics.at(metric);
     dp.useInputNormals = !recompute;
     if (fps) {
       vcg_ext::GeodesicFpsLOD<CMesh>::Param p;

@@ -46,15 +46,20 @@ int Choice(const ParamSource& src, const char* name, const QStringList& names) {
   return c;
 }
 
+// vcg_ext's product defaults, which every parameter below starts from.
+const vcg_ext::GeodesicDomain<Scalarm>::Param kDomainDefaults;
+
 // The normals and eq. 1, as every filter asks for them.
 ParamSpec NormalNeighborsParam() {
   return {ParamKind::Int, "normalneighbors", "Normal neighbours k",
-          "Neighbours used to estimate normals and the curvature v_i of eq. 1.", 20};
+          "Neighbours used to estimate normals and the curvature v_i of eq. 1.",
+          double(kDomainDefaults.normalNeighbors)};
 }
 ParamSpec RecomputeNormalsParam() {
   return {ParamKind::Bool, "recomputenormals", "Recompute normals",
           "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
-          "When off, the layer's valid normals are used and only missing ones are estimated.", 0};
+          "When off, the layer's valid normals are used and only missing ones are estimated.",
+          kDomainDefaults.useInputNormals ? 0.0 : 1.0};
 }
 
 ParamSpec RegionsParam(const QStringList& names, const QString& disk) {
@@ -74,22 +79,23 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
                "Euclidean: straight-line distance (for comparison). The default is the one with the lowest "
                "reconstruction error in the quality benchmark (docs/benchmarks.md).",
-               1, 0, 0, kMetricNames});
+               double(kDomainDefaults.metric), 0, 0, kMetricNames});
   p.push_back({ParamKind::Enum, "geodesicmode", "Geodesics",
                "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
                "faces, else Dijkstra on the k-nearest-neighbour graph of the points. Mesh mode leaves out "
                "vertices that are in no triangle (their number is logged); the point graph keeps every vertex.",
-               0, 0, 0, kModeNames});
+               double(kDomainDefaults.mode), 0, 0, kModeNames});
   p.push_back({ParamKind::Float, "curvatureexponent", "Curvature exponent c",
-               "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.", 1.0});
+               "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.",
+               kDomainDefaults.curvatureExponent});
   p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
                "only by that metric. 0 gives the unweighted geodesic; 3 did best in the quality benchmark, "
-               "10 and more over-sample noisy scans.", 3.0});
+               "10 and more over-sample noisy scans.", kDomainDefaults.adaptivity});
   p.push_back(NormalNeighborsParam());
   p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
-               "run on.", 10});
+               "run on.", double(kDomainDefaults.graphNeighbors)});
   p.push_back(RecomputeNormalsParam());
   p.push_back({ParamKind::Enum, "output", "Output",
                "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "

@@ -32,11 +32,13 @@ template <class Scalar>
 class GeodesicDomain {
  public:
   typedef vcg::Point3<Scalar> Coord;
+  /// The product defaults: every front end reads them from here. The metric
+  /// and a were chosen by the quality benchmark (docs/benchmarks.md).
   struct Param {
-    Metric metric = Metric::WeightedEq3;
+    Metric metric = Metric::CurvatureDensity;
     GeodesicMode mode = GeodesicMode::Auto;
-    double curvatureExponent = 1.0;  ///< c of eq. 3, > 0
-    double adaptivity = 10.0;        ///< a of the curvature-density weighting, >= 0
+    double curvatureExponent = 1.0;  ///< c of eq. 3, > 0 (the paper's)
+    double adaptivity = 3.0;         ///< a of the curvature-density weighting, >= 0
     int normalNeighbors = 20;        ///< k of the normal fit and of eq. 1
     int graphNeighbors = 10;         ///< k of the neighbour graph
     bool useInputNormals = true;     ///< keep the input's valid normals
@@ -49,7 +51,7 @@ class GeodesicDomain {
   std::vector<Coord> normal;        ///< n_i, unit
   size_t estimatedNormals = 0;
   std::vector<Scalar> curvature;    ///< v_i, eq. 1
-  Metric metric = Metric::WeightedEq3;
+  Metric metric = Param().metric;
   bool meshGeodesics = false;       ///< fast marching (else point graph or Euclidean)
   NeighbourGraph<Scalar> graph;     ///< point-graph geodesics
   FastMarchingMesh<Scalar> fmMesh;  ///< mesh geodesics

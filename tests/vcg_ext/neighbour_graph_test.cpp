@@ -88,3 +88,48 @@ TEST(BoundedDijkstra, GraphDistanceBoundsTheStraightLine) {
     EXPECT_LE(dist[i], e * 1.1f + 1e-6f);  // an 8-connected grid path is at most ~8% longer
   }
 }
+
+// The formulas themselves, on known curvatures: eq. 3 and the curvature-density weighting.
+TEST(EdgeWeight, Eq3AndCurvatureDensityGiveTheirFormulas) {
+  const std::vector<float> v = {0.1f, 0.4f, 0.4f};
+  vcg_ext::EdgeWeight<float> w;
+  w.curvature = &v;
+  w.metric = vcg_ext::Metric::WeightedEq3;
+  EXPECT_NEAR(w(0, 1, 2.f), std::exp(0.3) * 2, 1e-6);  // exp(|v_i - v_j|^1) |p_i - p_j|
+  EXPECT_NEAR(w(1, 2, 2.f), 2.0, 1e-6);                // equal curvatures: the edge itself
+  w.exponent = 2;
+  EXPECT_NEAR(w(0, 1, 2.f), std::exp(0.09) * 2, 1e-6);
+  w.exponent = 0.5;
+  EXPECT_NEAR(w(1, 0, 1.f), std::exp(std::sqrt(0.3)), 1e-6);
+  w.metric = vcg_ext::Metric::CurvatureDensity;
+  w.adaptivity = 3;
+  EXPECT_NEAR(w(0, 1, 2.f), (1 + 3 * 0.25) * 2, 1e-6);  // (1 + a (v_i + v_j) / 2) |p_i - p_j|
+  EXPECT_NEAR(w(1, 2, 0.5f), (1 + 3 * 0.4) * 0.5, 1e-6);
+  w.adaptivity = 0;
+  EXPECT_NEAR(w(0, 1, 2.f), 2.0, 1e-6);
+  w.metric = vcg_ext::Metric::Geodesic;
+  EXPECT_NEAR(w(0, 1, 2.f), 2.0, 1e-6);
+}
+
+// Every arc of the built graph carries its metric's weight of that edge, from the
+// domain's own curvatures (rounded up to float, never down).
+TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (auto metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity}) {
+    const Domain d = Build(m, metric, 3);
+    double maxV = 0;
+    for (float v : d.curvature) maxV = std::max(maxV, double(v));
+    ASSERT_GT(maxV, 0.01) << "a surface without curvature tests nothing";
+    for (size_t i = 0; i < d.graph.size(); ++i)
+      for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e) {
+        const int j = d.graph.adj[e];
+        const double vi = d.curvature[i], vj = d.curvature[j];
+        const double len = vcg::Distance(vcg::Point3d::Construct(d.points.pos[i]), vcg::Point3d::Construct(d.points.pos[j]));
+        const double want = metric == vcg_ext::Metric::WeightedEq3 ? std::exp(std::abs(vi - vj)) * len
+                                                                    : (1 + 3 * 0.5 * (vi + vj)) * len;
+        ASSERT_GE(double(d.graph.w[e]), want * (1 - 1e-6)) << i << "-" << j;
+        ASSERT_LE(double(d.graph.w[e]), want * (1 + 1e-5)) << i << "-" << j;
+      }
+  }
+}

@@ -10,7 +10,8 @@ TEST(Terrain, MeshFastMarchingAndPointGraphAgree) {
   READ_SHARED_SCAN_OR_SKIP("terrain_n44w072_crop301x301.ply", m);
   ASSERT_EQ(m.vn, 301 * 301);
   using Domain = vcg_ext::GeodesicDomain<float>;
-  Domain::Param p;  // the paper's weighted metric, eq. 3
+  Domain::Param p;
+  p.metric = vcg_ext::Metric::WeightedEq3;  // the paper's weighted metric, as in its Fig. 7
   p.mode = vcg_ext::GeodesicMode::Mesh;
   const Domain mesh = Domain::FromMesh(m, p);
   p.mode = vcg_ext::GeodesicMode::PointGraph;
