@@ -9,11 +9,16 @@
 
 namespace geodesic_lod {
 
-/// Removes a layer: MeshLab 2020.09 by pointer, 2025.07 by id.
+/// Removes a layer: MeshLab 2020.09 by pointer, 2025.07 by id. Its named
+/// attributes are freed first (a vcglib mesh's destructor leaves them).
 template <class MeshDocument, class MeshModel>
-auto RemoveLayer(MeshDocument& md, MeshModel* m) -> decltype(md.delMesh(m), void()) { md.delMesh(m); }
+auto RemoveLayer(MeshDocument& md, MeshModel* m) -> decltype(md.delMesh(m), void()) {
+  m->cm.ClearAttributes();
+  md.delMesh(m);
+}
 template <class MeshDocument, class MeshModel>
 auto RemoveLayer(MeshDocument& md, MeshModel* m) -> decltype(md.delMesh((unsigned int)m->id()), void()) {
+  m->cm.ClearAttributes();
   md.delMesh((unsigned int)m->id());
 }
 

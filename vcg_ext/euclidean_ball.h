@@ -2,7 +2,9 @@
 #define VCG_EXT_EUCLIDEAN_BALL_H
 // Straight-line disk search with vcglib's kd-tree: the Euclidean baseline of
 // the same Poisson-disk sampler.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 #include <vcg/space/index/kdtree/kdtree.h>
@@ -33,13 +35,20 @@ class EuclideanBall {
     }
   }
 
-  /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order).
+  /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order; src
+  /// itself always, at 0).
   template <class F>
   void Visit(int src, Scalar r, F&& f) {
     idx_.clear();
     sq_.clear();
-    tree_->doQueryDist(pos_[src], r, idx_, sq_);
-    for (size_t h = 0; h < idx_.size(); ++h) f(int(idx_[h]), std::sqrt(sq_[h]));
+    // vcglib's query keeps d^2 < r^2, strictly, and r^2 underflows to 0 for a
+    // tiny r (then not even src is found): ask a little more, keep d <= r.
+    static const Scalar kLeast = Scalar(2) * std::sqrt(std::numeric_limits<Scalar>::min());
+    tree_->doQueryDist(pos_[src], std::max(Scalar(r * Scalar(1.0001)), kLeast), idx_, sq_);
+    for (size_t h = 0; h < idx_.size(); ++h) {
+      const Scalar d = std::sqrt(sq_[h]);
+      if (d <= r) f(int(idx_[h]), d);
+    }
   }
 
  private:

@@ -65,10 +65,7 @@ class GeodesicDomain {
     const size_t n = ps.size();
     if (n == 0) throw std::invalid_argument("the layer has no vertices");
     if (n == 1) throw std::invalid_argument("the layer has a single vertex: there is nothing to sample from");
-    vcg::Box3<Scalar> box;
-    for (const Coord& q : ps.pos) box.Add(q);
-    if (!std::isfinite(box.Diag()))
-      throw std::invalid_argument("the coordinates are too large: the bounding box's diagonal overflows");
+    const vcg::Box3<Scalar> box = FiniteBox(ps);
     if (!(box.Diag() > 0))
       throw std::invalid_argument("all " + std::to_string(n) + " vertices coincide: there is no surface to sample");
     if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)

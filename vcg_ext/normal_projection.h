@@ -13,6 +13,7 @@
 #include <vcg/space/intersection3.h>
 #include <vcg/space/ray3.h>
 #include "point_normals.h"
+#include "point_set.h"
 #include "progress.h"
 
 namespace vcg_ext {
@@ -41,10 +42,33 @@ class NormalProjection {
     Progress progress(cb);
     if (!(p.maxDistance > 0) || !std::isfinite(p.maxDistance))
       throw std::invalid_argument("maxdist must be a positive number (got " + std::to_string(p.maxDistance) + ")");
+    // Finite coordinates in a finite box, or the grid's cells cannot be computed.
+    for (const auto* layer : {&reference, &surface}) {
+      try {
+        FiniteBox(PointSetFromMesh<MeshType>::Compute(*layer));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(layer == &surface ? "the surface layer: " : "the reference layer: ") +
+                                    e.what());
+      }
+    }
     std::vector<Tri> tris;
-    for (const auto& f : surface.face)
-      if (!f.IsD()) tris.push_back(Tri{{f.cP(0), f.cP(1), f.cP(2)}});
+    for (const auto& f : surface.face)  // live faces of live vertices, as the samplers take them
+      if (!f.IsD() && !f.cV(0)->IsD() && !f.cV(1)->IsD() && !f.cV(2)->IsD())
+        tris.push_back(Tri{{f.cP(0), f.cP(1), f.cP(2)}});
     if (tris.empty()) throw std::invalid_argument("the surface layer has no triangles to project onto");
+    // vcglib's grid computes its cells in the layer's units and overflows near
+    // the ends of the float range: it is built on coordinates centred on the
+    // triangles' box and scaled to its diagonal, and distances are scaled back.
+    vcg::Box3d box;
+    for (const Tri& t : tris)
+      for (const Coord& c : t.p) box.Add(vcg::Point3d::Construct(c));
+    if (!(box.Diag() > 0))
+      throw std::invalid_argument("the surface layer's triangles all lie at one point: there is no surface to project onto");
+    const vcg::Point3d centre = box.Center();
+    const double scale = box.Diag();
+    auto local = [&](const Coord& q) { return (vcg::Point3d::Construct(q) - centre) / scale; };
+    for (Tri& t : tris)
+      for (Coord& c : t.p) c = Coord::Construct(local(c));
     vcg::GridStaticPtr<Tri, Scalar> grid;
     grid.Set(tris.begin(), tris.end());
 
@@ -62,7 +86,12 @@ class NormalProjection {
       ++r.pointNum;
       // The line, not a ray: the surface may lie on either side of the point.
       const Coord n = v.cN() / v.cN().Norm();
-      const double t = std::min(Cross(grid, v.cP(), n, p.maxDistance), Cross(grid, v.cP(), -n, p.maxDistance));
+      // A point a million surface sizes away cannot aim its line at the surface in float: a miss.
+      const vcg::Point3d o = local(v.cP());
+      if (!(o.Norm() < 1e6)) continue;
+      // Every crossing lies inside the box, within |o| + 1/2 of the point.
+      const double reach = std::min(p.maxDistance / scale, o.Norm() + 1);
+      const double t = scale * std::min(Cross(grid, Coord::Construct(o), n, reach), Cross(grid, Coord::Construct(o), -n, reach));
       if (!(t <= p.maxDistance)) continue;
       r.distance[i] = t;
       ++r.hitNum;

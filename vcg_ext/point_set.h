@@ -73,5 +73,16 @@ class PointSetFromMesh {
   }
 };
 
+/// The points' bounding box; throws std::invalid_argument when its diagonal
+/// overflows (no distance or grid can be computed in it).
+template <class Scalar>
+vcg::Box3<Scalar> FiniteBox(const PointSet<Scalar>& ps) {
+  vcg::Box3<Scalar> box;
+  for (const auto& q : ps.pos) box.Add(q);
+  if (!std::isfinite(box.Diag()))
+    throw std::invalid_argument("the coordinates are too large: the bounding box's diagonal overflows");
+  return box;
+}
+
 }  // namespace vcg_ext
 #endif

@@ -1,22 +1,29 @@
-// libFuzzer target: vcg_ext's sampling entry points on arbitrary point sets,
-// faces and parameters. Bad input must end in std::invalid_argument, never in
-// a crash, a sanitizer report or a broken result.
+// libFuzzer target: vcg_ext's sampling entry points and the normal-projection
+// measure on arbitrary point sets, faces and parameters. Bad input must end in
+// std::invalid_argument, never in a crash, a sanitizer report or a broken
+// result; the input mesh is never changed; Poisson sets by radius are checked
+// for separation and coverage. Some inputs are surfaces of over a thousand
+// points, so the parallel passes split them across threads (built with OpenMP).
 #include <fuzzer/FuzzedDataProvider.h>
 #include <cfloat>
 #include <cstdio>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/normal_projection.h>
 #include "../vcg_ext/test_mesh.h"
 
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
 using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
 using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
+using Deviation = vcg_ext::NormalProjection<test::TMesh>;
 
 float Special(FuzzedDataProvider& f) {
   static const float values[] = {0.f, 1.f, -1.f, 0.5f, 1e-30f, -1e-30f, 1e30f, -1e30f, FLT_MAX, -FLT_MAX,
@@ -38,6 +45,47 @@ float Coordinate(FuzzedDataProvider& f) {
   __builtin_trap();
 }
 
+// Everything a call could change in the mesh, as bytes.
+std::vector<char> Snapshot(const test::TMesh& m) {
+  std::vector<char> b;
+  auto add = [&](const void* p, size_t n) { b.insert(b.end(), (const char*)p, (const char*)p + n); };
+  for (const auto& v : m.vert) {
+    add(&v.cP(), sizeof(v.cP()));
+    add(&v.cN(), sizeof(v.cN()));
+    const int flags = v.cFlags();
+    add(&flags, sizeof flags);
+  }
+  for (const auto& f : m.face)
+    for (int c = 0; c < 3; ++c) {
+      const auto* v = f.cV(c);
+      add(&v, sizeof v);
+    }
+  add(&m.vn, sizeof m.vn);
+  add(&m.fn, sizeof m.fn);
+  return b;
+}
+
+// A Poisson set at radius r, rebuilt with the domain's own search: each sample's
+// disk holds no later sample (it was still unvisited when chosen) and the
+// disks cover every point of the domain.
+void CheckSeparationAndCoverage(const test::TMesh& m, const LOD::Domain::Param& dp, double r,
+                                const std::vector<int>& vertIndex) {
+  const LOD::Domain d = LOD::Domain::FromMesh(m, dp);
+  const std::vector<int> point = d.PointOfVertex(m.vert.size());
+  std::vector<int> rank(d.size(), -1);
+  for (size_t k = 0; k < vertIndex.size(); ++k) rank[point[vertIndex[k]]] = int(k);
+  std::vector<char> covered(d.size(), 0);
+  d.WithSearch([&](auto& search) {
+    for (size_t k = 0; k < vertIndex.size(); ++k)
+      search.Visit(point[vertIndex[k]], float(r), [&](int i, double) {
+        if (rank[i] > int(k)) Fail("a later Poisson sample lies within the radius of an earlier one");
+        covered[i] = 1;
+      });
+  });
+  for (char c : covered)
+    if (!c) Fail("a point is farther than the radius from every Poisson sample");
+}
+
 void Check(const vcg_ext::LodResult<float>& r, const test::TMesh& m) {
   std::set<int> seen;
   for (int v : r.vertIndex) {
@@ -54,12 +102,18 @@ void Check(const vcg_ext::LodResult<float>& r, const test::TMesh& m) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider f(data, size);
   test::TMesh m;
-  const int n = f.ConsumeIntegralInRange<int>(0, 200);
-  const int layout = f.ConsumeIntegralInRange<int>(0, 3);  // free, collinear, coincident runs, grid
+  // free, collinear, coincident runs, grid, a noisy surface of over a thousand points
+  const int layout = f.ConsumeIntegralInRange<int>(0, 4);
+  const int n = layout == 4 ? f.ConsumeIntegralInRange<int>(1100, 3000) : f.ConsumeIntegralInRange<int>(0, 200);
+  std::mt19937 rng(f.ConsumeIntegral<uint32_t>());
+  std::uniform_real_distribution<float> u(0, 1);
   vcg::tri::Allocator<test::TMesh>::AddVertices(m, n);
   for (int i = 0; i < n; ++i) {
     auto& p = m.vert[i].P();
-    if (layout == 1) p = test::P3(Coordinate(f), 0, 0);
+    if (layout == 4) {
+      const float x = u(rng), y = u(rng);
+      p = test::P3(x, y, 0.1f * std::sin(9 * x) * std::cos(7 * y) + 0.003f * u(rng));
+    } else if (layout == 1) p = test::P3(Coordinate(f), 0, 0);
     else if (layout == 2 && i > 0 && f.ConsumeBool()) p = m.vert[i - 1].P();
     else if (layout == 3) p = test::P3(float(i % 15), float(i / 15), f.ConsumeBool() ? Coordinate(f) : 0.f);
     else p = test::P3(Coordinate(f), Coordinate(f), Coordinate(f));
@@ -93,14 +147,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     p.meshOutput = meshOutput;
   };
 
+  const std::vector<char> before = Snapshot(m);
+  auto unchanged = [&] {
+    if (Snapshot(m) != before) Fail("the input mesh changed");
+  };
+
   LOD::Param lp;
   common(lp);
   lp.radius = radius;
   lp.regions = regions;
   try {
-    Check(LOD::Compute(m, lp), m);
+    const auto r = LOD::Compute(m, lp);
+    Check(r, m);
+    CheckSeparationAndCoverage(m, d, radius, r.vertIndex);
   } catch (const std::invalid_argument&) {
   }
+  unchanged();
   // The same with a wanted count (0: the radius): exact unless a tolerance is given, and always ending.
   lp.sampleNum = sampleNum;
   lp.tolerance = tolerance;
@@ -110,6 +172,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (sampleNum > 0 && tolerance == 0 && r.vertIndex.size() != sampleNum) Fail("Poisson count differs from samplenum");
   } catch (const std::invalid_argument&) {
   }
+  unchanged();
   FPS::Param fp;
   common(fp);
   fp.sampleNum = sampleNum;
@@ -120,6 +183,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (r.vertIndex.size() != sampleNum) Fail("FPS count differs from samplenum");
   } catch (const std::invalid_argument&) {
   }
+  unchanged();
   Pyramid::Param pp;
   common(pp);
   pp.counts = {sampleNum, sampleNum / 2, sampleNum / 5};
@@ -129,5 +193,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (r.vertIndex.size() != sampleNum) Fail("pyramid's finest count differs");
   } catch (const std::invalid_argument&) {
   }
+  unchanged();
+  // The deviation measure of the layer against itself: figures in range, NaN only where skipped or missed.
+  Deviation::Param dev;
+  dev.maxDistance = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
+  try {
+    const auto r = Deviation::Compute(m, m, dev);
+    if (r.hitNum > r.pointNum || r.distance.size() != m.vert.size()) Fail("deviation counts");
+    if (r.hitNum > 0 && !(0 <= r.min && r.min <= r.mean * (1 + 1e-9) && r.mean <= r.max * (1 + 1e-9) &&
+                          r.max <= dev.maxDistance && r.rms >= r.mean * (1 - 1e-9)))
+      Fail("deviation figures out of order or beyond maxdist");
+    size_t hits = 0;
+    for (double x : r.distance) hits += !std::isnan(x);
+    if (hits != r.hitNum) Fail("deviation distances disagree with the hit count");
+  } catch (const std::invalid_argument&) {
+  }
+  unchanged();
   return 0;
 }

@@ -14,6 +14,9 @@ using namespace geodesic_lod;
 // layer (counting from 1 once armed), as a large level would.
 struct FailingDocument : MeshDocument {
   int failAt = 0, made = 0;
+  ~FailingDocument() {  // vcglib's mesh destructor leaves named attributes allocated: free them
+    for (MeshModel& m : meshIterator()) m.cm.ClearAttributes();
+  }
   MeshModel* addNewMesh(const QString& path, const QString& label, bool current = true) {
     if (failAt > 0 && ++made == failAt) throw std::bad_alloc();
     return MeshDocument::addNewMesh(path, label, current);

@@ -73,6 +73,15 @@ def cloud_and_surface():
     return ms
 
 
+def with_surface(points, faces):
+    """A cloud with normals (current) and a second layer of the given triangles."""
+    ms = layer(bumpy_points(10), normals=np.tile([0, 0, 1.0], (100, 1)))
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(points, dtype=np.float64),
+                               face_matrix=np.asarray(faces, dtype=np.int32)), "surface")
+    ms.set_current_mesh(0)
+    return ms
+
+
 def n_of(ms):
     return ms.current_mesh().vertex_number()
 
@@ -195,6 +204,11 @@ CASES = [
      {"referencemesh": 0, "surfacemesh": 1}, "the reference layer has no valid vertex normals"),
     ("deviation with a missing layer", lambda: layer(*grid()), DEVIATION, {"referencemesh": 0, "surfacemesh": 5},
      "surfacemesh"),
+    ("deviation onto a surface with a NaN vertex", lambda: with_surface(np.vstack([grid()[0], [[np.nan, 0, 0]]]),
+                                                                         grid()[1]),
+     DEVIATION, {"referencemesh": 0, "surfacemesh": 1}, "the surface layer: 1 vertices have NaN or infinite coordinates"),
+    ("deviation onto triangles at one point", lambda: with_surface(np.zeros((3, 3)), [[0, 1, 2]]), DEVIATION,
+     {"referencemesh": 0, "surfacemesh": 1}, "the surface layer's triangles all lie at one point"),
 ]
 
 

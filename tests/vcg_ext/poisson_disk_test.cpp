@@ -169,3 +169,25 @@ TEST(PoissonDisk, CurvatureDensityRaisesTheBumpyRateOverEuclidean) {
     EXPECT_GT(rd, a >= 10 ? 2 * re : re) << "a " << a << ": density " << rd << " euclidean " << re;
   }
 }
+
+// A straight-line disk always holds its centre and the points exactly on its
+// rim, even for a radius whose square underflows (vcglib's ball query keeps
+// d^2 < r^2 only): at such radii every distinct point is a sample, and each
+// sample owns at least itself, with its coincident copies.
+TEST(PoissonDisk, EuclideanDisksHoldTheirCentreRimAndCopiesAtAnyRadius) {
+  test::TMesh m;
+  test::Plane(m, 8);  // a 8 x 8 lattice of spacing 1/7
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 3);
+  for (int c = 0; c < 3; ++c) m.vert[64 + c].P() = m.vert[9].P();  // three copies of one lattice point
+  const Domain d = Build(m, Metric::Euclidean);
+  for (float r : {std::numeric_limits<float>::min(), 1e-30f, 1.f / 7}) {
+    const auto s = LOD::Sample(d, r, 4);
+    for (size_t i = 0; i < d.size(); ++i) EXPECT_GE(s.owner[i], 0) << "point " << i << " uncovered at r " << r;
+    if (r < 1e-20f) EXPECT_EQ(s.samples.size(), 64u) << "copies are one point; other points are all samples";
+  }
+  vcg_ext::EuclideanBall<float> ball(d.points.pos);
+  std::set<int> rim;  // the lattice neighbours exactly 1/7 away
+  ball.Visit(int(std::find(d.points.vertIndex.begin(), d.points.vertIndex.end(), 0) - d.points.vertIndex.begin()),
+             vcg::Distance(m.vert[0].P(), m.vert[1].P()), [&](int i, float) { rim.insert(d.points.vertIndex[i]); });
+  EXPECT_EQ(rim, (std::set<int>{0, 1, 8})) << "the centre and both neighbours on the rim";
+}
