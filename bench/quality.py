@@ -4,10 +4,12 @@ reconstructed from it (MeshLab's screened Poisson, the same settings for every m
 a reconstruction-free measure. Writes docs/benchmarks.md and its plots (bench/quality_report.py).
 
 usage: bench/run_quality [--quick] [--no-tuning] [--report-only] [--fresh]
-Every run is cached in out/bench/runs/ (one JSON file per model, method and rate): a second
-call only runs what is missing. --fresh clears the cache first.
+Every run is cached in out/bench/runs/ (one JSON file per model, method and rate), keyed by
+everything that changes its result (run_key): a second call only runs what is missing or stale,
+and the report leaves out stale rows. --fresh clears the cache first.
 """
 import argparse
+import hashlib
 import json
 import os
 import pathlib
@@ -279,13 +281,48 @@ def evaluate(model, method, target):
                 plane=dict(mean=float(plane.mean()), rms=float(np.sqrt((plane ** 2).mean())), max=float(plane.max())))
 
 
+def file_digest(path):
+    path = pathlib.Path(path)
+    return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else "absent"
+
+
+def run_context():
+    """What changes every run's result besides its model, method and rate: the plugin and the peer
+    tool (their binaries), this script (the methods' parameters), the measure and the reconstruction."""
+    return dict(plugin=file_digest(PLUGIN), peer_tool=file_digest(PEER_TOOL), script=file_digest(__file__),
+                pymeshlab=pymeshlab.__version__ if hasattr(pymeshlab, "__version__") else "?",
+                measure=measure_name(), reconstruction=RECONSTRUCTION, plane_neighbours=PLANE_NEIGHBOURS)
+
+
+_CONTEXT = None
+
+
+def run_key(model_key, method, rate):
+    """A cached run is valid only under the same key: the context and the model file's bytes."""
+    global _CONTEXT
+    if _CONTEXT is None:
+        _CONTEXT = run_context()
+        _CONTEXT["models"] = {k: file_digest(DATA / f) for k, f in MODELS.items()}
+    blob = json.dumps(dict(context=_CONTEXT, model=_CONTEXT["models"].get(model_key), method=method, rate=rate),
+                      sort_keys=True)
+    return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def cached(path, key):
+    """The cached row at path if it was made under `key`, else None (absent or stale)."""
+    if not path.is_file():
+        return None
+    row = json.loads(path.read_text())
+    return row if row.get("key") == key else None
+
+
 def run_all(models, rates, methods, log):
     for key in models:
         model = None
         for rate in rates:
             for method in methods:
                 path = OUT / "runs" / key.replace(" ", "_") / f"{method}_{rate:g}.json"
-                if path.is_file():
+                if cached(path, run_key(key, method, rate)) is not None:
                     continue
                 if model is None:
                     model = Model(key)
@@ -294,7 +331,7 @@ def run_all(models, rates, methods, log):
                 row = evaluate(model, method, target)
                 # The 1-minute load average: the machine is shared, times depend on it.
                 row.update(model=key, method=method, rate=rate, input_count=len(model.points), load=os.getloadavg()[0],
-                           wall_seconds=time.perf_counter() - t)
+                           wall_seconds=time.perf_counter() - t, key=run_key(key, method, rate))
                 path.parent.mkdir(parents=True, exist_ok=True)
                 path.write_text(json.dumps(row, indent=1))
                 log(f"{key:12} {rate:5.0%} {method:18} {row.get('count', '-'):>7} "
@@ -302,10 +339,10 @@ def run_all(models, rates, methods, log):
                     f"({time.perf_counter() - t:5.1f} s)")
         if model is not None:
             full = OUT / "runs" / key.replace(" ", "_") / "all_points.json"
-            if not full.is_file():
+            if cached(full, run_key(key, "all_points", 1.0)) is None:
                 recon, secs = reconstruction_error(model, dict(points=model.points, normals=model.normals))
-                full.write_text(json.dumps(dict(model=key, recon=recon, recon_seconds=secs,
-                                                input_count=len(model.points), faces=model.faces)))
+                full.write_text(json.dumps(dict(model=key, recon=recon, recon_seconds=secs, input_count=len(model.points),
+                                                faces=model.faces, key=run_key(key, "all_points", 1.0))))
 
 
 def main():

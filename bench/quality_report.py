@@ -31,22 +31,30 @@ def speed_section():
             "otherwise idle machine).", "", body.replace("\n## ", "\n### ")]
 
 
+STALE = []  # cached rows left out: made by another plugin, script, measure or model file
+
+
 def load_runs():
+    """The cached rows made under the current run_key; stale ones are counted in STALE, never reported."""
     runs = {}
     for path in (q.OUT / "runs").glob("*/*.json"):
         row = json.loads(path.read_text())
-        if path.stem == "all_points":
-            runs[(row["model"], "all_points", 1.0)] = row
-        else:
-            runs[(row["model"], row["method"], row["rate"])] = row
+        key = (row["model"], "all_points", 1.0) if path.stem == "all_points" else (row["model"], row["method"], row["rate"])
+        if row.get("key") != q.run_key(*key):
+            STALE.append(path)
+            continue
+        runs[key] = row
     return runs
 
 
 def value(runs, model, method, rate, what):
-    """what: 'recon', 'plane' (mean error per diagonal), 'seconds' or 'count'; NaN if absent."""
+    """what: 'recon', 'plane' (mean error per diagonal), 'miss' (the reconstruction measure's miss
+    fraction), 'seconds' or 'count'; NaN if absent."""
     row = runs.get((model, method, rate))
     if row is None or "skipped" in row:
         return np.nan
+    if what == "miss":
+        return row["recon"].get("miss", np.nan)
     return row[what]["mean"] if what in ("recon", "plane") else row[what]
 
 
@@ -135,11 +143,13 @@ def total_text(runs):
 
 def missing_lines(runs, models, rates):
     gone = missing_runs(runs, models, rates)
+    stale = [f"{len(STALE)} cached runs made by another build, script, measure or model file were left out.", ""] \
+        if STALE else []
     if not gone:
-        return []
+        return stale
     listed = "; ".join(f"{m} {label(k)} {r:.0%}" for m, k, r in gone)
     return [f"**Incomplete:** {len(gone)} runs were not in the cache when this report was written "
-            f"(their cells show –): {listed}.", ""]
+            f"(their cells show –): {listed}.", ""] + stale
 
 
 def missing_runs(runs, models, rates):
@@ -458,6 +468,11 @@ def write(models, rates, measure, log):
     doc += section(runs, models, rates, "Plane-fit error (‰ of the diagonal, lower is better)", "plane",
                    "plane-fit error (‰ of diagonal)", "bench_plane_fit_error", pm)
     doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", "bench_time", secs)
+    doc += ["## Misses of the reconstruction measure", "",
+            "The share of the input's normal lines that meet the reconstructed surface nowhere within half the "
+            "diagonal. The error above is the mean over the lines that do meet it, so a surface with holes "
+            "would score on fewer points: compare a method's misses with the others' before its error.", "",
+            table(runs, models, rates, list(q.METHODS), "miss", lambda v: f"{100 * v:.2f}%", best=None), ""]
     doc += [
         "## Mean rank over all models and rates (1 = lowest error)",
         "",

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <common/mlexception.h>
 #include "lod_filters.h"
 
@@ -301,6 +302,34 @@ TEST(LodFilters, LevelListsAreParsedOrRefusedByName) {
       EXPECT_EQ(std::string(e.what()).rfind("levels: ", 0), 0u) << e.what();
     }
   }
+}
+
+// The level parser on random strings of the characters a list is made of: every
+// string is either refused with a "levels: " message or gives counts from 1 to n,
+// one per comma-separated item (the coarsening order is the pyramid's own check).
+TEST(LodFilters, LevelParserOnRandomListsAnswersInRangeOrByName) {
+  std::mt19937 rng(7);
+  const std::string alphabet = "0123456789.,%%e+- xinfa";
+  size_t accepted = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::string list;
+    const int len = std::uniform_int_distribution<int>(0, 24)(rng);
+    for (int c = 0; c < len; ++c) list += alphabet[std::uniform_int_distribution<size_t>(0, alphabet.size() - 1)(rng)];
+    if (trial % 4 == 0) list = std::to_string(rng() % 400) + (trial % 8 ? "%" : "") + "," + list.substr(0, 3);
+    static const char* huge[] = {"1e19", "99999999999999999999", "1e300", "1e19%", "50%,1e19"};
+    if (trial < 5) list = huge[trial];
+    const size_t n = 1 + rng() % 300;
+    try {
+      const auto levels = ParseLevels(QString::fromStdString(list), n);
+      ++accepted;
+      ASSERT_EQ(levels.size(), size_t(QString::fromStdString(list).count(',') + 1)) << list;
+      for (const auto& l : levels) ASSERT_TRUE(l.count >= 1 && l.count <= n) << "'" << list << "' n " << n;
+    } catch (const std::invalid_argument& e) {
+      ASSERT_EQ(std::string(e.what()).rfind("levels: ", 0), 0u) << "'" << list << "': " << e.what();
+      ASSERT_EQ(std::string(e.what()).find("-9223372036854775808"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_GT(accepted, 100u) << "the strings must reach the accepting paths too";
 }
 
 TEST(LodFilters, PyramidMakesOneNestedLayerPerLevelAndLabelsTheFinest) {
