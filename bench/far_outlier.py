@@ -43,7 +43,7 @@ def main():
             v = np.vstack([pts, [[1e9, 0, 0]]]) if outlier else pts
             ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v), "sphere")
             t_radius, r_radius = timed(ms, radius=pymeshlab.PureValue(radius))
-            t_count, r_count = timed(ms, samplenum=pymeshlab.PercentageValue(10))
+            t_count, r_count = timed(ms, samplerate=10)
             rows.append({"points": n, "outlier": outlier, "radius": radius, "radius_s": round(t_radius, 3),
                          "radius_samples": r_radius["sample_num"], "count_s": round(t_count, 3),
                          "count_samples": r_count["sample_num"], "count_runs": r_count["iterations"],

@@ -46,7 +46,7 @@ def main():
     for c in counts:
         ms.set_current_mesh(0)
         t = time.perf_counter()
-        ms.apply_filter("generate_geodesic_poisson_lod", samplenum=pymeshlab.PureValue(c))
+        ms.apply_filter("generate_geodesic_poisson_lod", samplenum=c)
         single.append(time.perf_counter() - t)
         assert ms.current_mesh().vertex_number() == c
 

@@ -147,7 +147,7 @@ class Model:
     def ours_poisson(self, target, **params):
         # The filter finds the radius itself; its time includes that search.
         lod = self._layer(lambda: self.ms.apply_filter(
-            "generate_geodesic_poisson_lod", samplenum=pymeshlab.PureValue(target), **params))
+            "generate_geodesic_poisson_lod", samplenum=target, **params))
         lod["parameter"] = f"radius {lod['result']['radius']:.4g}"
         return lod
 

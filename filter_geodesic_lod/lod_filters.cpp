@@ -142,11 +142,13 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "Radius of the Poisson disks in the chosen metric: an absolute value or a percentage of the "
                "bounding-box diagonal. Larger radius, fewer samples.",
                diag * 0.01, 0, diag});
-  p.push_back({ParamKind::Percentage, "samplenum", "Number of samples",
-               "Wanted number of samples, an absolute count or a percentage of the layer's vertices; 0 uses the "
-               "radius instead. The radius is searched for (at most 24 Poisson runs) and a slightly denser Poisson "
-               "set is trimmed in farthest-point order to the exact count; the radius used is reported.",
-               0, 0, double(m.vn)});
+  p.push_back({ParamKind::Int, "samplenum", "Number of samples",
+               "Wanted number of samples (0: use the sample rate, or else the radius). The radius is searched for "
+               "(at most 24 Poisson runs) and a slightly denser Poisson set is trimmed in farthest-point order to "
+               "the exact count; the radius used is reported.", 0});
+  p.push_back({ParamKind::Float, "samplerate", "Sample rate (%)",
+               "Wanted number of samples as a percentage of the layer's vertices, instead of a count (0: unused).",
+               0});
   p.push_back({ParamKind::Float, "tolerance", "Sample count tolerance (%)",
                "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
                "it. 0 gives the exact count.", 0});
@@ -170,11 +172,18 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
   return Guarded([&] {
     vcg_ext::GeodesicPoissonLOD<CMeshO>::Param p;
     p.radius = src.number("radius");
-    const double target = src.number("samplenum");
-    if (!(target >= 0) || !std::isfinite(target))
+    const double count = src.number("samplenum"), rate = src.number("samplerate");
+    if (!(count >= 0) || !std::isfinite(count))
       throw std::invalid_argument("samplenum must be 0 (use the radius) or a positive count (got " +
-                                  std::to_string(target) + ")");
-    p.sampleNum = target > 0 ? Count("samplenum", std::max(1.0, std::round(target)), in) : 0;
+                                  QString::number(count).toStdString() + ")");
+    if (!(rate >= 0 && rate <= 100))
+      throw std::invalid_argument("samplerate must be a percentage from 0 to 100 (got " +
+                                  QString::number(rate).toStdString() + ")");
+    if (count > 0 && rate > 0)
+      throw std::invalid_argument("give samplenum or samplerate, not both (got " + QString::number(count).toStdString() +
+                                  " and " + QString::number(rate).toStdString() + "%)");
+    if (rate > 0) p.sampleNum = Count("samplerate", std::max(1.0, std::round(rate / 100 * in.vn)), in);
+    else p.sampleNum = count > 0 ? Count("samplenum", std::max(1.0, std::round(count)), in) : 0;
     p.tolerance = src.number("tolerance") / 100;
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
       throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
@@ -192,7 +201,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
                          .arg(p.sampleNum).arg(r.iterations).arg(r.poissonCount)
                          .arg(r.trimmed ? ", trimmed in farthest-point order" : "");
     run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"radius", QVariant(double(r.radius))},
-                  {"iterations", QVariant(r.iterations)}};
+                  {"covering_radius", QVariant(r.coveringRadius)}, {"iterations", QVariant(r.iterations)}};
     return run;
   });
 }

@@ -35,6 +35,7 @@ class GeodesicPoissonLOD {
     size_t poissonCount = 0;  ///< samples of the Poisson set before trimming
     int iterations = 1;       ///< Poisson runs
     bool trimmed = false;     ///< cut to sampleNum in farthest-point order
+    double coveringRadius = 0;  ///< every point lies within it of a sample (exact when trimmed, else radius)
   };
 
   static void CheckRadius(double r) {
@@ -95,11 +96,13 @@ class GeodesicPoissonLOD {
       r.poissonCount = t.poissonCount;
       r.iterations = t.iterations;
       r.trimmed = t.trimmed;
+      r.coveringRadius = t.coveringRadius;
     } else {
       PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;
+      r.coveringRadius = p.radius;
       r.poissonCount = samples.size();
     }
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, samples);

@@ -40,6 +40,9 @@ class PoissonTargetCount {
     size_t poissonCount = 0;     ///< samples of that set before trimming
     int iterations = 0;          ///< Poisson runs made
     bool trimmed = false;
+    /// Every point lies within this distance of a sample: the exact largest one
+    /// when trimmed, else the Poisson set's radius (a bound).
+    double coveringRadius = 0;
   };
 
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
@@ -85,6 +88,7 @@ class PoissonTargetCount {
     if (found && (p.tolerance > 0 || from.count == p.sampleNum)) {
       out.samples = std::move(from.samples);
       out.diskOwner = std::move(from.owner);
+      out.coveringRadius = out.radius;
       return out;  // a Poisson set as it is
     }
     // Trim to the exact count: the farthest-point order among the set's samples.
@@ -95,6 +99,7 @@ class PoissonTargetCount {
     fp.candidates = &candidates;
     FarthestPoint::Result f = FarthestPoint::Compute<Scalar>(n, search, fp, progress.Sub(80, 100));
     out.trimmed = f.samples.size() < from.count;
+    out.coveringRadius = f.dist.empty() ? 0.0 : *std::max_element(f.dist.begin(), f.dist.end());
     out.samples = std::move(f.samples);
     out.voronoiOwner = std::move(f.owner);
     out.diskOwner = DiskOwners(from, candidates, out.samples, out.voronoiOwner);

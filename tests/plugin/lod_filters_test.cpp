@@ -284,6 +284,16 @@ TEST(LodFilters, PoissonGivesTheAskedCountAndTheRadiusItUsed) {
     q.set("samplenum", 50).set(bad.first, bad.second);
     EXPECT_NE(ErrorOf(in, q).find(bad.first), std::string::npos) << ErrorOf(in, q);
   }
+  // A percentage of the vertices instead of a count; never both.
+  MapSource rate(in);
+  rate.set("samplerate", 10);
+  EXPECT_EQ(RunPoissonLod(in, rate, nullptr).result.vertIndex.size(), 90u);
+  for (double bad : {-1.0, 100.5}) {
+    rate.set("samplerate", bad);
+    EXPECT_NE(ErrorOf(in, rate).find("samplerate must be a percentage"), std::string::npos) << ErrorOf(in, rate);
+  }
+  rate.set("samplerate", 10).set("samplenum", 5);
+  EXPECT_NE(ErrorOf(in, rate).find("give samplenum or samplerate, not both"), std::string::npos);
 }
 
 TEST(LodFilters, LevelListsAreParsedOrRefusedByName) {

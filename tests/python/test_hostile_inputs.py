@@ -149,7 +149,7 @@ def line_but_one(n=200):
 @pytest.mark.parametrize("make", [line, line_but_one], ids=["all on a line", "all on a line but one"])
 @pytest.mark.parametrize("flt,params", [
     (POISSON, {}),
-    (POISSON, {"samplenum": pymeshlab.PureValue(20)}),
+    (POISSON, {"samplenum": 20}),
     (FPS, {"samplenum": 10}),
     (PYRAMID, {"levels": "50%,10%"}),
 ])
@@ -235,7 +235,7 @@ def test_georeferenced_coordinates(plugin, metric):
     for name, shift in (("origin", np.zeros(3)), ("offset", OFFSET)):
         pts = mm_grid() + shift
         ms = layer(pts)
-        res = runs(ms, POISSON, samplenum=pymeshlab.PureValue(500), **extra)
+        res = runs(ms, POISSON, samplenum=500, **extra)
         lod = ms.current_mesh()
         assert lod.vertex_number() == res["sample_num"] == 500
         assert_valid_lod(ms)
@@ -320,7 +320,7 @@ def test_int64_face_index_beyond_int32_wraps_in_pymeshlab(plugin):
 
 @pytest.mark.parametrize("tol", [-1.0, -1e-9, -100.0])
 def test_negative_tolerance(plugin, tol):
-    fails(layer(bumpy_points(10)), POISSON, "tolerance must be at least 0", samplenum=pymeshlab.PureValue(10),
+    fails(layer(bumpy_points(10)), POISSON, "tolerance must be at least 0", samplenum=10,
           tolerance=tol)
 
 

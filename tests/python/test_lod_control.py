@@ -3,6 +3,7 @@ nested pyramids, colouring the input by region, and the paper's error measure.""
 import numpy as np
 import pymeshlab
 import pytest
+from scipy.spatial import cKDTree
 
 from conftest import bumpy_points, mesh_set
 
@@ -26,21 +27,34 @@ def as_set(rows):
 @pytest.mark.parametrize("target", [1, 37, 500, 2000, 3599, 3600])
 def test_poisson_target_count_is_exact(plugin, target):
     ms = mesh_set(bumpy_points(60))
-    res = ms.apply_filter(POISSON, samplenum=pymeshlab.PureValue(target), seed=2)
+    res = ms.apply_filter(POISSON, samplenum=target, seed=2)
     assert ms.current_mesh().vertex_number() == target == res["sample_num"]
     assert res["iterations"] <= 24
     assert res["radius"] >= 0
 
 
+def test_covering_radius_of_a_trimmed_count_is_the_farthest_point(plugin):
+    # In the Euclidean metric the covering radius is the largest distance from a point to its nearest sample.
+    pts = bumpy_points(50)
+    ms = mesh_set(pts)
+    res = ms.apply_filter(POISSON, samplenum=321, metric="Euclidean", seed=4)
+    lod = ms.current_mesh().vertex_matrix()
+    farthest = cKDTree(lod).query(pts)[0].max()
+    assert res["covering_radius"] == pytest.approx(farthest, rel=1e-5)
+    ms.set_current_mesh(0)
+    res = ms.apply_filter(POISSON, radius=pymeshlab.PercentageValue(3), metric="Euclidean")
+    assert res["covering_radius"] == res["radius"] >= cKDTree(ms.current_mesh().vertex_matrix()).query(pts)[0].max()
+
+
 def test_poisson_target_as_a_percentage_of_the_vertices(plugin):
     ms = mesh_set(bumpy_points(70))  # 4,900 points
-    ms.apply_filter(POISSON, samplenum=pymeshlab.PercentageValue(10))
+    ms.apply_filter(POISSON, samplerate=10)
     assert ms.current_mesh().vertex_number() == 490
 
 
 def test_poisson_target_within_a_tolerance_is_an_untrimmed_poisson_set(plugin):
     ms = mesh_set(bumpy_points(60))
-    res = ms.apply_filter(POISSON, samplenum=pymeshlab.PureValue(400), tolerance=5.0)
+    res = ms.apply_filter(POISSON, samplenum=400, tolerance=5.0)
     assert abs(res["sample_num"] - 400) <= 20
     # An untrimmed set at that radius: the same radius alone gives the same samples.
     lod = ms.current_mesh().vertex_matrix()
@@ -55,7 +69,7 @@ def test_poisson_target_counts_on_the_bunny_scans(plugin, shared):
     n = ms.current_mesh().vertex_number()
     for rate in (0.05, 0.02):
         ms.set_current_mesh(0)
-        ms.apply_filter(POISSON, samplenum=pymeshlab.PureValue(round(rate * n)))
+        ms.apply_filter(POISSON, samplenum=round(rate * n))
         assert ms.current_mesh().vertex_number() == round(rate * n)
 
 
@@ -94,7 +108,7 @@ def snapshot(m):
 
 @pytest.mark.parametrize("flt,regions,params", [
     (POISSON, "Disk regions", {"radius": pymeshlab.PureValue(0.08)}),
-    (POISSON, "Voronoi regions", {"samplenum": pymeshlab.PureValue(60)}),
+    (POISSON, "Voronoi regions", {"samplenum": 60}),
     (FPS, "Voronoi regions", {"samplenum": 60}),
 ])
 def test_colouring_the_input_by_region_changes_only_its_colours(plugin, flt, regions, params):

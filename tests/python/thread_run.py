@@ -16,7 +16,7 @@ MESH_MODE, TRIANGLES = "Mesh (fast marching)", "Triangle mesh (geodesic Delaunay
 # Each: (filter, parameters, which layers to save: "new" for every layer the filter added, "input" for the input).
 CONFIGS = {
     "poisson_radius": (POISSON, {"radius": pymeshlab.PercentageValue(0.4)}, "new"),
-    "poisson_count": (POISSON, {"samplenum": pymeshlab.PureValue(3000)}, "new"),
+    "poisson_count": (POISSON, {"samplenum": 3000}, "new"),
     "fps": (FPS, {"samplenum": 800}, "new"),
     "pyramid": (PYRAMID, {"levels": "20%,5%,1%"}, "new"),
     "mesh_mode": (POISSON, {"radius": pymeshlab.PercentageValue(1), "geodesicmode": MESH_MODE}, "new"),
