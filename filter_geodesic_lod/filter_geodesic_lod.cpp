@@ -5,6 +5,14 @@
 
 using namespace geodesic_lod;
 
+// The shared menu classes and arities are MeshLab's own values.
+static_assert(kClassQuality == FilterPlugin::Quality && kClassNormal == FilterPlugin::Normal &&
+                  kClassSampling == FilterPlugin::Sampling && kClassPointSet == FilterPlugin::PointSet &&
+                  kClassMeasure == FilterPlugin::Measure,
+              "filter classes differ from MeshLab 2025.07's");
+static_assert(kAritySingle == FilterPlugin::SINGLE_MESH && kArityFixed == FilterPlugin::FIXED,
+              "filter arities differ from MeshLab 2025.07's");
+
 namespace {
 
 class RichParamSource : public RichParamSourceBase<RichParameterList> {

@@ -6,6 +6,14 @@
 
 using namespace geodesic_lod;
 
+// The shared menu classes and arities are MeshLab's own values.
+static_assert(kClassQuality == MeshFilterInterface::Quality && kClassNormal == MeshFilterInterface::Normal &&
+                  kClassSampling == MeshFilterInterface::Sampling && kClassPointSet == MeshFilterInterface::PointSet &&
+                  kClassMeasure == MeshFilterInterface::Measure,
+              "filter classes differ from MeshLab 2020.09's");
+static_assert(kAritySingle == MeshFilterInterface::SINGLE_MESH && kArityFixed == MeshFilterInterface::FIXED,
+              "filter arities differ from MeshLab 2020.09's");
+
 namespace {
 
 class RichParamSource : public RichParamSourceBase<RichParameterList> {

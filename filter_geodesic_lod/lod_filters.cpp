@@ -17,12 +17,44 @@
 namespace geodesic_lod {
 namespace {
 
-const QStringList kMetricNames = {
-    "Weighted geodesic (eq. 3)", "Curvature-density geodesic", "Geodesic (unweighted)", "Euclidean"};
-const QStringList kModeNames = {"Auto", "Mesh (fast marching)", "Point graph (Dijkstra)"};
-const QStringList kOutputNames = {"Points", "Triangle mesh (geodesic Delaunay)"};
-const QStringList kPoissonRegionNames = {"None", "Disk regions", "Voronoi regions"};
-const QStringList kFpsRegionNames = {"None", "Voronoi regions"};
+// An enum parameter: each value beside its user-facing name, in the dialog's order.
+template <class E>
+struct Choices {
+  std::vector<std::pair<E, QString>> items;
+
+  QStringList Names() const {
+    QStringList n;
+    for (const auto& it : items) n << it.second;
+    return n;
+  }
+  double IndexOf(E v) const {  // a default, as the dialog stores it
+    for (size_t k = 0; k < items.size(); ++k)
+      if (items[k].first == v) return double(k);
+    throw std::logic_error("an enum value without a name");
+  }
+  QString NameOf(E v) const { return items[size_t(IndexOf(v))].second; }
+  E Read(const ParamSource& src, const char* name) const {
+    const int c = src.choice(name);
+    if (c < 0 || c >= int(items.size()))
+      throw std::invalid_argument(std::string(name) + " must be one of: " + Names().join(", ").toStdString());
+    return items[size_t(c)].first;
+  }
+};
+
+using vcg_ext::Metric;
+using vcg_ext::GeodesicMode;
+using vcg_ext::Regions;
+const Choices<Metric> kMetrics{{{Metric::WeightedEq3, "Weighted geodesic (eq. 3)"},
+                                {Metric::CurvatureDensity, "Curvature-density geodesic"},
+                                {Metric::Geodesic, "Geodesic (unweighted)"},
+                                {Metric::Euclidean, "Euclidean"}}};
+const Choices<GeodesicMode> kModes{{{GeodesicMode::Auto, "Auto"},
+                                    {GeodesicMode::Mesh, "Mesh (fast marching)"},
+                                    {GeodesicMode::PointGraph, "Point graph (Dijkstra)"}}};
+const Choices<bool> kOutputs{{{false, "Points"}, {true, "Triangle mesh (geodesic Delaunay)"}}};  // meshOutput
+const Choices<Regions> kPoissonRegions{
+    {{Regions::None, "None"}, {Regions::Disk, "Disk regions"}, {Regions::Voronoi, "Voronoi regions"}}};
+const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, "Voronoi regions"}}};
 
 // An empty layer is named as such before any count is read.
 void RequireVertices(const CMeshO& in) {
@@ -37,13 +69,6 @@ size_t Count(const char* name, double x, const CMeshO& in) {
     throw std::invalid_argument(std::string(name) + " must be between 1 and the number of vertices (" +
                                 std::to_string(in.vn) + "), got " + QString::number(x).toStdString());
   return size_t(x);
-}
-
-int Choice(const ParamSource& src, const char* name, const QStringList& names) {
-  const int c = src.choice(name);
-  if (c < 0 || c >= names.size())
-    throw std::invalid_argument(std::string(name) + " must be one of: " + names.join(", ").toStdString());
-  return c;
 }
 
 // vcg_ext's product defaults, which every parameter below starts from.
@@ -62,13 +87,13 @@ ParamSpec RecomputeNormalsParam() {
           kDomainDefaults.useInputNormals ? 0.0 : 1.0};
 }
 
-ParamSpec RegionsParam(const QStringList& names, const QString& disk) {
+ParamSpec RegionsParam(const Choices<Regions>& regions, const QString& disk) {
   return {ParamKind::Enum, "regions", "Colour the input by region",
           "Colours each vertex of the current layer with the colour of its sample's region (the paper's Fig. 3), to "
           "see what the metric does. " + disk + "Voronoi regions: the nearest sample in the metric. Only the "
           "vertex colours of the current layer change (colours are enabled if it had none); the new layer keeps "
           "the input's colours.",
-          0, 0, 0, names};
+          regions.IndexOf(Regions::None), 0, 0, regions.Names()};
 }
 
 // Parameters shared by every sampling filter, after the filter's own.
@@ -79,12 +104,12 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
                "Euclidean: straight-line distance (for comparison). The default is the one with the lowest "
                "reconstruction error in the quality benchmark (docs/benchmarks.md).",
-               double(kDomainDefaults.metric), 0, 0, kMetricNames});
+               kMetrics.IndexOf(kDomainDefaults.metric), 0, 0, kMetrics.Names()});
   p.push_back({ParamKind::Enum, "geodesicmode", "Geodesics",
                "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
                "faces, else Dijkstra on the k-nearest-neighbour graph of the points. Mesh mode leaves out "
                "vertices that are in no triangle (their number is logged); the point graph keeps every vertex.",
-               double(kDomainDefaults.mode), 0, 0, kModeNames});
+               kModes.IndexOf(kDomainDefaults.mode), 0, 0, kModes.Names()});
   p.push_back({ParamKind::Float, "curvatureexponent", "Curvature exponent c",
                "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.",
                kDomainDefaults.curvatureExponent});
@@ -100,20 +125,20 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
   p.push_back({ParamKind::Enum, "output", "Output",
                "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
                "(dual of their geodesic Voronoi regions), for layers with faces.",
-               0, 0, 0, kOutputNames});
+               kOutputs.IndexOf(false), 0, 0, kOutputs.Names()});
   p.push_back({ParamKind::Int, "seed", "Random seed", "The same seed gives the same LOD.", 0});
 }
 
 template <class DomainParam>
 void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bool& meshOutput) {
-  d.metric = vcg_ext::Metric(Choice(src, "metric", kMetricNames));
-  d.mode = vcg_ext::GeodesicMode(Choice(src, "geodesicmode", kModeNames));
+  d.metric = kMetrics.Read(src, "metric");
+  d.mode = kModes.Read(src, "geodesicmode");
   d.curvatureExponent = src.number("curvatureexponent");
   d.adaptivity = src.number("adaptivity");
   d.normalNeighbors = int(src.number("normalneighbors"));
   d.graphNeighbors = int(src.number("graphneighbors"));
   d.useInputNormals = !src.flag("recomputenormals");
-  meshOutput = Choice(src, "output", kOutputNames) == 1;
+  meshOutput = kOutputs.Read(src, "output");
   const double s = src.number("seed");
   if (s < 0) throw std::invalid_argument("seed must be zero or positive");
   seed = uint64_t(s);
@@ -125,7 +150,7 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
                   .arg(r.vertIndex.size())
                   .arg(r.pointCount)
                   .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
-                  .arg(kMetricNames[int(metric)])
+                  .arg(kMetrics.NameOf(metric))
                   .arg(metric == vcg_ext::Metric::Euclidean ? "no" : r.meshGeodesics ? "fast-marching" : "point-graph");
   s += QString("; %1 normals estimated; %2 connected parts").arg(r.estimatedNormals).arg(r.components);
   if (r.leftOut) s += QString("; %1 vertices in no triangle left out (use the point graph to keep them)").arg(r.leftOut);
@@ -153,7 +178,7 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
                "it. 0 gives the exact count.", 0});
   AddDomainParams(p);
-  p.push_back(RegionsParam(kPoissonRegionNames, "Disk regions: the disk that first covered each vertex. "));
+  p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
   return p;
 }
 
@@ -164,7 +189,7 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
                "its first k vertices are the k-sample LOD.",
                double(std::max(1, m.vn / 10))});
   AddDomainParams(p);
-  p.push_back(RegionsParam(kFpsRegionNames, ""));
+  p.push_back(RegionsParam(kFpsRegions, ""));
   return p;
 }
 
@@ -189,7 +214,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
       throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
                                   QString::number(src.number("tolerance")).toStdString() + "%)");
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
-    p.regions = vcg_ext::Regions(Choice(src, "regions", kPoissonRegionNames));
+    p.regions = kPoissonRegions.Read(src, "regions");
     const auto r = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
@@ -213,7 +238,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
     p.sampleNum = Count("samplenum", n, in);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
-    p.regions = Choice(src, "regions", kFpsRegionNames) ? vcg_ext::Regions::Voronoi : vcg_ext::Regions::None;
+    p.regions = kFpsRegions.Read(src, "regions");
     auto r = vcg_ext::GeodesicFpsLOD<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
