@@ -138,6 +138,19 @@ def test_filters_menu_dialog_apply_and_export(gui, tmp_path):
     assert dist.max() == 0 and len(np.unique(idx)) == len(idx)  # exact input points, each once
     assert len(lod) < len(src)
 
+    # The dialog's choices reached the filter: pymeshlab with that metric and radius (and the other
+    # defaults) gives the very same samples, and with the default metric other ones.
+    pymeshlab.load_plugin(str(BUILD / "plugins" / "libfilter_geodesic_lod.so"))
+
+    def samples(**params):
+        ref = pymeshlab.MeshSet()
+        ref.load_new_mesh(str(inp))
+        ref.apply_filter("generate_geodesic_poisson_lod", radius=pymeshlab.PercentageValue(2), **params)
+        return {tuple(p) for p in ref.current_mesh().vertex_matrix()}
+
+    assert {tuple(p) for p in lod} == samples(metric="Weighted geodesic (eq. 3)")
+    assert samples() != samples(metric="Weighted geodesic (eq. 3)"), "the metric choice would go unnoticed"
+
     figures = os.environ.get("GEODESIC_LOD_FIGURES")
     if figures:
         figs = pathlib.Path(figures)
