@@ -45,15 +45,13 @@ class GeodesicFpsLOD {
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
-    if (p.meshOutput && m.fn == 0)
-      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 50));
     const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(50, 100));
     Result r;
-    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, s.samples);
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
+        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, m.vert.size());
     r.coveringRadius = s.coveringRadius;
-    if (p.meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, s.owner);
-    if (p.regions != Regions::None) r.SetRegions(d, s.owner, m.vert.size());
     return r;
   }
 };

@@ -50,8 +50,7 @@ class GeodesicLodPyramid {
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
     CheckCounts(p.counts);
-    if (p.meshOutput && m.fn == 0)
-      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 40));
     typename GeodesicPoissonLOD<MeshType>::Param pp;
     pp.sampleNum = p.counts[0];

@@ -81,8 +81,7 @@ class GeodesicPoissonLOD {
       Domain::Check(PointSetFromMesh<MeshType>::Compute(m), m.fn > 0, p.domain);
       CheckRadius(p.radius);
     }
-    if (p.meshOutput && m.fn == 0)
-      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 60));
     const Progress sampling = progress.Sub(60, p.meshOutput ? 90 : 100);
     Result r;
@@ -105,11 +104,11 @@ class GeodesicPoissonLOD {
       r.coveringRadius = p.radius;
       r.poissonCount = samples.size();
     }
-    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, samples);
     if ((p.meshOutput || p.regions == Regions::Voronoi) && voronoi.empty())
       voronoi = GeodesicDelaunay<Scalar>::VoronoiOwners(d, samples);
-    if (p.meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
-    if (p.regions != Regions::None) r.SetRegions(d, p.regions == Regions::Disk ? disk : voronoi, m.vert.size());
+    const std::vector<int>* regions =
+        p.regions == Regions::None ? nullptr : p.regions == Regions::Disk ? &disk : &voronoi;
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, m.vert.size());
     return r;
   }
 };

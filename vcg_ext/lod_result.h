@@ -2,7 +2,9 @@
 #define VCG_EXT_LOD_RESULT_H
 // What a sampling filter hands back: the chosen vertices and their data.
 #include <array>
+#include <stdexcept>
 #include <vector>
+#include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
 
 namespace vcg_ext {
@@ -26,6 +28,24 @@ struct LodResult {
   int components = 0;
   bool meshGeodesics = false;
   std::vector<int> regionOf;  ///< on request, per m.vert index: rank of the sample whose region holds it, -1 if none
+
+  /// Throws std::invalid_argument when triangle-mesh output is asked of a layer without faces.
+  static void CheckMeshOutput(bool meshOutput, int faceCount) {
+    if (meshOutput && faceCount == 0)
+      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+  }
+
+  /// The ending every sampler shares: the data of `samples` (point indices of
+  /// `d`); with `meshOutput` their geodesic Delaunay triangles, read from
+  /// `voronoi` (per point, the rank of its nearest sample); with `regionOwner`
+  /// (per point, a rank) regionOf for the mesh's `vertCount` vertices.
+  static LodResult Finish(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, bool meshOutput,
+                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, size_t vertCount) {
+    LodResult r = Collect(d, samples);
+    if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
+    if (regionOwner) r.SetRegions(d, *regionOwner, vertCount);
+    return r;
+  }
 
   /// The data of `samples` (point indices of `d`).
   static LodResult Collect(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples) {
