@@ -3,6 +3,7 @@
 // Geodesic Poisson-disk LOD of a vcglib mesh: the whole pipeline, from the
 // mesh to the chosen vertices (and, for meshes, their Delaunay triangles),
 // at a given radius or a wanted number of samples.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -63,13 +64,30 @@ class GeodesicPoissonLOD {
     tp.maxIterations = p.maxIterations;
     tp.seed = p.seed;
     // The metric is never shorter than the Euclidean one: start where disks of
-    // this radius would about tile the bounding box's diagonal plane.
-    vcg::Box3<Scalar> box;
-    for (const auto& q : d.points.pos) box.Add(q);
-    tp.initialRadius = box.Diag() / std::sqrt(double(p.sampleNum));
+    // this radius would about tile the diagonal plane of the box holding the
+    // middle 98% of the points on each axis (a few stray points far away would
+    // make the whole box's diagonal, and the first runs, far too large).
+    tp.initialRadius = CoreDiagonal(d.points.pos) / std::sqrt(double(p.sampleNum));
     PoissonTargetCount::Result r;
     d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
     return r;
+  }
+
+  /// The diagonal of the box from the 1st to the 99th percentile of each
+  /// coordinate (the whole box's below 100 points, or where that box is flat
+  /// to a point). O(n).
+  static double CoreDiagonal(const std::vector<vcg::Point3<Scalar>>& pos, bool whole = false) {
+    const size_t n = pos.size(), cut = n < 100 || whole ? 0 : n / 100;
+    std::vector<double> x(n);
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      for (size_t i = 0; i < n; ++i) x[i] = double(pos[i][a]);
+      std::nth_element(x.begin(), x.begin() + cut, x.end());
+      const double lo = x[cut];
+      std::nth_element(x.begin(), x.end() - 1 - cut, x.end());
+      d2 += (x[n - 1 - cut] - lo) * (x[n - 1 - cut] - lo);
+    }
+    return d2 > 0 || cut == 0 ? std::sqrt(d2) : CoreDiagonal(pos, true);
   }
 
   /// Never modifies `m`. Throws std::invalid_argument for bad input and
