@@ -5,7 +5,7 @@
 // the output), the parameter reads both APIs spell alike, and default layers.
 #include <type_traits>
 #include <vector>
-#include "lod_filters.h"
+#include "lod_layers.h"
 
 namespace geodesic_lod {
 

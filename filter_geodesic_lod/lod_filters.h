@@ -1,7 +1,8 @@
 #ifndef GEODESIC_LOD_LOD_FILTERS_H
 #define GEODESIC_LOD_LOD_FILTERS_H
 // The filters' logic, independent of the MeshLab plugin API version: parameter
-// descriptions, input checks, calls into vcg_ext and the output layer's data.
+// descriptions, input checks and calls into vcg_ext (the output layers are
+// written by lod_layers.h).
 // Each API version has a small adapter that turns these into its own classes.
 #include <QString>
 #include <QStringList>
@@ -121,19 +122,7 @@ enum : int {
 };
 enum : int { kAritySingle = 1, kArityFixed = 2 };
 
-/// The colour of region k on the input (distinct hues for nearby ranks).
-vcg::Color4b RegionColour(int k);
 const std::vector<FilterDef>& Filters();
-
-/// Fills the empty mesh `out` (with the same optional components enabled as
-/// `in`) with copies of the first `level.count` chosen vertices and their
-/// data, the level's triangles, and the bounding box. Vertices whose normal
-/// was estimated get it. The first level also gets "lod_level" when the run
-/// has levels. Returns the names of attributes not copied.
-QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& level, bool first, CMeshO& out);
-
-/// The run's output layers (one per level, or one with everything).
-std::vector<LodLevel> OutputLevels(const LodRun& run);
 
 }  // namespace geodesic_lod
 #endif

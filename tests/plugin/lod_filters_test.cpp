@@ -6,7 +6,7 @@
 #include <map>
 #include <random>
 #include <common/mlexception.h>
-#include "lod_filters.h"
+#include "lod_layers.h"
 
 namespace {
 using namespace geodesic_lod;
