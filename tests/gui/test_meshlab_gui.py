@@ -23,7 +23,7 @@ SHARED = pathlib.Path(os.environ.get("GEODESIC_LOD_SHARED_DATA", ROOT.parent / "
 # Parts of the maximised 1600x1000 window, where text is looked for (OCR of the whole screen is slow).
 VIEWPORT = "1123x868+0+72"  # the 3D view
 MENUS = (0, 0, 800, 520)
-DIALOG = (480, 70, 640, 930)  # to the window's bottom: Apply and Close
+DIALOG = (480, 40, 800, 960)  # to the window's bottom: Apply and Close; as wide as the dialog grows
 LOG = (1130, 770, 470, 160)
 LAYERS = (1130, 80, 470, 80)
 CENTRE = (300, 150, 1000, 700)
@@ -99,6 +99,10 @@ def test_filters_menu_dialog_apply_and_export(gui, tmp_path):
     s.type("2")
     s.key("Tab")
     dialog = s.shot("12_dialog_set")
+    # The dialog's own window, for the README's picture of it (its size follows its contents).
+    geo = s.run("xdotool", "search", "--name", "Geodesic Poisson-disk LOD", "getwindowgeometry", "--shell").stdout
+    g = dict(line.split("=") for line in geo.split() if "=" in line)
+    dialog_crop = f"{g['WIDTH']}x{g['HEIGHT']}+{g['X']}+{g['Y']}" if g else "640x900+480+40"
     # Apply sits below Help, level with Close; tesseract can miss the word on the focused button.
     apply = s.find("Apply", image=dialog, region=DIALOG)
     if apply is None:
@@ -156,7 +160,7 @@ def test_filters_menu_dialog_apply_and_export(gui, tmp_path):
         figs = pathlib.Path(figures)
         figs.mkdir(parents=True, exist_ok=True)
         crop(SHOTS / "05_Sampling.png", "780x520+0+0", figs / "gui_filters_menu.png")
-        crop(SHOTS / "12_dialog_set.png", "630x850+488+78", figs / "gui_parameter_dialog.png")
+        crop(SHOTS / "12_dialog_set.png", dialog_crop, figs / "gui_parameter_dialog.png")
         crop(SHOTS / "02_input.png", VIEWPORT, tmp_path / "a.png")
         crop(SHOTS / "16_lod.png", VIEWPORT, tmp_path / "b.png")
         subprocess.run(["convert", str(tmp_path / "a.png"), str(tmp_path / "b.png"), "+append",
