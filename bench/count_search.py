@@ -5,12 +5,13 @@ and prints a Markdown table.
 usage: bench/count_search.py [MODEL.ply] [--plugin PATH]   (default: ../shared/data/bunny_35k.ply)
 """
 import argparse
-import json
 import os
 import pathlib
 import time
 
 import pymeshlab
+
+from results import publish
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -30,11 +31,10 @@ def main():
         rows.append({"model": pathlib.Path(a.model).name, "points": ms.mesh(0).vertex_number(), "rate": rate,
                      "samples": r["sample_num"], "runs": r["iterations"], "trimmed": r["covering_radius"] != r["radius"],
                      "seconds": round(time.perf_counter() - t, 3), "load": round(os.getloadavg()[0], 2)})
-    (ROOT / "docs" / "count_search.json").write_text(json.dumps(rows, indent=1) + "\n")
-    print("| rate | samples | Poisson runs | trimmed | time | load |\n|---|---|---|---|---|---|")
-    for r in rows:
-        print(f"| {r['rate']}% | {r['samples']:,} | {r['runs']} | {'yes' if r['trimmed'] else 'no'} | "
-              f"{r['seconds']:.2f} s | {r['load']} |")
+    publish("count_search", rows, [("rate", lambda r: f"{r['rate']}%"), ("samples", lambda r: f"{r['samples']:,}"),
+                                   ("Poisson runs", lambda r: str(r["runs"])),
+                                   ("trimmed", lambda r: "yes" if r["trimmed"] else "no"),
+                                   ("time", lambda r: f"{r['seconds']:.2f} s"), ("load", lambda r: str(r["load"]))])
 
 
 if __name__ == "__main__":

@@ -5,13 +5,14 @@ Writes docs/far_outlier.json and prints a Markdown table.
 usage: bench/far_outlier.py [--sizes 200000,1000000] [--plugin PATH]
 """
 import argparse
-import json
 import os
 import pathlib
 import time
 
 import numpy as np
 import pymeshlab
+
+from results import publish
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -48,12 +49,11 @@ def main():
                          "radius_samples": r_radius["sample_num"], "count_s": round(t_count, 3),
                          "count_samples": r_count["sample_num"], "count_runs": r_count["iterations"],
                          "load": round(os.getloadavg()[0], 2)})
-    (ROOT / "docs" / "far_outlier.json").write_text(json.dumps(rows, indent=1) + "\n")
-    print("| points | one point at 1e9 | Poisson at a radius | Poisson to 10% (runs) | load |")
-    print("|---|---|---|---|---|")
-    for r in rows:
-        print(f"| {r['points']:,} | {'yes' if r['outlier'] else 'no'} | {r['radius_s']:.2f} s | "
-              f"{r['count_s']:.2f} s ({r['count_runs']}) | {r['load']} |")
+    publish("far_outlier", rows, [("points", lambda r: f"{r['points']:,}"),
+                                  ("one point at 1e9", lambda r: "yes" if r["outlier"] else "no"),
+                                  ("Poisson at a radius", lambda r: f"{r['radius_s']:.2f} s"),
+                                  ("Poisson to 10% (runs)", lambda r: f"{r['count_s']:.2f} s ({r['count_runs']})"),
+                                  ("load", lambda r: str(r["load"]))])
 
 
 if __name__ == "__main__":
