@@ -165,17 +165,17 @@ int main(int argc, char** argv) {
     if (!metric.empty()) dp.metric = metrics.at(metric);
     dp.useInputNormals = !recompute;
     if (fps) {
-      vcg_ext::GeodesicFpsLOD<CMesh>::Param p;
+      vcg_ext::GeodesicFpsLod<CMesh>::Param p;
       p.domain = dp;
       p.sampleNum = fps;
       p.seed = seed;
-      samples = vcg_ext::GeodesicFpsLOD<CMesh>::Compute(m, p, Callback).vertIndex;
+      samples = vcg_ext::GeodesicFpsLod<CMesh>::Compute(m, p, Callback).vertIndex;
     } else {
-      vcg_ext::GeodesicPoissonLOD<CMesh>::Param p;
+      vcg_ext::GeodesicPoissonLod<CMesh>::Param p;
       p.domain = dp;
       p.radius = radius;
       p.seed = seed;
-      samples = vcg_ext::GeodesicPoissonLOD<CMesh>::Compute(m, p, Callback).vertIndex;
+      samples = vcg_ext::GeodesicPoissonLod<CMesh>::Compute(m, p, Callback).vertIndex;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -56,36 +56,36 @@ RichParameterList ToRich(const std::vector<ParamSpec>& specs, const MeshDocument
 
 }  // namespace
 
-FilterGeodesicLODPlugin::FilterGeodesicLODPlugin() {
+FilterGeodesicLodPlugin::FilterGeodesicLodPlugin() {
   for (size_t id = 0; id < Filters().size(); ++id) {
     typeList.push_back(ActionIDType(id));
     actionList.push_back(new QAction(filterName(ActionIDType(id)), this));
   }
 }
 
-QString FilterGeodesicLODPlugin::pluginName() const { return "FilterGeodesicLOD"; }
-QString FilterGeodesicLODPlugin::filterName(ActionIDType f) const { return Filters().at(f).name(); }
-QString FilterGeodesicLODPlugin::pythonFilterName(ActionIDType f) const { return Filters().at(f).pythonName(); }
-QString FilterGeodesicLODPlugin::filterInfo(ActionIDType f) const { return Filters().at(f).info(); }
+QString FilterGeodesicLodPlugin::pluginName() const { return "FilterGeodesicLOD"; }
+QString FilterGeodesicLodPlugin::filterName(ActionIDType f) const { return Filters().at(f).name(); }
+QString FilterGeodesicLodPlugin::pythonFilterName(ActionIDType f) const { return Filters().at(f).pythonName(); }
+QString FilterGeodesicLodPlugin::filterInfo(ActionIDType f) const { return Filters().at(f).info(); }
 
-FilterPlugin::FilterClass FilterGeodesicLODPlugin::getClass(const QAction* a) const {
+FilterPlugin::FilterClass FilterGeodesicLodPlugin::getClass(const QAction* a) const {
   return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
-FilterPlugin::FilterArity FilterGeodesicLODPlugin::filterArity(const QAction* a) const {
+FilterPlugin::FilterArity FilterGeodesicLodPlugin::filterArity(const QAction* a) const {
   return FilterArity(Filters().at(ID(a)).arity);
 }
-int FilterGeodesicLODPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
-int FilterGeodesicLODPlugin::postCondition(const QAction* a) const {
+int FilterGeodesicLodPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
+int FilterGeodesicLodPlugin::postCondition(const QAction* a) const {
   return Filters().at(ID(a)).output == Output::VertexQuality ? int(MeshModel::MM_VERTQUALITY)
                                                              : int(MeshModel::MM_NONE);
 }
 
-RichParameterList FilterGeodesicLODPlugin::initParameterList(const QAction* a, const MeshDocument& md) {
+RichParameterList FilterGeodesicLodPlugin::initParameterList(const QAction* a, const MeshDocument& md) {
   return ToRich(Filters().at(ID(a)).params(md.mm()->cm), md);
 }
 
-std::map<std::string, QVariant> FilterGeodesicLODPlugin::applyFilter(
+std::map<std::string, QVariant> FilterGeodesicLodPlugin::applyFilter(
     const QAction* action, const RichParameterList& params, MeshDocument& md, unsigned int& mask,
     vcg::CallBackPos* cb) {
   bool coloured = false;
@@ -95,4 +95,4 @@ std::map<std::string, QVariant> FilterGeodesicLODPlugin::applyFilter(
   return run.values;
 }
 
-MESHLAB_PLUGIN_NAME_EXPORTER(FilterGeodesicLODPlugin)
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterGeodesicLodPlugin)

@@ -4,13 +4,13 @@
 // entry of geodesic_lod::Filters(), its index the action's ID.
 #include <common/plugins/interfaces/filter_plugin.h>
 
-class FilterGeodesicLODPlugin : public QObject, public FilterPlugin {
+class FilterGeodesicLodPlugin : public QObject, public FilterPlugin {
   Q_OBJECT
   MESHLAB_PLUGIN_IID_EXPORTER(FILTER_PLUGIN_IID)
   Q_INTERFACES(FilterPlugin)
 
  public:
-  FilterGeodesicLODPlugin();
+  FilterGeodesicLodPlugin();
   QString pluginName() const override;
   QString filterName(ActionIDType filter) const override;
   QString pythonFilterName(ActionIDType filter) const override;

@@ -33,26 +33,26 @@ class RichParamSource : public RichParamSourceBase<RichParameterList> {
 
 }  // namespace
 
-FilterGeodesicLOD2020Plugin::FilterGeodesicLOD2020Plugin() {
+FilterGeodesicLod2020Plugin::FilterGeodesicLod2020Plugin() {
   for (size_t id = 0; id < Filters().size(); ++id) {
     typeList << FilterIDType(id);
     actionList << new QAction(filterName(FilterIDType(id)), this);
   }
 }
 
-QString FilterGeodesicLOD2020Plugin::pluginName() const { return "FilterGeodesicLOD"; }
-QString FilterGeodesicLOD2020Plugin::filterName(FilterIDType f) const { return Filters().at(f).name(); }
-QString FilterGeodesicLOD2020Plugin::filterInfo(FilterIDType f) const { return Filters().at(f).info(); }
+QString FilterGeodesicLod2020Plugin::pluginName() const { return "FilterGeodesicLOD"; }
+QString FilterGeodesicLod2020Plugin::filterName(FilterIDType f) const { return Filters().at(f).name(); }
+QString FilterGeodesicLod2020Plugin::filterInfo(FilterIDType f) const { return Filters().at(f).info(); }
 
-MeshFilterInterface::FilterClass FilterGeodesicLOD2020Plugin::getClass(QAction* a) {
+MeshFilterInterface::FilterClass FilterGeodesicLod2020Plugin::getClass(QAction* a) {
   return FilterClass(Filters().at(ID(a)).filterClass);
 }
 
-MeshFilterInterface::FILTER_ARITY FilterGeodesicLOD2020Plugin::filterArity(QAction* a) const {
+MeshFilterInterface::FILTER_ARITY FilterGeodesicLod2020Plugin::filterArity(QAction* a) const {
   return FILTER_ARITY(Filters().at(ID(a)).arity);
 }
-int FilterGeodesicLOD2020Plugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
-int FilterGeodesicLOD2020Plugin::postCondition(QAction* a) const {
+int FilterGeodesicLod2020Plugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
+int FilterGeodesicLod2020Plugin::postCondition(QAction* a) const {
   // The sampling filters may also colour the input by region.
   switch (Filters().at(ID(a)).output) {
     case Output::VertexQuality: return MeshModel::MM_VERTQUALITY;
@@ -61,7 +61,7 @@ int FilterGeodesicLOD2020Plugin::postCondition(QAction* a) const {
   }
 }
 
-void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshDocument& md, RichParameterList& list) {
+void FilterGeodesicLod2020Plugin::initParameterSet(QAction* a, MeshDocument& md, RichParameterList& list) {
   std::vector<MeshModel*> layers(md.meshList.begin(), md.meshList.end());
   for (const ParamSpec& s : Filters().at(ID(a)).params(md.mm()->cm)) {
     switch (s.kind) {
@@ -80,7 +80,7 @@ void FilterGeodesicLOD2020Plugin::initParameterSet(QAction* a, MeshDocument& md,
   }
 }
 
-bool FilterGeodesicLOD2020Plugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
+bool FilterGeodesicLod2020Plugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
                                               vcg::CallBackPos* cb) {
   // This host catches nothing but bad_alloc: every failure becomes a false
   // return with its message in errorMessage and in the log (meshlabserver prints the log).

@@ -6,13 +6,13 @@
 // resolves plugin classes by name across all loaded plugins.
 #include <common/interfaces.h>
 
-class FilterGeodesicLOD2020Plugin : public QObject, public MeshFilterInterface {
+class FilterGeodesicLod2020Plugin : public QObject, public MeshFilterInterface {
   Q_OBJECT
   MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
   Q_INTERFACES(MeshFilterInterface)
 
  public:
-  FilterGeodesicLOD2020Plugin();
+  FilterGeodesicLod2020Plugin();
   QString pluginName() const override;
   QString filterName(FilterIDType filter) const override;
   QString filterInfo(FilterIDType filter) const override;

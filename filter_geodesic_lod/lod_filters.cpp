@@ -71,10 +71,10 @@ size_t Count(const char* name, double x, const CMeshO& in) {
 const vcg_ext::GeodesicDomain<Scalarm>::Param kDomainDefaults;
 
 // The normals and eq. 1, as every filter asks for them.
-ParamSpec NormalNeighborsParam() {
+ParamSpec NormalNeighboursParam() {
   return {ParamKind::Int, "normalneighbors", "Normal neighbours k",
           "Neighbours used to estimate normals and the curvature v_i of eq. 1.",
-          double(kDomainDefaults.normalNeighbors)};
+          double(kDomainDefaults.normalNeighbours)};
 }
 ParamSpec RecomputeNormalsParam() {
   return {ParamKind::Bool, "recomputenormals", "Recompute normals",
@@ -113,10 +113,10 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
                "only by that metric. 0 gives the unweighted geodesic; 3 did best in the quality benchmark, "
                "10 and more over-sample noisy scans.", kDomainDefaults.adaptivity});
-  p.push_back(NormalNeighborsParam());
+  p.push_back(NormalNeighboursParam());
   p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
-               "run on.", double(kDomainDefaults.graphNeighbors)});
+               "run on.", double(kDomainDefaults.graphNeighbours)});
   p.push_back(RecomputeNormalsParam());
   p.push_back({ParamKind::Enum, "output", "Output",
                "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
@@ -131,8 +131,8 @@ void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bo
   d.mode = kModes.Read(src, "geodesicmode");
   d.curvatureExponent = src.number("curvatureexponent");
   d.adaptivity = src.number("adaptivity");
-  d.normalNeighbors = int(src.number("normalneighbors"));
-  d.graphNeighbors = int(src.number("graphneighbors"));
+  d.normalNeighbours = int(src.number("normalneighbors"));
+  d.graphNeighbours = int(src.number("graphneighbors"));
   d.useInputNormals = !src.flag("recomputenormals");
   meshOutput = kOutputs.Read(src, "output");
   const double s = src.number("seed");
@@ -191,7 +191,7 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
 
 LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    vcg_ext::GeodesicPoissonLOD<CMeshO>::Param p;
+    vcg_ext::GeodesicPoissonLod<CMeshO>::Param p;
     p.radius = src.number("radius");
     const double count = src.number("samplenum"), rate = src.number("samplerate");
     if (!(count >= 0) || !std::isfinite(count))
@@ -211,7 +211,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
                                   QString::number(src.number("tolerance")).toStdString() + "%)");
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
     p.regions = kPoissonRegions.Read(src, "regions");
-    const auto r = vcg_ext::GeodesicPoissonLOD<CMeshO>::Compute(in, p, cb);
+    const auto r = vcg_ext::GeodesicPoissonLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
@@ -229,13 +229,13 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
 
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    vcg_ext::GeodesicFpsLOD<CMeshO>::Param p;
+    vcg_ext::GeodesicFpsLod<CMeshO>::Param p;
     const double n = src.number("samplenum");
     if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
     p.sampleNum = Count("samplenum", n, in);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
     p.regions = kFpsRegions.Read(src, "regions");
-    auto r = vcg_ext::GeodesicFpsLOD<CMeshO>::Compute(in, p, cb);
+    auto r = vcg_ext::GeodesicFpsLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
@@ -250,7 +250,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
 
 std::vector<ParamSpec> NormalVariationParams(const CMeshO&) {
   std::vector<ParamSpec> p;
-  p.push_back(NormalNeighborsParam());
+  p.push_back(NormalNeighboursParam());
   p.push_back(RecomputeNormalsParam());
   return p;
 }
@@ -259,7 +259,7 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
   return Guarded([&] {
     vcg_ext::GeodesicDomain<Scalarm>::Param d;
     d.metric = vcg_ext::Metric::Euclidean;  // eq. 1 needs no geodesics
-    d.normalNeighbors = int(src.number("normalneighbors"));
+    d.normalNeighbours = int(src.number("normalneighbors"));
     d.useInputNormals = !src.flag("recomputenormals");
     const auto domain = vcg_ext::GeodesicDomain<Scalarm>::FromMesh(in, d, vcg_ext::Progress(cb));
     std::vector<int> all(domain.size());
@@ -275,7 +275,7 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
     const double mean = sum / std::max<size_t>(1, all.size());
     run.summary = QString("Normal variation curvature (eq. 1, k = %1) in the vertex quality of %2 vertices: "
                           "min %3, mean %4, max %5; %6 normals estimated")
-                      .arg(d.normalNeighbors).arg(all.size()).arg(lo).arg(mean).arg(hi).arg(domain.estimatedNormals);
+                      .arg(d.normalNeighbours).arg(all.size()).arg(lo).arg(mean).arg(hi).arg(domain.estimatedNormals);
     run.values = {{"min", QVariant(lo)}, {"mean", QVariant(mean)}, {"max", QVariant(hi)}};
     return run;
   });

@@ -39,8 +39,8 @@ class GeodesicDomain {
     GeodesicMode mode = GeodesicMode::Auto;
     double curvatureExponent = 1.0;  ///< c of eq. 3, > 0 (the paper's)
     double adaptivity = 3.0;         ///< a of the curvature-density weighting, >= 0
-    int normalNeighbors = 20;        ///< k of the normal fit and of eq. 1
-    int graphNeighbors = 10;         ///< k of the neighbour graph
+    int normalNeighbours = 20;        ///< k of the normal fit and of eq. 1
+    int graphNeighbours = 10;         ///< k of the neighbour graph
     bool useInputNormals = true;     ///< keep the input's valid normals
   };
 
@@ -71,8 +71,8 @@ class GeodesicDomain {
     if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)
       throw std::invalid_argument("geodesicmode Mesh needs a layer with faces; this one has none "
                                   "(use Auto or Point graph for point clouds)");
-    CheckNeighbours("normalneighbors", p.normalNeighbors, n);
-    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours("graphneighbors", p.graphNeighbors, n);
+    CheckNeighbours("normalneighbors", p.normalNeighbours, n);
+    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours("graphneighbors", p.graphNeighbours, n);
     if (!(p.curvatureExponent > 0) || !std::isfinite(p.curvatureExponent))
       throw std::invalid_argument("curvatureexponent must be a positive number (got " + Str(p.curvatureExponent) + ")");
     if (!(p.adaptivity >= 0) || !std::isfinite(p.adaptivity))
@@ -106,13 +106,13 @@ class GeodesicDomain {
     d.points = std::move(ps);
     const bool graph = p.metric != Metric::Euclidean && !d.meshGeodesics;
     typename PointNormals<Scalar>::Param np;
-    np.k = p.normalNeighbors;
+    np.k = p.normalNeighbours;
     np.useInputNormals = p.useInputNormals;
     {
       // One grid and one kNN table serve the normals, eq. 1 and the graph.
       KnnTable<Scalar> knn;
       {
-        const int k = graph ? std::max(p.normalNeighbors, p.graphNeighbors) : p.normalNeighbors;
+        const int k = graph ? std::max(p.normalNeighbours, p.graphNeighbours) : p.normalNeighbours;
         CellGrid<Scalar> grid(d.points.pos, KnnTable<Scalar>::CellSide(d.points.pos, k));
         SpatialOrder(grid.TakeOrder(), d.points, d.triangles);
         knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35));
@@ -121,10 +121,10 @@ class GeodesicDomain {
       d.normal = std::move(nr.normal);
       d.estimatedNormals = nr.estimated;
       d.points.normal = std::vector<Coord>();  // d.normal holds them now
-      d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbors, progress.Sub(50, 55));
+      d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
       if (graph) {
-        knn.KeepColumns(p.graphNeighbors);  // the graph's columns only: a lower peak while it is built
-        d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbors, progress.Sub(55, 75));
+        knn.KeepColumns(p.graphNeighbours);  // the graph's columns only: a lower peak while it is built
+        d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbours, progress.Sub(55, 75));
       }
     }  // the table is freed before the weights are stored
     EdgeWeight<Scalar> wf;

@@ -13,7 +13,7 @@
 namespace vcg_ext {
 
 template <class MeshType>
-class GeodesicFpsLOD {
+class GeodesicFpsLod {
  public:
   typedef typename MeshType::ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;

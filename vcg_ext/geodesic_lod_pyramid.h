@@ -52,11 +52,11 @@ class GeodesicLodPyramid {
     CheckCounts(p.counts);
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
     const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 40));
-    typename GeodesicPoissonLOD<MeshType>::Param pp;
+    typename GeodesicPoissonLod<MeshType>::Param pp;
     pp.sampleNum = p.counts[0];
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;
-    PoissonTargetCount::Result finest = GeodesicPoissonLOD<MeshType>::SampleCount(d, pp, progress.Sub(40, 80));
+    PoissonTargetCount::Result finest = GeodesicPoissonLod<MeshType>::SampleCount(d, pp, progress.Sub(40, 80));
     Result r;
     r.radius = finest.radius;
     r.iterations = finest.iterations;
@@ -83,7 +83,7 @@ class GeodesicLodPyramid {
   // The first `count` samples in farthest-point order among `samples`, then the rest.
   static std::vector<int> Nested(const Domain& d, const std::vector<int>& samples, size_t count, uint64_t seed,
                                  Progress progress) {
-    FarthestPoint::Result f = GeodesicFpsLOD<MeshType>::Sample(d, count, seed, progress, &samples);
+    FarthestPoint::Result f = GeodesicFpsLod<MeshType>::Sample(d, count, seed, progress, &samples);
     std::vector<char> taken(d.size(), 0);
     for (int s : f.samples) taken[s] = 1;
     std::vector<int> order = std::move(f.samples);

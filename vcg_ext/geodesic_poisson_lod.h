@@ -17,7 +17,7 @@
 namespace vcg_ext {
 
 template <class MeshType>
-class GeodesicPoissonLOD {
+class GeodesicPoissonLod {
  public:
   typedef typename MeshType::ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;

@@ -20,8 +20,8 @@
 #include "../vcg_ext/test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
 using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
 using Deviation = vcg_ext::NormalProjection<test::TMesh>;
 
@@ -129,8 +129,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   LOD::Domain::Param d;
   d.metric = vcg_ext::Metric(f.ConsumeIntegralInRange<int>(0, 3));
   d.mode = vcg_ext::GeodesicMode(f.ConsumeIntegralInRange<int>(0, 2));
-  d.normalNeighbors = f.ConsumeIntegralInRange<int>(-1, n + 2);
-  d.graphNeighbors = f.ConsumeIntegralInRange<int>(-1, n + 2);
+  d.normalNeighbours = f.ConsumeIntegralInRange<int>(-1, n + 2);
+  d.graphNeighbours = f.ConsumeIntegralInRange<int>(-1, n + 2);
   d.curvatureExponent = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0.01, 4);
   d.adaptivity = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0, 50);
   d.useInputNormals = f.ConsumeBool();

@@ -6,7 +6,7 @@
 #include "test_mesh.h"
 
 namespace {
-using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
 using Domain = FPS::Domain;
 using vcg_ext::Metric;
 

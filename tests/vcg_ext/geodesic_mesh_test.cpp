@@ -9,8 +9,8 @@
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
 using vcg_ext::GeodesicMode;
 
 std::string ErrorOf(const test::TMesh& m, const LOD::Param& p) {

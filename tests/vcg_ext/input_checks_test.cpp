@@ -8,7 +8,7 @@
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
 
 std::string ErrorOf(const test::TMesh& m, LOD::Param p) {
   try {
@@ -50,14 +50,14 @@ TEST(InputChecks, RadiusAndParameters) {
   test::Plane(m, 10);
   for (double r : {0.0, -1.0, double(NAN)}) EXPECT_NE(ErrorOf(m, Radius(r)).find("radius"), std::string::npos);
   LOD::Param p = Radius(0.1);
-  p.domain.normalNeighbors = 0;
+  p.domain.normalNeighbours = 0;
   EXPECT_NE(ErrorOf(m, p).find("normalneighbors must be at least 1"), std::string::npos);
-  p.domain.normalNeighbors = 100;
+  p.domain.normalNeighbours = 100;
   EXPECT_NE(ErrorOf(m, p).find("smaller than the number of vertices (100)"), std::string::npos);
   p = Radius(0.1);
-  p.domain.graphNeighbors = 0;
+  p.domain.graphNeighbours = 0;
   EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
-  p.domain.graphNeighbors = 1000;
+  p.domain.graphNeighbours = 1000;
   EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
   p = Radius(0.1);
   p.domain.curvatureExponent = 0;

@@ -6,7 +6,7 @@
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
 using Domain = LOD::Domain;
 using vcg_ext::Metric;
 

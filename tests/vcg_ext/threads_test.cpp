@@ -10,8 +10,8 @@
 #include "test_mesh.h"
 
 namespace {
-using Poisson = vcg_ext::GeodesicPoissonLOD<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLOD<test::TMesh>;
+using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
 
 // Byte-wise equality of normals and curvature (NaN-safe, no tolerance).
 template <class T>
