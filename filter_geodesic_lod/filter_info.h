@@ -2,6 +2,7 @@
 #define GEODESIC_LOD_FILTER_INFO_H
 // Names and descriptions of the filters, shared by every API adapter.
 #include <QString>
+#include "python_names.h"
 
 namespace geodesic_lod {
 
@@ -19,7 +20,7 @@ inline QString SeeAlso() {
 }
 
 inline QString PoissonLodName() { return "Geodesic Poisson-disk LOD"; }
-inline QString PoissonLodPythonName() { return "generate_geodesic_poisson_lod"; }
+inline QString PoissonLodPythonName() { return kPoissonLodPythonName; }
 inline QString PoissonLodInfo() {
   return "Adds a layer with a subset of the current layer's vertices spread uniformly in a curvature-weighted "
          "geodesic metric, dense where the surface is rugged: samples are pairwise farther apart than the radius "
@@ -30,7 +31,7 @@ inline QString PoissonLodInfo() {
 }
 
 inline QString FpsLodName() { return "Geodesic Farthest Point LOD"; }
-inline QString FpsLodPythonName() { return "generate_geodesic_fps_lod"; }
+inline QString FpsLodPythonName() { return kFpsLodPythonName; }
 inline QString FpsLodInfo() {
   return "Adds a layer with exactly <i>samplenum</i> of the current layer's vertices, each the farthest from the "
          "samples before it in a curvature-weighted geodesic metric. The layer is in that order, so its first k "
@@ -40,7 +41,7 @@ inline QString FpsLodInfo() {
 }
 
 inline QString NormalVariationName() { return "Normal variation curvature"; }
-inline QString NormalVariationPythonName() { return "compute_scalar_by_normal_variation"; }
+inline QString NormalVariationPythonName() { return kNormalVariationPythonName; }
 inline QString NormalVariationInfo() {
   return "Stores in each vertex's quality the curvature the geodesic LOD filters use: the normal variation "
          "v_i = sum_j (1 - |n_i . n_j|)/k over the k nearest points (eq. 1), 0 on a plane, at most 1. Normals "
@@ -51,7 +52,7 @@ inline QString NormalVariationInfo() {
 }
 
 inline QString PyramidName() { return "Geodesic LOD pyramid"; }
-inline QString PyramidPythonName() { return "generate_geodesic_lod_pyramid"; }
+inline QString PyramidPythonName() { return kPyramidPythonName; }
 inline QString PyramidInfo() {
   return "Adds one layer per level of a list such as 50%,25%,10% (of the vertices) or 5000,1000 (counts): the "
          "finest is a geodesic Poisson-disk set of that count, each coarser one a farthest-point subset of the "
@@ -61,7 +62,7 @@ inline QString PyramidInfo() {
 }
 
 inline QString NormalProjectionName() { return "Normal projection deviation"; }
-inline QString NormalProjectionPythonName() { return "get_normal_projection_deviation"; }
+inline QString NormalProjectionPythonName() { return kNormalProjectionPythonName; }
 inline QString NormalProjectionInfo() {
   return "The error measure of the paper's Table 1: for each vertex p_i of the reference layer with normal n_i, "
          "the distance from p_i to where the line through p_i along n_i (both ways) first meets the surface "

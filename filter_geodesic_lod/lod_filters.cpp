@@ -9,6 +9,7 @@
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/normal_projection.h>
+#include <vcg_ext/sample_counts.h>
 
 namespace geodesic_lod {
 namespace {
@@ -203,7 +204,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     if (count > 0 && rate > 0)
       throw std::invalid_argument("give samplenum or samplerate, not both (got " + QString::number(count).toStdString() +
                                   " and " + QString::number(rate).toStdString() + "%)");
-    if (rate > 0) p.sampleNum = Count("samplerate", std::max(1.0, std::round(rate / 100 * in.vn)), in);
+    if (rate > 0) p.sampleNum = Count("samplerate", std::max(1.0, vcg_ext::PercentOf(rate, size_t(in.vn))), in);
     else p.sampleNum = count > 0 ? Count("samplenum", std::max(1.0, std::round(count)), in) : 0;
     p.tolerance = src.number("tolerance") / 100;
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
@@ -293,7 +294,7 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
       throw std::invalid_argument("levels: '" + item.toStdString() + "' is not a positive percentage or count" +
                                   example);
     if (percent && x > 100) throw std::invalid_argument("levels: " + item.toStdString() + " is above 100%");
-    const double count = percent ? std::round(x / 100 * double(n)) : x;  // at most n or x: no overflow here
+    const double count = percent ? vcg_ext::PercentOf(x, n) : x;  // at most n or x: no overflow here
     if (count < 1 || count > double(n))  // compared as doubles, converted only once in range
       throw std::invalid_argument("levels: " + item.toStdString() + " gives " +
                                   (count < 1 ? std::string("no") : "more than " + std::to_string(n)) +

@@ -44,13 +44,20 @@ class GeodesicFpsLod {
   /// Never modifies `m`. Throws std::invalid_argument for bad input and
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    Progress progress(cb);
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
-    const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 50));
+    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
+    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
+    return Compute(std::move(ps), std::move(tris), m.fn > 0, m.vert.size(), p, Progress(cb));
+  }
+
+  /// The same on points and their triangles, as GeodesicPoissonLod's.
+  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, size_t vertCount, const Param& p,
+                        Progress progress) {
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 50));
     const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(50, 100));
     Result r;
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
-        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, m.vert.size());
+        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, vertCount);
     r.coveringRadius = s.coveringRadius;
     return r;
   }

@@ -48,10 +48,17 @@ class GeodesicLodPyramid {
   /// Never modifies `m`. Throws std::invalid_argument for bad input and
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    Progress progress(cb);
     CheckCounts(p.counts);
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
-    const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 40));
+    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
+    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
+    return Compute(std::move(ps), std::move(tris), m.fn > 0, p, Progress(cb));
+  }
+
+  /// The same on points and their triangles, as GeodesicPoissonLod's.
+  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, const Param& p, Progress progress) {
+    CheckCounts(p.counts);
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 40));
     typename GeodesicPoissonLod<MeshType>::Param pp;
     pp.sampleNum = p.counts[0];
     pp.maxIterations = p.maxIterations;

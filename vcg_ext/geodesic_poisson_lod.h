@@ -93,14 +93,23 @@ class GeodesicPoissonLod {
   /// Never modifies `m`. Throws std::invalid_argument for bad input and
   /// vcg_ext::Cancelled when the callback asks to stop.
   static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    Progress progress(cb);
+    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
+    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
+    return Compute(std::move(ps), std::move(tris), m.fn > 0, m.vert.size(), p, Progress(cb));
+  }
+
+  /// The same on points and their triangles (the front ends without a mesh):
+  /// `hasFaces` whether the input had faces, `vertCount` its number of
+  /// vertices (`ps.vertIndex` indexes them).
+  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, size_t vertCount, const Param& p,
+                        Progress progress) {
     if (p.sampleNum == 0 && (!(p.radius > 0) || !std::isfinite(p.radius))) {
-      // An empty or degenerate layer also gets a zero default radius: name the layer's problem first.
-      Domain::Check(PointSetFromMesh<MeshType>::Compute(m), m.fn > 0, p.domain);
+      // An empty or degenerate input also gets a zero default radius: name the input's problem first.
+      Domain::Check(ps, hasFaces, p.domain);
       CheckRadius(p.radius);
     }
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, m.fn);
-    const Domain d = Domain::FromMesh(m, p.domain, progress.Sub(0, 60));
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 60));
     const Progress sampling = progress.Sub(60, p.meshOutput ? 90 : 100);
     Result r;
     std::vector<int> samples, disk, voronoi;
@@ -126,7 +135,7 @@ class GeodesicPoissonLod {
       voronoi = GeodesicDelaunay<Scalar>::VoronoiOwners(d, samples);
     const std::vector<int>* regions =
         p.regions == Regions::None ? nullptr : p.regions == Regions::Disk ? &disk : &voronoi;
-    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, m.vert.size());
+    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, vertCount);
     return r;
   }
 };

@@ -30,8 +30,8 @@ struct LodResult {
   std::vector<int> regionOf;  ///< on request, per m.vert index: rank of the sample whose region holds it, -1 if none
 
   /// Throws std::invalid_argument when triangle-mesh output is asked of a layer without faces.
-  static void CheckMeshOutput(bool meshOutput, int faceCount) {
-    if (meshOutput && faceCount == 0)
+  static void CheckMeshOutput(bool meshOutput, bool hasFaces) {
+    if (meshOutput && !hasFaces)
       throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
   }
 

@@ -6,8 +6,9 @@ import numpy as np
 import pymeshlab
 import pytest
 
+from common_inputs import shared  # noqa: F401  (a fixture)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SHARED_DATA = pathlib.Path(os.environ.get("GEODESIC_LOD_SHARED_DATA", ROOT.parent / "shared" / "data"))
 PLUGIN = pathlib.Path(os.environ.get("GEODESIC_LOD_PLUGIN", ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
 
 _loaded = False
@@ -22,17 +23,6 @@ def plugin():
         pymeshlab.load_plugin(str(PLUGIN))
         _loaded = True
     return PLUGIN
-
-
-@pytest.fixture
-def shared():
-    """Path of a file in ../shared/data; skips, saying so, where that folder is absent (a user's clone)."""
-    def get(name):
-        path = SHARED_DATA / name
-        if not path.is_file():
-            pytest.skip(f"needs the shared scan {path} (present in CI, not in a user's clone)")
-        return str(path)
-    return get
 
 
 def bumpy_points(n=60, amp=0.05):

@@ -7,6 +7,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
+from common_inputs import layer
 from conftest import bumpy_points
 
 POISSON, FPS = "generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"
@@ -21,17 +22,6 @@ def grid(n=12, shift=(0.0, 0.0, 0.0)):
     idx = np.arange(n * n).reshape(n, n)
     a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
     return pts, np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
-
-
-def layer(points, faces=None, normals=None):
-    kw = {"vertex_matrix": np.asarray(points, dtype=np.float64)}
-    if faces is not None:
-        kw["face_matrix"] = np.asarray(faces, dtype=np.int32)
-    if normals is not None:
-        kw["v_normals_matrix"] = np.asarray(normals, dtype=np.float64)
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(**kw), "input")
-    return ms
 
 
 def empty():

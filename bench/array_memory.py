@@ -1,0 +1,80 @@
+"""Peak memory and time of one LOD through the array API against the pymeshlab filter, on the same points
+(bench/make_scan.py's synthetic scan, normals given), each in a process of its own. The peak is the
+process's high-water mark (VmHWM) above what it held once the points were in memory (for pymeshlab,
+once they were in its MeshSet, as a user's would be), per input point. Writes docs/array_memory.json
+and prints a Markdown table.
+
+usage: PYTHONPATH=build/python bench/array_memory.py [--sizes 1000000] [--rate 10]
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+import textwrap
+
+from results import publish
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+CHILD = textwrap.dedent("""
+    import json, sys, time
+    import numpy as np
+    sys.path.insert(0, sys.argv[4])
+    from make_scan import make_scan
+
+    def hwm():  # kB
+        for line in open("/proc/self/status"):
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+
+    def rss():
+        for line in open("/proc/self/status"):
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+
+    front, n, rate = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+    points, normals = make_scan(n, seed=1, normals=True)
+    if front == "array API":
+        import geodesic_lod as gl
+        start = rss()
+        t = time.perf_counter()
+        lod = gl.poisson_lod(points, normals, rate=rate)
+        count = len(lod.indices)
+    else:
+        import pymeshlab
+        import geodesic_lod.pymeshlab
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=points.astype(np.float64),
+                                   v_normals_matrix=normals.astype(np.float64)))
+        del points, normals
+        start = rss()
+        t = time.perf_counter()
+        count = ms.generate_geodesic_poisson_lod(samplerate=rate)["sample_num"]
+    seconds = time.perf_counter() - t
+    print(json.dumps({"front": front, "points": n, "samples": count, "seconds": round(seconds, 2),
+                      "held_mb": round(start / 1024), "peak_above_mb": round((hwm() - start) / 1024),
+                      "bytes_per_point": round((hwm() - start) * 1024 / n)}))
+""")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sizes", default="1000000")
+    ap.add_argument("--rate", type=float, default=10.0)
+    a = ap.parse_args()
+    rows = []
+    for n in (int(s) for s in a.sizes.split(",")):
+        for front in ("array API", "pymeshlab filter"):
+            out = subprocess.run([sys.executable, "-c", CHILD, front, str(n), str(a.rate), str(ROOT / "bench")],
+                                 capture_output=True, text=True, check=True).stdout
+            rows.append(json.loads(out.splitlines()[-1]))
+    publish("array_memory", rows, [
+        ("front end", lambda r: r["front"]), ("points", lambda r: f"{r['points']:,}"),
+        ("samples", lambda r: f"{r['samples']:,}"), ("seconds", lambda r: f"{r['seconds']:.2f}"),
+        ("held before (MB)", lambda r: str(r["held_mb"])), ("peak above (MB)", lambda r: str(r["peak_above_mb"])),
+        ("bytes per point", lambda r: str(r["bytes_per_point"]))])
+
+
+if __name__ == "__main__":
+    main()

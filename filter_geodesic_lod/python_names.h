@@ -1,0 +1,16 @@
+#ifndef GEODESIC_LOD_PYTHON_NAMES_H
+#define GEODESIC_LOD_PYTHON_NAMES_H
+// The filters' pymeshlab names (the MeshSet methods), without Qt: the plugin
+// declares them and the Python package binds them (geodesic_lod.pymeshlab).
+namespace geodesic_lod {
+
+constexpr const char* kPoissonLodPythonName = "generate_geodesic_poisson_lod";
+constexpr const char* kFpsLodPythonName = "generate_geodesic_fps_lod";
+constexpr const char* kNormalVariationPythonName = "compute_scalar_by_normal_variation";
+constexpr const char* kPyramidPythonName = "generate_geodesic_lod_pyramid";
+constexpr const char* kNormalProjectionPythonName = "get_normal_projection_deviation";
+constexpr const char* kPythonNames[] = {kPoissonLodPythonName, kFpsLodPythonName, kNormalVariationPythonName,
+                                        kPyramidPythonName, kNormalProjectionPythonName};
+
+}  // namespace geodesic_lod
+#endif

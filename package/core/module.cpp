@@ -1,0 +1,272 @@
+// geodesic_lod._core: vcg_ext's samplers on numpy arrays. The Python layer
+// (geodesic_lod/arrays.py) checks and names the arguments; this layer reads
+// the arrays, runs vcg_ext with the GIL released and returns numpy arrays.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+#include <cstdint>
+#include <optional>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <vcg/complex/complex.h>
+#include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_lod_pyramid.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/sample_counts.h>
+#include <filter_geodesic_lod/python_names.h>
+#include "array_input.h"
+#include "python_progress.h"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+using namespace geodesic_lod_package;
+
+namespace {
+
+// vcg_ext's samplers are templates on a vcglib mesh type; arrays need none,
+// but its scalar (double, as MeshLab 2025.07's) must match the plugin's for
+// the same LOD.
+class ArrayVertex;
+struct ArrayTypes : vcg::UsedTypes<vcg::Use<ArrayVertex>::AsVertexType> {};
+class ArrayVertex : public vcg::Vertex<ArrayTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
+class ArrayMesh : public vcg::tri::TriMesh<std::vector<ArrayVertex>> {};
+
+typedef vcg_ext::GeodesicPoissonLod<ArrayMesh> Poisson;
+typedef vcg_ext::GeodesicFpsLod<ArrayMesh> Fps;
+typedef vcg_ext::GeodesicLodPyramid<ArrayMesh> Pyramid;
+typedef vcg_ext::GeodesicDomain<double> Domain;
+typedef vcg_ext::LodResult<double> LodResult;
+
+// A numpy array owning `v` (moved, not copied).
+template <class T>
+nb::ndarray<nb::numpy, T> ToNumpy(std::vector<T>&& v, std::initializer_list<size_t> shape) {
+  auto* owned = new std::vector<T>(std::move(v));
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
+  return nb::ndarray<nb::numpy, T>(owned->data(), shape, owner);
+}
+
+template <class T>
+nb::ndarray<nb::numpy, int64_t> Int64(const std::vector<T>& v) {
+  return ToNumpy(std::vector<int64_t>(v.begin(), v.end()), {v.size()});
+}
+
+nb::ndarray<nb::numpy, double> Rows3(const std::vector<vcg::Point3d>& p) {
+  std::vector<double> flat(p.size() * 3);
+  for (size_t i = 0; i < p.size(); ++i)
+    for (int k = 0; k < 3; ++k) flat[3 * i + k] = p[i][k];
+  return ToNumpy(std::move(flat), {p.size(), 3});
+}
+
+nb::ndarray<nb::numpy, int64_t> Faces(const std::vector<std::array<int, 3>>& f) {
+  std::vector<int64_t> flat(f.size() * 3);
+  for (size_t i = 0; i < f.size(); ++i)
+    for (int k = 0; k < 3; ++k) flat[3 * i + k] = f[i][k];
+  return ToNumpy(std::move(flat), {f.size(), 3});
+}
+
+// What every sampler returns, as a dict for the Python result classes.
+nb::dict Common(const LodResult& r) {
+  nb::dict d;
+  d["indices"] = Int64(r.vertIndex);
+  d["normals"] = Rows3(r.normal);
+  d["curvature"] = ToNumpy(std::vector<double>(r.curvature), {r.curvature.size()});
+  d["faces"] = Faces(r.faces);
+  d["region_of"] = Int64(r.regionOf);
+  d["point_count"] = r.pointCount;
+  d["estimated_normals"] = r.estimatedNormals;
+  d["left_out"] = r.leftOut;
+  d["components"] = r.components;
+  d["mesh_geodesics"] = r.meshGeodesics;
+  return d;
+}
+
+// The OpenMP team size for one call (None: as set for the process).
+class Threads {
+ public:
+  explicit Threads(std::optional<int> n) {
+#ifdef _OPENMP
+    previous_ = omp_get_max_threads();
+    if (n) omp_set_num_threads(*n);
+#else
+    (void)n;
+#endif
+  }
+  ~Threads() {
+#ifdef _OPENMP
+    omp_set_num_threads(previous_);
+#endif
+  }
+
+ private:
+  int previous_ = 1;
+};
+
+struct Input {
+  vcg_ext::PointSet<double> points;
+  vcg_ext::MeshTriangles triangles;
+  bool hasFaces = false;
+  size_t n = 0;
+};
+
+Input Read(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces) {
+  Input in;
+  in.points = ReadPoints(points, normals ? &*normals : nullptr);
+  in.n = in.points.size();
+  if (faces) {
+    in.triangles = ReadFaces(*faces, in.n);
+    in.hasFaces = faces->shape(0) > 0;
+  }
+  return in;
+}
+
+nb::dict PoissonLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                    const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  Poisson::Result r = pp.Run([&](vcg_ext::Progress pr) {
+    Input in = Read(points, normals, faces);
+    return Poisson::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
+  });
+  nb::dict d = Common(r);
+  d["radius"] = r.radius;
+  d["covering_radius"] = r.coveringRadius;
+  d["iterations"] = r.iterations;
+  d["poisson_count"] = r.poissonCount;
+  d["trimmed"] = r.trimmed;
+  return d;
+}
+
+nb::dict FpsLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                const Fps::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  Fps::Result r = pp.Run([&](vcg_ext::Progress pr) {
+    Input in = Read(points, normals, faces);
+    return Fps::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
+  });
+  nb::dict d = Common(r);
+  d["covering_radii"] = ToNumpy(std::vector<double>(r.coveringRadius), {r.coveringRadius.size()});
+  return d;
+}
+
+nb::dict LodPyramid(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                    const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  Pyramid::Result r = pp.Run([&](vcg_ext::Progress pr) {
+    Input in = Read(points, normals, faces);
+    return Pyramid::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, p, pr);
+  });
+  nb::dict d = Common(r);
+  d["counts"] = r.counts;
+  nb::list levelFaces;
+  for (const auto& f : r.levelFaces) levelFaces.append(Faces(f));
+  d["level_faces"] = levelFaces;
+  d["radius"] = r.radius;
+  d["iterations"] = r.iterations;
+  return d;
+}
+
+// Eq. 1 and the normals of every point, in the input's order.
+nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, const Domain::Param& p,
+                         std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  std::vector<double> curvature;
+  std::vector<vcg::Point3d> normal;
+  size_t estimated = 0;
+  pp.Run([&](vcg_ext::Progress pr) {
+    Input in = Read(points, normals, std::nullopt);
+    Domain::Param dp = p;
+    dp.metric = vcg_ext::Metric::Euclidean;  // eq. 1 needs no geodesics
+    const Domain d = Domain::Build(std::move(in.points), {}, dp, pr);
+    curvature.resize(in.n);
+    normal.resize(in.n);
+    for (size_t i = 0; i < d.size(); ++i) {
+      curvature[d.points.vertIndex[i]] = d.curvature[i];
+      normal[d.points.vertIndex[i]] = d.normal[i];
+    }
+    estimated = d.estimatedNormals;
+    return 0;
+  });
+  nb::dict d;
+  d["curvature"] = ToNumpy(std::move(curvature), {normal.size()});
+  d["normals"] = Rows3(normal);
+  d["estimated_normals"] = estimated;
+  return d;
+}
+
+}  // namespace
+
+NB_MODULE(_core, m) {
+  m.doc() = "vcg_ext's geodesic LOD samplers on numpy arrays (use the functions of geodesic_lod)";
+
+  nb::enum_<vcg_ext::Metric>(m, "Metric")
+      .value("WeightedEq3", vcg_ext::Metric::WeightedEq3)
+      .value("CurvatureDensity", vcg_ext::Metric::CurvatureDensity)
+      .value("Geodesic", vcg_ext::Metric::Geodesic)
+      .value("Euclidean", vcg_ext::Metric::Euclidean);
+  nb::enum_<vcg_ext::GeodesicMode>(m, "GeodesicMode")
+      .value("Auto", vcg_ext::GeodesicMode::Auto)
+      .value("Mesh", vcg_ext::GeodesicMode::Mesh)
+      .value("PointGraph", vcg_ext::GeodesicMode::PointGraph);
+  nb::enum_<vcg_ext::Regions>(m, "Regions")
+      .value("None_", vcg_ext::Regions::None)
+      .value("Disk", vcg_ext::Regions::Disk)
+      .value("Voronoi", vcg_ext::Regions::Voronoi);
+
+  // The product defaults are those of these structs' declarations in vcg_ext.
+  nb::class_<Domain::Param>(m, "DomainParam")
+      .def(nb::init<>())
+      .def_rw("metric", &Domain::Param::metric)
+      .def_rw("mode", &Domain::Param::mode)
+      .def_rw("curvature_exponent", &Domain::Param::curvatureExponent)
+      .def_rw("adaptivity", &Domain::Param::adaptivity)
+      .def_rw("normal_neighbors", &Domain::Param::normalNeighbours)
+      .def_rw("graph_neighbors", &Domain::Param::graphNeighbours)
+      .def_rw("use_input_normals", &Domain::Param::useInputNormals);
+  nb::class_<Poisson::Param>(m, "PoissonParam")
+      .def(nb::init<>())
+      .def_rw("domain", &Poisson::Param::domain)
+      .def_rw("radius", &Poisson::Param::radius)
+      .def_rw("sample_num", &Poisson::Param::sampleNum)
+      .def_rw("tolerance", &Poisson::Param::tolerance)
+      .def_rw("max_iterations", &Poisson::Param::maxIterations)
+      .def_rw("seed", &Poisson::Param::seed)
+      .def_rw("mesh_output", &Poisson::Param::meshOutput)
+      .def_rw("regions", &Poisson::Param::regions);
+  nb::class_<Fps::Param>(m, "FpsParam")
+      .def(nb::init<>())
+      .def_rw("domain", &Fps::Param::domain)
+      .def_rw("sample_num", &Fps::Param::sampleNum)
+      .def_rw("seed", &Fps::Param::seed)
+      .def_rw("mesh_output", &Fps::Param::meshOutput)
+      .def_rw("regions", &Fps::Param::regions);
+  nb::class_<Pyramid::Param>(m, "PyramidParam")
+      .def(nb::init<>())
+      .def_rw("domain", &Pyramid::Param::domain)
+      .def_rw("counts", &Pyramid::Param::counts)
+      .def_rw("max_iterations", &Pyramid::Param::maxIterations)
+      .def_rw("seed", &Pyramid::Param::seed)
+      .def_rw("mesh_output", &Pyramid::Param::meshOutput);
+
+  nb::list filters;
+  for (const char* name : geodesic_lod::kPythonNames) filters.append(name);
+  m.attr("PYMESHLAB_FILTERS") = nb::tuple(filters);
+  m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
+
+  m.def("percent_of", &vcg_ext::PercentOf, "percent"_a, "n"_a,
+        "percent of n points, rounded as the MeshLab filters round it");
+  m.def("poisson_lod", &PoissonLod, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
+        "threads"_a.none(), "progress"_a.none());
+  m.def("fps_lod", &FpsLod, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a, "threads"_a.none(),
+        "progress"_a.none());
+  m.def("lod_pyramid", &LodPyramid, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
+        "threads"_a.none(), "progress"_a.none());
+  m.def("normal_variation", &NormalVariation, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
+        "progress"_a.none());
+}

@@ -1,0 +1,17 @@
+"""geodesic_lod: levels of detail of point clouds and triangle meshes that keep the fine detail.
+
+Samples are spread uniformly in a curvature-weighted geodesic metric: dense where the surface is
+rugged, sparse where it is smooth. Arrays in, indices out::
+
+    import geodesic_lod as gl
+    lod = gl.poisson_lod(points, count=10_000)     # points: an (n, 3) float array
+    small = points[lod.indices]
+
+``geodesic_lod.pymeshlab`` adds the MeshLab filters to pymeshlab; the command ``geodesic-lod``
+samples PLY, LAS/LAZ and .npy files.
+"""
+from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVariation, PoissonLod, fps_lod,
+                     level_counts, lod_pyramid, normal_variation, poisson_lod)
+
+__all__ = ["poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "PoissonLod", "FpsLod",
+           "LodPyramid", "NormalVariation", "Lod", "METRICS", "DEFAULT_METRIC"]

@@ -1,0 +1,318 @@
+"""Geodesic LODs of numpy point clouds and triangle meshes.
+
+The arguments are checked and named here; the sampling is vcg_ext's, the same
+code the MeshLab filters run, so the same input, parameters and seed give the
+same indices as ``ms.generate_geodesic_poisson_lod(...)``.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, field
+from typing import Callable, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+
+# The product defaults live in vcg_ext's Param structs; these read them.
+_DOMAIN = _core.DomainParam()
+
+METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
+           "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean}
+GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
+             "point-graph": _core.GeodesicMode.PointGraph}
+REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
+
+
+def _name_of(table, value):
+    return next(k for k, v in table.items() if v == value)
+
+
+DEFAULT_METRIC = _name_of(METRICS, _DOMAIN.metric)
+DEFAULT_GEODESICS = _name_of(GEODESICS, _DOMAIN.mode)
+
+
+@dataclass
+class Lod:
+    """What every sampler returns. Arrays are new numpy arrays; the input is never modified."""
+    indices: np.ndarray            #: int64 rows of the input chosen, in sampling order
+    normals: np.ndarray            #: (k, 3) n_i of each sample (the input's, or estimated)
+    curvature: np.ndarray          #: v_i (eq. 1) of each sample
+    faces: np.ndarray              #: (f, 3) triangles over the samples (mesh_output), else empty
+    region_of: np.ndarray          #: per input row, the rank of its sample's region (-1: none); empty unless asked
+    point_count: int               #: points sampled from
+    estimated_normals: int         #: normals estimated from the points
+    components: int                #: connected parts of the geodesic domain
+    left_out: int                  #: vertices in no triangle (mesh geodesics do not sample them)
+    mesh_geodesics: bool           #: fast marching over the faces (else the point graph or Euclidean)
+
+
+@dataclass
+class PoissonLod(Lod):
+    radius: float = 0.0            #: radius of the Poisson set (absolute, in the metric)
+    covering_radius: float = 0.0   #: every point lies within it of a sample
+    iterations: int = 1            #: Poisson runs (more than one when a count was asked)
+    poisson_count: int = 0         #: samples of the Poisson set before a trim
+    trimmed: bool = False          #: cut to the count in farthest-point order
+
+
+@dataclass
+class FpsLod(Lod):
+    covering_radii: np.ndarray = field(default_factory=lambda: np.empty(0))  #: [k]: of the first k+1 samples
+
+    @property
+    def covering_radius(self) -> float:
+        """The largest distance from a point to its nearest sample."""
+        return float(self.covering_radii[-1])
+
+
+@dataclass
+class LodPyramid(Lod):
+    counts: list = field(default_factory=list)        #: samples per level, finest first
+    level_faces: list = field(default_factory=list)   #: per level, triangles over its samples (mesh_output)
+    radius: float = 0.0                               #: radius of the finest level's Poisson set
+    iterations: int = 0
+
+    @property
+    def levels(self) -> list:
+        """Index arrays, finest first; each is a prefix (so a subset) of the finer ones."""
+        return [self.indices[:c] for c in self.counts]
+
+
+@dataclass
+class NormalVariation:
+    curvature: np.ndarray          #: v_i (eq. 1) per input row
+    normals: np.ndarray            #: (n, 3) n_i per input row
+    estimated_normals: int
+
+
+def _float_array(a, name: str, allow_none: bool = False):
+    if a is None and allow_none:
+        return None
+    a = np.asarray(a)
+    if a.dtype not in (np.float32, np.float64):
+        raise TypeError(f"{name} must hold float32 or float64 values, not {a.dtype} "
+                        f"(convert with {name}.astype(np.float64))")
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{name} must be an (n, 3) array, got shape {a.shape}")
+    return a
+
+
+def _points(points, normals):
+    p = _float_array(points, "points")
+    if p.shape[0] < 2:
+        raise ValueError(f"points holds {p.shape[0]} point{'s' if p.shape[0] != 1 else ''}: "
+                         "at least 2 are needed to sample from")
+    n = _float_array(normals, "normals", allow_none=True)
+    if n is not None and n.shape[0] != p.shape[0]:
+        raise ValueError(f"normals must have one row per point ({p.shape[0]}), got {n.shape[0]}")
+    return p, n
+
+
+def _inputs(points, normals, faces):
+    """The arrays checked, and whether there are faces to run mesh geodesics on."""
+    p, n = _points(points, normals)
+    f = _faces(faces)
+    return p, n, f, f is not None and f.shape[0] > 0
+
+
+def _faces(faces):
+    if faces is None:
+        return None
+    f = np.asarray(faces)
+    if not np.issubdtype(f.dtype, np.integer):
+        raise TypeError(f"faces must hold integer vertex indices, not {f.dtype}")
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise ValueError(f"faces must be an (m, 3) array of vertex indices, got shape {f.shape}")
+    if f.dtype.itemsize < 4:  # the core reads 32- and 64-bit indices
+        f = f.astype(np.int64)
+    return f
+
+
+def _integer(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "") -> int:
+    if isinstance(x, bool) or not isinstance(x, numbers.Integral):
+        raise TypeError(f"{name} must be an integer, not {type(x).__name__} ({x!r})")
+    x = int(x)
+    if x < lo or (hi is not None and x > hi):
+        bound = f"from {lo} to {hi}{hi_text}" if hi is not None else f"at least {lo}"
+        raise ValueError(f"{name} must be {bound}, got {x}")
+    return x
+
+
+def _real(x, name: str, positive: bool) -> float:
+    if isinstance(x, bool) or not isinstance(x, numbers.Real):
+        raise TypeError(f"{name} must be a number, not {type(x).__name__} ({x!r})")
+    x = float(x)
+    if not math.isfinite(x) or (x <= 0 if positive else x < 0):
+        raise ValueError(f"{name} must be a {'positive' if positive else 'non-negative'} finite number, got {x}")
+    return x
+
+
+def _choice(x, table: dict, name: str):
+    if x not in table:
+        raise ValueError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
+    return table[x]
+
+
+def _domain(n: int, has_faces: bool, metric, geodesics, curvature_exponent, adaptivity, normal_neighbors,
+            graph_neighbors, recompute_normals):
+    d = _core.DomainParam()
+    d.metric = _choice(metric, METRICS, "metric")
+    d.mode = _choice(geodesics, GEODESICS, "geodesics")
+    if d.mode == _core.GeodesicMode.Mesh and not has_faces and d.metric != _core.Metric.Euclidean:
+        raise ValueError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
+    d.curvature_exponent = _real(curvature_exponent, "curvature_exponent", positive=True)
+    d.adaptivity = _real(adaptivity, "adaptivity", positive=False)
+    below_n = f" (below the number of points, {n})"
+    d.normal_neighbors = _integer(normal_neighbors, "normal_neighbors", 1, n - 1, below_n)
+    point_graph = d.metric != _core.Metric.Euclidean and (
+        d.mode == _core.GeodesicMode.PointGraph or (d.mode == _core.GeodesicMode.Auto and not has_faces))
+    d.graph_neighbors = (_integer(graph_neighbors, "graph_neighbors", 1, n - 1, below_n) if point_graph
+                         else _integer(graph_neighbors, "graph_neighbors", 1))
+    if not isinstance(recompute_normals, (bool, np.bool_)):
+        raise TypeError(f"recompute_normals must be True or False, not {recompute_normals!r}")
+    d.use_input_normals = not recompute_normals
+    return d
+
+
+def _common(seed, threads, progress, mesh_output, has_faces):
+    seed = _integer(seed, "seed", 0, 2**64 - 1)
+    if threads is not None:
+        threads = _integer(threads, "threads", 1)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be None or a callable taking a fraction, not {type(progress).__name__}")
+    if not isinstance(mesh_output, (bool, np.bool_)):
+        raise TypeError(f"mesh_output must be True or False, not {mesh_output!r}")
+    if mesh_output and not has_faces:
+        raise ValueError("mesh_output=True needs faces (the samples are triangulated over them)")
+    return seed, threads
+
+
+def _lod(cls, d: dict, **extra):
+    names = {f for f in cls.__dataclass_fields__}
+    return cls(**{k: v for k, v in d.items() if k in names}, **extra)
+
+
+Progress = Optional[Callable[[float], object]]
+
+
+def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: Optional[int] = None,
+                rate: Optional[float] = None, faces=None, tolerance: float = 0.0,
+                metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
+                adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
+                normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
+                recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+                regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
+                progress: Progress = None) -> PoissonLod:
+    """Geodesic Poisson-disk LOD: samples pairwise farther apart than the radius in the metric, every point
+    within it of a sample. Give one of ``radius`` (absolute, in the metric), ``count`` (exactly that many
+    samples: the radius is searched and the set trimmed in farthest-point order) or ``rate`` (a percentage
+    of the points, as a count). ``tolerance`` (percent) accepts an untrimmed set that close to the count.
+    ``regions`` ('disk' or 'voronoi') fills ``region_of``. Ctrl-C stops the run (KeyboardInterrupt)."""
+    p, n, f, has_faces = _inputs(points, normals, faces)
+    param = _core.PoissonParam()
+    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                           normal_neighbors, graph_neighbors, recompute_normals)
+    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
+    if len(given) != 1:
+        raise ValueError("give exactly one of radius, count or rate" +
+                         (f" (got {' and '.join(given)})" if given else ""))
+    n_points = p.shape[0]
+    if radius is not None:
+        param.radius = _real(radius, "radius", positive=True)
+    elif count is not None:
+        param.sample_num = _integer(count, "count", 1, n_points, " (the number of points)")
+    else:
+        r = _real(rate, "rate", positive=True)
+        if r > 100:
+            raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {r}")
+        param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
+    t = _real(tolerance, "tolerance", positive=False)
+    if t >= 100:
+        raise ValueError(f"tolerance is a percentage below 100, got {t}")
+    param.tolerance = t / 100
+    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.mesh_output = bool(mesh_output)
+    param.regions = _choice(regions, REGIONS, "regions")
+    return _lod(PoissonLod, _core.poisson_lod(p, n, f, param, threads, progress))
+
+
+def fps_lod(points, normals=None, *, count: int, faces=None,
+            metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
+            adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
+            normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
+            recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+            regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
+            progress: Progress = None) -> FpsLod:
+    """Geodesic farthest-point LOD: exactly ``count`` samples, each the point farthest from those before it
+    (the first drawn from the seed), so ``indices[:k]`` is the k-sample LOD. ``covering_radii[k]`` is the
+    covering radius of the first k+1 samples. ``regions`` may be 'voronoi'."""
+    p, n, f, has_faces = _inputs(points, normals, faces)
+    param = _core.FpsParam()
+    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                           normal_neighbors, graph_neighbors, recompute_normals)
+    param.sample_num = _integer(count, "count", 1, p.shape[0], " (the number of points)")
+    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.mesh_output = bool(mesh_output)
+    if regions == "disk":
+        raise ValueError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
+    param.regions = _choice(regions, REGIONS, "regions")
+    return _lod(FpsLod, _core.fps_lod(p, n, f, param, threads, progress))
+
+
+def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
+    """Sample counts of pyramid levels given as counts (5000) or percentages of the points ('50%'),
+    finest first, each strictly smaller than the one before."""
+    if isinstance(levels, (str, bytes)) or not isinstance(levels, Sequence) or len(levels) == 0:
+        raise ValueError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
+                         f"got {levels!r}")
+    counts = []
+    for item in levels:
+        if isinstance(item, str):
+            text = item.strip()
+            try:
+                pct = float(text[:-1]) if text.endswith("%") else None
+            except ValueError:
+                pct = None
+            if pct is None or not math.isfinite(pct) or not 0 < pct <= 100:
+                raise ValueError(f"levels: {item!r} is not a percentage from above 0 to 100 such as '10%'")
+            c = _core.percent_of(pct, n)
+            if c < 1:
+                raise ValueError(f"levels: {item!r} of {n} points gives no samples")
+            counts.append(int(c))
+        else:
+            counts.append(_integer(item, "levels", 1, n, " (the number of points)"))
+    for k in range(1, len(counts)):
+        if counts[k] >= counts[k - 1]:
+            raise ValueError(f"levels must get strictly coarser: level {k + 1} has {counts[k]} samples, "
+                             f"level {k} {counts[k - 1]}")
+    return counts
+
+
+def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = ("50%", "25%", "10%", "5%", "2%"),
+                faces=None, metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
+                adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
+                normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
+                recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+                seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
+    """Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser level a
+    farthest-point prefix of it. ``levels`` of the result lists their index arrays, finest first."""
+    p, n, f, has_faces = _inputs(points, normals, faces)
+    param = _core.PyramidParam()
+    param.counts = level_counts(levels, p.shape[0])
+    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                           normal_neighbors, graph_neighbors, recompute_normals)
+    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.mesh_output = bool(mesh_output)
+    return _lod(LodPyramid, _core.lod_pyramid(p, n, f, param, threads, progress))
+
+
+def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.normal_neighbors,
+                     recompute_normals: bool = not _DOMAIN.use_input_normals, threads: Optional[int] = None,
+                     progress: Progress = None) -> NormalVariation:
+    """Curvature as normal variation (eq. 1) of every point, with the normals it used, in the input's order."""
+    p, n = _points(points, normals)
+    d = _domain(p.shape[0], False, "euclidean", "auto", 1.0, 0.0, normal_neighbors, 1, recompute_normals)
+    _, threads = _common(0, threads, progress, False, False)
+    return NormalVariation(**_core.normal_variation(p, n, d, threads, progress))

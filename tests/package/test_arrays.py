@@ -1,0 +1,176 @@
+"""The array API on synthetic clouds and meshes: the properties each sampler promises, any float layout,
+the input untouched, threads, progress and stopping."""
+import threading
+import time
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+import geodesic_lod as gl
+from conftest import bumpy_sphere, grid_mesh
+
+
+@pytest.fixture(scope="module")
+def cloud():
+    return bumpy_sphere(4000)
+
+
+def test_poisson_radius_separation_and_coverage(cloud):
+    r = 0.12
+    lod = gl.poisson_lod(cloud, radius=r, metric="euclidean", seed=3)
+    s = cloud[lod.indices]
+    assert len(np.unique(lod.indices)) == len(lod.indices)
+    d, _ = cKDTree(s).query(s, k=2)
+    assert d[:, 1].min() > r                              # samples pairwise farther apart than r
+    reach, _ = cKDTree(s).query(cloud)
+    assert reach.max() <= r                               # every point within r of a sample
+    assert lod.radius == lod.covering_radius == r
+
+
+def test_geodesic_poisson_covers_in_euclidean_terms(cloud):
+    # Every weight is at least the Euclidean length: coverage in the metric implies it in Euclidean terms.
+    for metric in gl.METRICS:
+        lod = gl.poisson_lod(cloud, radius=0.15, metric=metric)
+        reach, _ = cKDTree(cloud[lod.indices]).query(cloud)
+        assert reach.max() <= 0.15, metric
+
+
+def test_curvature_density_is_denser_where_bumpy(cloud):
+    lod = gl.poisson_lod(cloud, count=400)
+    bumpy = cloud[:, 0] > 0
+    assert bumpy[lod.indices].mean() > bumpy.mean()
+
+
+@pytest.mark.parametrize("ask", [dict(count=321), dict(rate=7.5), dict(count=4000), dict(count=1)])
+def test_poisson_exact_counts(cloud, ask):
+    lod = gl.poisson_lod(cloud, **ask)
+    want = ask.get("count") or int(max(1, gl.arrays._core.percent_of(ask["rate"], len(cloud))))
+    assert len(lod.indices) == want
+    assert len(np.unique(lod.indices)) == want
+    assert lod.covering_radius >= lod.radius or not lod.trimmed
+
+
+def test_fps_order_prefixes_and_covering_radii(cloud):
+    lod = gl.fps_lod(cloud, count=200, seed=5)
+    small = gl.fps_lod(cloud, count=50, seed=5)
+    np.testing.assert_array_equal(lod.indices[:50], small.indices)
+    assert np.all(np.diff(lod.covering_radii) <= 0)
+    reach, _ = cKDTree(cloud[lod.indices]).query(cloud)
+    assert reach.max() <= lod.covering_radius
+
+
+def test_pyramid_levels_nested_with_their_counts(cloud):
+    pyr = gl.lod_pyramid(cloud, levels=["20%", "5%", 60])
+    assert [len(l) for l in pyr.levels] == [800, 200, 60]
+    for fine, coarse in zip(pyr.levels, pyr.levels[1:]):
+        assert set(coarse.tolist()) <= set(fine.tolist())
+
+
+def test_normal_variation_in_input_order(cloud):
+    nv = gl.normal_variation(cloud)
+    assert nv.curvature.shape == (len(cloud),) and nv.normals.shape == cloud.shape
+    assert np.all((nv.curvature >= 0) & (nv.curvature <= 1))
+    np.testing.assert_allclose(np.linalg.norm(nv.normals, axis=1), 1, atol=1e-9)
+    # Estimated normals of a sphere point along the position (up to sign), row by row.
+    flat = cloud[:, 0] < -0.2
+    cos = np.abs(np.sum(nv.normals[flat] * cloud[flat], axis=1)) / np.linalg.norm(cloud[flat], axis=1)
+    assert np.median(cos) > 0.99
+    assert nv.curvature[cloud[:, 0] > 0.2].mean() > nv.curvature[flat].mean()
+
+
+def test_mesh_geodesics_and_mesh_output():
+    pts, faces = grid_mesh(40)
+    lod = gl.poisson_lod(pts, faces=faces, count=120, mesh_output=True, regions="voronoi")
+    assert lod.mesh_geodesics and len(lod.indices) == 120
+    f = lod.faces
+    assert len(f) > 0 and f.min() >= 0 and f.max() < 120
+    assert np.all((f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2]))
+    assert lod.region_of.shape == (len(pts),) and set(np.unique(lod.region_of)) == set(range(120))
+    # The sample owns its own region.
+    np.testing.assert_array_equal(lod.region_of[lod.indices], np.arange(120))
+
+
+def test_any_float_layout_gives_the_same_lod(cloud):
+    ref = gl.poisson_lod(cloud, count=300).indices
+    np.testing.assert_array_equal(gl.poisson_lod(np.asfortranarray(cloud), count=300).indices, ref)
+    wide = np.zeros((len(cloud), 6))
+    wide[:, ::2] = cloud
+    np.testing.assert_array_equal(gl.poisson_lod(wide[:, ::2], count=300).indices, ref)   # strided view
+    ro = cloud.copy()
+    ro.setflags(write=False)
+    np.testing.assert_array_equal(gl.poisson_lod(ro, count=300).indices, ref)
+    f32 = cloud.astype(np.float32)
+    np.testing.assert_array_equal(gl.poisson_lod(f32, count=300).indices,
+                                  gl.poisson_lod(f32.astype(np.float64), count=300).indices)
+
+
+def test_input_never_modified(cloud):
+    pts, faces = grid_mesh(30)
+    normals = np.tile([0.0, 0.0, 1.0], (len(pts), 1))
+    normals[::7] = 0  # missing ones are estimated, in the sampler's copy
+    before = [a.copy() for a in (pts, normals, faces)]
+    gl.poisson_lod(pts, normals, faces=faces, count=50, mesh_output=True, regions="disk")
+    gl.fps_lod(pts, normals, faces=faces, count=50)
+    gl.lod_pyramid(pts, normals, faces=faces, levels=[100, 20])
+    gl.normal_variation(pts, normals)
+    for a, b in zip(before, (pts, normals, faces)):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_same_lod_on_any_number_of_threads(cloud):
+    runs = [gl.poisson_lod(cloud, count=333, threads=t, seed=2).indices for t in (1, 2, 3)]
+    for r in runs[1:]:
+        np.testing.assert_array_equal(r, runs[0])
+    fps = [gl.fps_lod(cloud, count=100, threads=t).indices for t in (1, 2)]
+    np.testing.assert_array_equal(fps[0], fps[1])
+
+
+def test_seed_changes_the_lod_and_repeats_it(cloud):
+    a, b, c = (gl.poisson_lod(cloud, radius=0.1, seed=s).indices for s in (1, 1, 2))
+    np.testing.assert_array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def test_progress_receives_fractions_in_order(cloud):
+    seen = []
+    gl.poisson_lod(cloud, count=100, progress=seen.append)
+    assert seen and all(0 <= x <= 1 for x in seen)
+    assert seen == sorted(seen) and seen[-1] == 1.0
+
+
+def test_an_error_in_progress_stops_the_run_and_is_raised(cloud):
+    def fail(x):
+        if x > 0.2:
+            raise RuntimeError("enough")
+    with pytest.raises(RuntimeError, match="enough"):
+        gl.poisson_lod(cloud, count=100, progress=fail)
+    def interrupt(x):
+        if x > 0.5:
+            raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        gl.fps_lod(cloud, count=100, progress=interrupt)
+
+
+def test_the_gil_is_released_while_sampling():
+    # A thread that wakes every 10 ms: were the GIL held through the run, it would sleep through all of it.
+    big = bumpy_sphere(300_000, seed=4)
+    wakes = []
+    stop = threading.Event()
+    def tick():
+        while not stop.is_set():
+            wakes.append(time.monotonic())
+            time.sleep(0.01)
+    t = threading.Thread(target=tick)
+    t.start()
+    try:
+        start = time.monotonic()
+        gl.poisson_lod(big, radius=0.005, metric="euclidean")
+        end = time.monotonic()
+    finally:
+        stop.set()
+        t.join()
+    during = np.array([w for w in wakes if start <= w <= end])
+    assert end - start > 0.2, "the run is too short to tell"
+    gaps = np.diff(np.concatenate([[start], during, [end]]))
+    assert gaps.max() < 0.5 * (end - start)
