@@ -63,7 +63,7 @@ void RequireVertices(const CMeshO& in) {
 size_t Count(const char* name, double x, const CMeshO& in) {
   RequireVertices(in);
   if (!(x <= double(in.vn)))
-    throw std::invalid_argument(std::string(name) + " must be between 1 and the number of vertices (" +
+    throw std::invalid_argument(std::string(name) + " must be between 1 and the number of points (" +
                                 std::to_string(in.vn) + "), got " + QString::number(x).toStdString());
   return size_t(x);
 }

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "input_words.h"
 #include "meshlab_mesh.h"
 #include <vcg_ext/lod_result.h>
 #include <vcg_ext/progress.h>
@@ -24,6 +25,8 @@ template <class F>
 auto Guarded(F&& f) -> decltype(f()) {
   try {
     return f();
+  } catch (const vcg_ext::InputError& e) {
+    throw MLException("Geodesic LOD: " + Worded(e));
   } catch (const std::invalid_argument& e) {
     throw MLException(QString("Geodesic LOD: ") + e.what());
   } catch (const vcg_ext::Cancelled&) {

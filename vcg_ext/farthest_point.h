@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "input_error.h"
 #include "progress.h"
 
 namespace vcg_ext {
@@ -42,8 +43,8 @@ class FarthestPoint {
   static Result Compute(size_t n, Propagator& prop, const Param& p, Progress progress = Progress(nullptr)) {
     const size_t m = p.candidates ? p.candidates->size() : n;
     if (p.sampleNum < 1 || p.sampleNum > m)
-      throw std::invalid_argument("samplenum must be between 1 and the number of vertices (" + std::to_string(m) +
-                                  "), got " + std::to_string(p.sampleNum));
+      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(m) +
+                                             "), got " + std::to_string(p.sampleNum));
     const Scalar inf = std::numeric_limits<Scalar>::infinity();
     std::vector<Scalar> dist(n, inf);
     Result r;

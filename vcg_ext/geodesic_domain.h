@@ -60,23 +60,23 @@ class GeodesicDomain {
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
   size_t skippedFaces = 0;          ///< faces with a deleted or repeated corner
 
-  /// Throws std::invalid_argument naming the first bad input.
+  /// Throws InputError for the first bad input.
   static void Check(const PointSet<Scalar>& ps, bool hasTriangles, const Param& p) {
     const size_t n = ps.size();
-    if (n == 0) throw std::invalid_argument("the layer has no vertices");
-    if (n == 1) throw std::invalid_argument("the layer has a single vertex: there is nothing to sample from");
+    if (n == 0) throw InputError(Field::Points, "holds no points");
+    if (n == 1) throw InputError(Field::Points, "holds a single point: there is nothing to sample from");
     const vcg::Box3<Scalar> box = FiniteBox(ps);
     if (!(box.Diag() > 0))
-      throw std::invalid_argument("all " + std::to_string(n) + " vertices coincide: there is no surface to sample");
+      throw InputError(Field::Points, "holds " + std::to_string(n) + " points at one position: there is no surface to sample");
     if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)
-      throw std::invalid_argument("geodesicmode Mesh needs a layer with faces; this one has none "
-                                  "(use Auto or Point graph for point clouds)");
-    CheckNeighbours("normalneighbors", p.normalNeighbours, n);
-    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours("graphneighbors", p.graphNeighbours, n);
+      throw InputError(Field::GeodesicMode, "Mesh needs faces; the input has none "
+                                             "(use PointGraph or Auto for point clouds)");
+    CheckNeighbours(Field::NormalNeighbours, p.normalNeighbours, n);
+    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours(Field::GraphNeighbours, p.graphNeighbours, n);
     if (!(p.curvatureExponent > 0) || !std::isfinite(p.curvatureExponent))
-      throw std::invalid_argument("curvatureexponent must be a positive number (got " + Str(p.curvatureExponent) + ")");
+      throw InputError(Field::CurvatureExponent, "must be a positive number (got " + Str(p.curvatureExponent) + ")");
     if (!(p.adaptivity >= 0) || !std::isfinite(p.adaptivity))
-      throw std::invalid_argument("adaptivity must be zero or positive (got " + Str(p.adaptivity) + ")");
+      throw InputError(Field::Adaptivity, "must be zero or positive (got " + Str(p.adaptivity) + ")");
   }
 
   /// From a vcglib mesh (not modified): its live vertices, and its faces when
@@ -216,11 +216,11 @@ class GeodesicDomain {
       for (int& c : t) c = remap[c];
     return dropped;
   }
-  static void CheckNeighbours(const char* name, int k, size_t n) {
-    if (k < 1) throw std::invalid_argument(std::string(name) + " must be at least 1 (got " + std::to_string(k) + ")");
+  static void CheckNeighbours(Field field, int k, size_t n) {
+    if (k < 1) throw InputError(field, "must be at least 1 (got " + std::to_string(k) + ")");
     if (size_t(k) >= n)
-      throw std::invalid_argument(std::string(name) + " (" + std::to_string(k) +
-                                  ") must be smaller than the number of vertices (" + std::to_string(n) + ")");
+      throw InputError(field, "must be smaller than the number of points (" + std::to_string(n) + "), got " +
+                                  std::to_string(k));
   }
   static std::string Str(double x) { return std::to_string(x); }
 };

@@ -37,10 +37,10 @@ class GeodesicLodPyramid {
   };
 
   static void CheckCounts(const std::vector<size_t>& c) {
-    if (c.empty()) throw std::invalid_argument("levels must name at least one level");
+    if (c.empty()) throw InputError(Field::Levels, "must name at least one level");
     for (size_t k = 0; k + 1 < c.size(); ++k)
       if (c[k + 1] >= c[k])
-        throw std::invalid_argument("levels must get strictly coarser: level " + std::to_string(k + 2) + " has " +
+        throw InputError(Field::Levels, "must get strictly coarser: level " + std::to_string(k + 2) + " has " +
                                     std::to_string(c[k + 1]) + " samples, level " + std::to_string(k + 1) + " " +
                                     std::to_string(c[k]));
   }

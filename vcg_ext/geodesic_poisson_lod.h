@@ -41,7 +41,7 @@ class GeodesicPoissonLod {
 
   static void CheckRadius(double r) {
     if (!(r > 0) || !std::isfinite(r))
-      throw std::invalid_argument("radius must be a positive number (got " + std::to_string(r) + ")");
+      throw InputError(Field::Radius, "must be a positive number (got " + std::to_string(r) + ")");
   }
 
   /// Samples of the domain, by disks of its metric and geodesics.

@@ -32,7 +32,7 @@ struct LodResult {
   /// Throws std::invalid_argument when triangle-mesh output is asked of a layer without faces.
   static void CheckMeshOutput(bool meshOutput, bool hasFaces) {
     if (meshOutput && !hasFaces)
-      throw std::invalid_argument("triangle-mesh output needs a layer with faces; this one has none");
+      throw InputError(Field::MeshOutput, "needs faces to triangulate over; the input has none");
   }
 
   /// The ending every sampler shares: the data of `samples` (point indices of

@@ -41,21 +41,20 @@ class NormalProjection {
                         vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
     if (!(p.maxDistance > 0) || !std::isfinite(p.maxDistance))
-      throw std::invalid_argument("maxdist must be a positive number (got " + std::to_string(p.maxDistance) + ")");
+      throw InputError(Field::MaxDistance, "must be a positive number (got " + std::to_string(p.maxDistance) + ")");
     // Finite coordinates in a finite box, or the grid's cells cannot be computed.
     for (const auto* layer : {&reference, &surface}) {
       try {
         FiniteBox(PointSetFromMesh<MeshType>::Compute(*layer));
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(std::string(layer == &surface ? "the surface layer: " : "the reference layer: ") +
-                                    e.what());
+      } catch (const InputError& e) {
+        throw InputError(layer == &surface ? Field::Surface : Field::ReferencePoints, e.what());
       }
     }
     std::vector<Tri> tris;
     for (const auto& f : surface.face)  // live faces of live vertices, as the samplers take them
       if (!f.IsD() && !f.cV(0)->IsD() && !f.cV(1)->IsD() && !f.cV(2)->IsD())
         tris.push_back(Tri{{f.cP(0), f.cP(1), f.cP(2)}});
-    if (tris.empty()) throw std::invalid_argument("the surface layer has no triangles to project onto");
+    if (tris.empty()) throw InputError(Field::Surface, "holds no triangles to project onto");
     // vcglib's grid computes its cells in the layer's units and overflows near
     // the ends of the float range: it is built on coordinates centred on the
     // triangles' box and scaled to its diagonal, and distances are scaled back.
@@ -63,7 +62,7 @@ class NormalProjection {
     for (const Tri& t : tris)
       for (const Coord& c : t.p) box.Add(vcg::Point3d::Construct(c));
     if (!(box.Diag() > 0))
-      throw std::invalid_argument("the surface layer's triangles all lie at one point: there is no surface to project onto");
+      throw InputError(Field::Surface, "holds triangles that all lie at one point: there is no surface to project onto");
     const vcg::Point3d centre = box.Center();
     const double scale = box.Diag();
     auto local = [&](const Coord& q) { return (vcg::Point3d::Construct(q) - centre) / scale; };
@@ -102,7 +101,7 @@ class NormalProjection {
       if ((i & 4095) == 0) progress(i, reference.vert.size(), "Normal projection deviation");
     }
     if (r.pointNum == 0)
-      throw std::invalid_argument("the reference layer has no valid vertex normals (compute normals first)");
+      throw InputError(Field::ReferencePoints, "holds no points with valid normals (compute normals first)");
     if (r.hitNum) {
       r.mean = sum / double(r.hitNum);
       r.rms = std::sqrt(sum2 / double(r.hitNum));

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 #include <vcg/complex/complex.h>
+#include "input_error.h"
 
 namespace vcg_ext {
 
@@ -43,7 +44,7 @@ class PointSetFromMesh {
   typedef typename MeshType::ScalarType Scalar;
 
   /// Copies the live vertices of `m` (deleted ones are skipped). The mesh is
-  /// not modified. Throws std::invalid_argument on non-finite coordinates,
+  /// not modified. Throws InputError (Coordinates) on non-finite coordinates,
   /// which no distance can be computed from.
   static PointSet<Scalar> Compute(const MeshType& m) {
     PointSet<Scalar> ps;
@@ -65,22 +66,21 @@ class PointSetFromMesh {
       if (hasNormal) ps.normal.push_back(vcg::Point3<Scalar>::Construct(v.cN()));
     }
     if (nonFinite)
-      throw std::invalid_argument(std::to_string(nonFinite) +
-          " vertices have NaN or infinite coordinates: remove them first "
-          "(for example with 'Remove Unreferenced/NaN Vertices' after 'Select by Vertex Quality')");
+      throw InputError(Field::Coordinates, "holds " + std::to_string(nonFinite) +
+                                               (nonFinite == 1 ? " point" : " points") + " with NaN or infinite coordinates");
     if (!hasNormal) ps.normal.assign(ps.pos.size(), vcg::Point3<Scalar>(0, 0, 0));
     return ps;
   }
 };
 
-/// The points' bounding box; throws std::invalid_argument when its diagonal
+/// The points' bounding box; throws InputError (Points) when its diagonal
 /// overflows (no distance or grid can be computed in it).
 template <class Scalar>
 vcg::Box3<Scalar> FiniteBox(const PointSet<Scalar>& ps) {
   vcg::Box3<Scalar> box;
   for (const auto& q : ps.pos) box.Add(q);
   if (!std::isfinite(box.Diag()))
-    throw std::invalid_argument("the coordinates are too large: the bounding box's diagonal overflows");
+    throw InputError(Field::Points, "holds coordinates too large for any distance: the bounding box's diagonal overflows");
   return box;
 }
 

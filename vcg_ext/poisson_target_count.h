@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 #include "farthest_point.h"
+#include "input_error.h"
 #include "poisson_disk.h"
 #include "progress.h"
 
@@ -50,11 +51,11 @@ class PoissonTargetCount {
   template <class Scalar, class Search>
   static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr)) {
     if (p.sampleNum < 1 || p.sampleNum > n)
-      throw std::invalid_argument("samplenum must be between 1 and the number of vertices (" + std::to_string(n) +
-                                  "), got " + std::to_string(p.sampleNum));
+      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(n) +
+                                             "), got " + std::to_string(p.sampleNum));
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))
-      throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
-                                  std::to_string(100 * p.tolerance) + "%)");
+      throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
+                                             std::to_string(100 * p.tolerance) + "%)");
     const double target = double(p.sampleNum);
     // Exact counts trim a set at most ~1% larger; a tolerance accepts counts on both sides.
     const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;

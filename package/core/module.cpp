@@ -205,6 +205,15 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
 NB_MODULE(_core, m) {
   m.doc() = "vcg_ext's geodesic LOD samplers on numpy arrays (use the functions of geodesic_lod)";
 
+  // vcg_ext's input errors reach Python as ValueError(field id, problem): geodesic_lod words them.
+  nb::register_exception_translator([](const std::exception_ptr& p, void*) {
+    try {
+      std::rethrow_exception(p);
+    } catch (const vcg_ext::InputError& e) {
+      PyErr_SetObject(PyExc_ValueError, nb::make_tuple(vcg_ext::FieldId(e.field), e.what()).ptr());
+    }
+  });
+
   nb::enum_<vcg_ext::Metric>(m, "Metric")
       .value("WeightedEq3", vcg_ext::Metric::WeightedEq3)
       .value("CurvatureDensity", vcg_ext::Metric::CurvatureDensity)

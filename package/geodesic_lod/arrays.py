@@ -189,6 +189,23 @@ def _common(seed, threads, progress, mesh_output, has_faces):
     return seed, threads
 
 
+# vcg_ext's input errors by field, in this package's words (the subject of the problem).
+_FIELD_WORDS = {"Points": "points", "Coordinates": "points", "Radius": "radius", "SampleNum": "count",
+                "Tolerance": "tolerance", "Levels": "levels", "NormalNeighbours": "normal_neighbors",
+                "GraphNeighbours": "graph_neighbors", "CurvatureExponent": "curvature_exponent",
+                "Adaptivity": "adaptivity", "GeodesicMode": "geodesics", "MeshOutput": "mesh_output"}
+
+
+def _run(fn, *args):
+    """Calls the core, turning its ValueError(field id, problem) into a message naming the argument."""
+    try:
+        return fn(*args)
+    except ValueError as e:
+        if len(e.args) == 2 and e.args[0] in _FIELD_WORDS:
+            raise ValueError(f"{_FIELD_WORDS[e.args[0]]} {e.args[1]}") from None
+        raise
+
+
 def _lod(cls, d: dict, **extra):
     names = {f for f in cls.__dataclass_fields__}
     return cls(**{k: v for k, v in d.items() if k in names}, **extra)
@@ -235,7 +252,7 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.regions = _choice(regions, REGIONS, "regions")
-    return _lod(PoissonLod, _core.poisson_lod(p, n, f, param, threads, progress))
+    return _lod(PoissonLod, _run(_core.poisson_lod, p, n, f, param, threads, progress))
 
 
 def fps_lod(points, normals=None, *, count: int, faces=None,
@@ -258,7 +275,7 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
     if regions == "disk":
         raise ValueError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
     param.regions = _choice(regions, REGIONS, "regions")
-    return _lod(FpsLod, _core.fps_lod(p, n, f, param, threads, progress))
+    return _lod(FpsLod, _run(_core.fps_lod, p, n, f, param, threads, progress))
 
 
 def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
@@ -305,7 +322,7 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = ("5
                            normal_neighbors, graph_neighbors, recompute_normals)
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
-    return _lod(LodPyramid, _core.lod_pyramid(p, n, f, param, threads, progress))
+    return _lod(LodPyramid, _run(_core.lod_pyramid, p, n, f, param, threads, progress))
 
 
 def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.normal_neighbors,
@@ -315,4 +332,4 @@ def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.no
     p, n = _points(points, normals)
     d = _domain(p.shape[0], False, "euclidean", "auto", 1.0, 0.0, normal_neighbors, 1, recompute_normals)
     _, threads = _common(0, threads, progress, False, False)
-    return NormalVariation(**_core.normal_variation(p, n, d, threads, progress))
+    return NormalVariation(**_run(_core.normal_variation, p, n, d, threads, progress))

@@ -25,7 +25,7 @@ CASES = {
     "points single": (gl.poisson_lod, (P[:1],), dict(count=1), ValueError, "points"),
     "points NaN": (gl.poisson_lod, (NAN,), dict(count=5), ValueError, "points: 2 rows"),
     "points inf": (gl.fps_lod, (INF,), dict(count=5), ValueError, "points: 1 row"),
-    "points coincide": (gl.poisson_lod, (np.ones((50, 3)),), dict(count=5), ValueError, "coincide"),
+    "points coincide": (gl.poisson_lod, (np.ones((50, 3)),), dict(count=5), ValueError, "points holds 50 points at one position"),
     "normals rows": (gl.poisson_lod, (P, P[:10]), dict(count=5), ValueError, "normals"),
     "normals int": (gl.poisson_lod, (P, P.astype(np.int32)), dict(count=5), TypeError, "normals"),
     "faces float": (gl.poisson_lod, (MESH_P,), dict(faces=MESH_F.astype(float), count=5), TypeError, "faces"),

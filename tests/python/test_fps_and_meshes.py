@@ -107,6 +107,6 @@ def test_dragon_100k_degenerate_mesh(plugin, shared):
     ms.set_current_mesh(0)
     res = ms.apply_filter(FPS, samplenum=n, geodesicmode="Point graph (Dijkstra)")
     assert res["sample_num"] == n  # the point graph keeps the unreferenced vertices
-    with pytest.raises(pymeshlab.PyMeshLabException, match="samplenum must be between 1 and the number of vertices"):
+    with pytest.raises(pymeshlab.PyMeshLabException, match="samplenum must be between 1 and the number of points"):
         ms.set_current_mesh(0)
         ms.apply_filter(FPS, samplenum=n)  # mesh geodesics leave the 43 unreferenced vertices out

@@ -286,7 +286,7 @@ def test_deleted_vertices(plugin):
     assert ms.current_mesh().vertex_matrix()[:, 0].min() >= 0.3
     ms.set_current_mesh(0)
     runs(ms, FPS, samplenum=kept)
-    fails(ms, FPS, re.escape(f"samplenum must be between 1 and the number of vertices ({kept})"), samplenum=kept + 1)
+    fails(ms, FPS, re.escape(f"samplenum must be between 1 and the number of points ({kept})"), samplenum=kept + 1)
 
 
 # ------------------------------------------------------------------------------ 7. bad face indices
@@ -344,22 +344,22 @@ def nan_layer(bad):
 def test_pyramid_of_an_empty_layer(plugin, params):
     """An empty layer: the error says the layer has no vertices (as for the other filters), not that a level's
     count is out of range."""
-    fails(empty(), PYRAMID, "the layer has no vertices", **params)
+    fails(empty(), PYRAMID, "the layer holds no points", **params)
 
 
 def test_curvature_of_an_empty_layer(plugin):
-    fails(empty(), CURVATURE, "the layer has no vertices")
+    fails(empty(), CURVATURE, "the layer holds no points")
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf], ids=["NaN", "inf", "-inf"])
 @pytest.mark.parametrize("flt", [PYRAMID, CURVATURE])
 def test_non_finite_coordinates(plugin, flt, bad):
-    fails(nan_layer([bad, 0, 0]), flt, re.escape("2 vertices have NaN or infinite coordinates"))
+    fails(nan_layer([bad, 0, 0]), flt, re.escape("the layer holds 2 points with NaN or infinite coordinates"))
 
 
 @pytest.mark.parametrize("flt", [PYRAMID, CURVATURE])
 def test_all_coordinates_nan(plugin, flt):
-    fails(layer(np.full((30, 3), np.nan)), flt, re.escape("30 vertices have NaN or infinite coordinates"))
+    fails(layer(np.full((30, 3), np.nan)), flt, re.escape("the layer holds 30 points with NaN or infinite coordinates"))
 
 
 # -------------------------------------------------------------------------- 10. absurd level counts

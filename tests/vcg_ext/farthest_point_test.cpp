@@ -91,9 +91,9 @@ TEST(FarthestPoint, BadCounts) {
     try {
       FPS::Compute(m, p);
       FAIL() << n;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("samplenum must be between 1 and the number of vertices (100)"),
-                std::string::npos);
+    } catch (const vcg_ext::InputError& e) {
+      EXPECT_EQ(e.field, vcg_ext::Field::SampleNum);
+      EXPECT_NE(std::string(e.what()).find("must be between 1 and the number of points (100)"), std::string::npos);
     }
   }
   FPS::Param all;

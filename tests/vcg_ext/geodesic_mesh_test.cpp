@@ -16,8 +16,8 @@ using vcg_ext::GeodesicMode;
 std::string ErrorOf(const test::TMesh& m, const LOD::Param& p) {
   try {
     LOD::Compute(m, p);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
+  } catch (const vcg_ext::InputError& e) {
+    return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
   return "";
 }
@@ -56,10 +56,10 @@ TEST(GeodesicMesh, AutoUsesTheFacesAndMeshModeNeedsThem) {
   test::TMesh cloud;
   test::Plane(cloud, 20);
   p.domain.mode = GeodesicMode::Mesh;
-  EXPECT_NE(ErrorOf(cloud, p).find("geodesicmode Mesh needs a layer with faces"), std::string::npos);
+  EXPECT_NE(ErrorOf(cloud, p).find("GeodesicMode: Mesh needs faces"), std::string::npos);
   p.meshOutput = true;
   p.domain.mode = GeodesicMode::Auto;
-  EXPECT_NE(ErrorOf(cloud, p).find("triangle-mesh output needs a layer with faces"), std::string::npos);
+  EXPECT_NE(ErrorOf(cloud, p).find("MeshOutput: needs faces"), std::string::npos);
 }
 
 TEST(GeodesicMesh, UnreferencedVerticesAreLeftOutAndCounted) {

@@ -13,8 +13,8 @@ using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
 std::string ErrorOf(const test::TMesh& m, LOD::Param p) {
   try {
     LOD::Compute(m, p);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
+  } catch (const vcg_ext::InputError& e) {
+    return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
   return "";
 }
@@ -26,14 +26,14 @@ LOD::Param Radius(double r) {
 }  // namespace
 
 TEST(InputChecks, EmptyOneAndCoincident) {
-  EXPECT_NE(ErrorOf(test::TMesh(), Radius(1)).find("no vertices"), std::string::npos);
+  EXPECT_NE(ErrorOf(test::TMesh(), Radius(1)).find("Points: holds no points"), std::string::npos);
   test::TMesh one;
   vcg::tri::Allocator<test::TMesh>::AddVertices(one, 1);
-  EXPECT_NE(ErrorOf(one, Radius(1)).find("single vertex"), std::string::npos);
+  EXPECT_NE(ErrorOf(one, Radius(1)).find("Points: holds a single point"), std::string::npos);
   test::TMesh same;
   vcg::tri::Allocator<test::TMesh>::AddVertices(same, 50);
   for (auto& v : same.vert) v.P() = test::P3(1, 2, 3);
-  EXPECT_NE(ErrorOf(same, Radius(1)).find("coincide"), std::string::npos);
+  EXPECT_NE(ErrorOf(same, Radius(1)).find("Points: holds 50 points at one position"), std::string::npos);
 }
 
 TEST(InputChecks, NonFiniteCoordinates) {
@@ -41,30 +41,30 @@ TEST(InputChecks, NonFiniteCoordinates) {
     test::TMesh m;
   test::Plane(m, 10);
     m.vert[7].P()[1] = bad;
-    EXPECT_NE(ErrorOf(m, Radius(0.1)).find("1 vertices have NaN or infinite"), std::string::npos);
+    EXPECT_NE(ErrorOf(m, Radius(0.1)).find("Coordinates: holds 1 point with NaN or infinite"), std::string::npos);
   }
 }
 
 TEST(InputChecks, RadiusAndParameters) {
   test::TMesh m;
   test::Plane(m, 10);
-  for (double r : {0.0, -1.0, double(NAN)}) EXPECT_NE(ErrorOf(m, Radius(r)).find("radius"), std::string::npos);
+  for (double r : {0.0, -1.0, double(NAN)}) EXPECT_NE(ErrorOf(m, Radius(r)).find("Radius: must be a positive number"), std::string::npos);
   LOD::Param p = Radius(0.1);
   p.domain.normalNeighbours = 0;
-  EXPECT_NE(ErrorOf(m, p).find("normalneighbors must be at least 1"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("NormalNeighbours: must be at least 1"), std::string::npos);
   p.domain.normalNeighbours = 100;
-  EXPECT_NE(ErrorOf(m, p).find("smaller than the number of vertices (100)"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("NormalNeighbours: must be smaller than the number of points (100)"), std::string::npos);
   p = Radius(0.1);
   p.domain.graphNeighbours = 0;
-  EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("GraphNeighbours: must be"), std::string::npos);
   p.domain.graphNeighbours = 1000;
-  EXPECT_NE(ErrorOf(m, p).find("graphneighbors"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("GraphNeighbours: must be"), std::string::npos);
   p = Radius(0.1);
   p.domain.curvatureExponent = 0;
-  EXPECT_NE(ErrorOf(m, p).find("curvatureexponent"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("CurvatureExponent: must be a positive number"), std::string::npos);
   p = Radius(0.1);
   p.domain.adaptivity = -1;
-  EXPECT_NE(ErrorOf(m, p).find("adaptivity"), std::string::npos);
+  EXPECT_NE(ErrorOf(m, p).find("Adaptivity: must be zero or positive"), std::string::npos);
 }
 
 TEST(InputChecks, DuplicatePointsGiveOneSampleAtMost) {

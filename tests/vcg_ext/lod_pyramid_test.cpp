@@ -93,8 +93,9 @@ TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
     try {
       Pyramid::Compute(m, Levels(counts));
       ADD_FAILURE() << "no error";
-    } catch (const std::invalid_argument& e) {
-      EXPECT_TRUE(std::string(e.what()).rfind("levels must", 0) == 0) << e.what();
+    } catch (const vcg_ext::InputError& e) {
+      EXPECT_EQ(e.field, vcg_ext::Field::Levels) << e.what();
+      EXPECT_TRUE(std::string(e.what()).rfind("must", 0) == 0) << e.what();
     }
   }
 }

@@ -23,8 +23,8 @@ void SetNormals(test::TMesh& m, const test::P3& n) {
 std::string ErrorOf(const test::TMesh& ref, const test::TMesh& surf, const NP::Param& p) {
   try {
     NP::Compute(ref, surf, p);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
+  } catch (const vcg_ext::InputError& e) {
+    return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
   return "";
 }
@@ -104,11 +104,11 @@ TEST(NormalProjection, NamesBadInputs) {
   test::GridMesh(ref, 5, [](float, float) { return 0.f; });
   test::GridMesh(surf, 5, [](float, float) { return 0.f; });
   test::Plane(cloud, 5);
-  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(1)), "the reference layer has no valid vertex normals (compute normals first)");
+  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(1)), "ReferencePoints: holds no points with valid normals (compute normals first)");
   SetNormals(ref, test::P3(0, 0, 1));
-  EXPECT_EQ(ErrorOf(ref, cloud, MaxDist(1)), "the surface layer has no triangles to project onto");
-  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(0)), "maxdist must be a positive number (got 0.000000)");
-  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(NAN)).rfind("maxdist must be a positive number", 0), 0u);
+  EXPECT_EQ(ErrorOf(ref, cloud, MaxDist(1)), "Surface: holds no triangles to project onto");
+  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(0)), "MaxDistance: must be a positive number (got 0.000000)");
+  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(NAN)).rfind("MaxDistance: must be a positive number", 0), 0u);
   ref.vert[3].N() = test::P3(0, 0, 0);
   const auto r = NP::Compute(ref, surf, MaxDist(1));
   EXPECT_EQ(r.noNormal, 1u);

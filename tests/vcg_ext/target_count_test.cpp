@@ -104,9 +104,10 @@ TEST(TargetCount, NamesBadTargets) {
     try {
       LOD::Compute(m, Target(bad.first, bad.second));
       ADD_FAILURE() << "no error for " << bad.first << " " << bad.second;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_TRUE(std::string(e.what()).find(bad.first > 100 ? "samplenum must be between 1 and the number of vertices (100)"
-                                                             : "tolerance must be at least 0 and below 100%") !=
+    } catch (const vcg_ext::InputError& e) {
+      EXPECT_EQ(e.field, bad.first > 100 ? vcg_ext::Field::SampleNum : vcg_ext::Field::Tolerance) << e.what();
+      EXPECT_TRUE(std::string(e.what()).find(bad.first > 100 ? "must be between 1 and the number of points (100)"
+                                                             : "must be at least 0 and below 100%") !=
                   std::string::npos)
           << e.what();
     }
