@@ -62,3 +62,10 @@ def test_wheel_installs_and_works_in_a_fresh_venv(tmp_path):
     work = tmp_path / "work"
     work.mkdir()
     assert run([str(py), "-c", USE, str(work)], env=env, cwd=work).stdout.strip() == "ok"
+    # The console script, on both files, checked by reading its output back.
+    command = venv / "bin" / "geodesic-lod"
+    for name in ("in.ply", "in.laz"):
+        out = work / name.replace("in.", "lod.")
+        run([str(command), str(work / name), "-o", str(out), "--count", "150", "--quiet"], env=env)
+        check = f"from geodesic_lod import point_files; print(len(point_files.read({str(out)!r}).points))"
+        assert run([str(py), "-c", check], env=env, cwd=work).stdout.strip() == "150"

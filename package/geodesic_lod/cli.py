@@ -1,0 +1,198 @@
+"""The command geodesic-lod: a geodesic LOD of a PLY, LAS/LAZ or .npy file.
+
+    geodesic-lod scan.laz -o lod.laz --rate 10%
+    geodesic-lod scan.ply -o lod.ply --radius 1%          (1% of the bounding box diagonal)
+    geodesic-lod scan.laz -o lod.laz --levels 50%,10%,2%  (lod_50pct.laz, lod_10pct.laz, lod_2pct.laz)
+
+Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130. Output files
+appear only when complete.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import pathlib
+import sys
+import time
+
+import numpy as np
+
+from . import arrays, point_files
+
+PROG = "geodesic-lod"
+EXIT_BAD_INPUT = 2
+EXIT_STOPPED = 130
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, not argparse's usage block
+        _fail(f"{message} (see {PROG} --help)")
+
+
+def _fail(message):
+    print(f"{PROG}: error: {message}", file=sys.stderr)
+    sys.exit(EXIT_BAD_INPUT)
+
+
+def _percent(text: str, name: str) -> float:
+    try:
+        value = float(text.strip().rstrip("%"))
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and 0 < value <= 100):
+        raise ValueError(f"{name} must be a percentage from above 0 to 100 such as 10%, got {text!r}")
+    return value
+
+
+def _count(text: str, name: str) -> int:
+    if not text.strip().isdigit() or int(text) < 1:
+        raise ValueError(f"{name} must be a whole number of samples of at least 1, got {text!r}")
+    return int(text)
+
+
+def _radius(text: str, points: np.ndarray) -> float:
+    """An absolute radius, or a percentage of the bounding box diagonal as in MeshLab's dialog."""
+    if text.strip().endswith("%"):
+        diagonal = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
+        return _percent(text, "--radius") / 100 * diagonal
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"--radius must be a positive length or a percentage of the diagonal such as 1%, "
+                         f"got {text!r}")
+    return value
+
+
+def _level_items(text: str) -> list:
+    items = [t.strip() for t in text.split(",")]
+    if any(not t for t in items):
+        raise ValueError(f"--levels must be a comma-separated list such as 50%,10%,2% or 5000,500, got {text!r}")
+    return [t if t.endswith("%") else _count(t, "--levels") for t in items]
+
+
+def _level_path(out: pathlib.Path, item) -> pathlib.Path:
+    label = f"{item[:-1].strip()}pct" if isinstance(item, str) else str(item)
+    return out.with_name(f"{out.stem}_{label}{out.suffix}")
+
+
+def parser() -> argparse.ArgumentParser:
+    p = _Parser(prog=PROG, description="Levels of detail of point clouds and meshes that keep the fine detail: "
+                "samples spread uniformly in a curvature-weighted geodesic metric.",
+                epilog="Formats: PLY (every vertex property kept), LAS/LAZ (every point record kept bit for bit, "
+                "with the header, scales, offsets, CRS and VLRs), NumPy .npy ((n, 3), (n, 6) with normals, or a "
+                "table with fields x, y, z). A LAS/PLY input may also be written as .npy.")
+    p.add_argument("input", help="the point file (.ply, .las, .laz or .npy)")
+    p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "
+                   "file is derived from (lod.laz gives lod_50pct.laz, ...)")
+    size = p.add_mutually_exclusive_group(required=True)
+    size.add_argument("--rate", help="a percentage of the points, such as 10%%: exactly that many samples")
+    size.add_argument("--count", help="exactly this many samples")
+    size.add_argument("--radius", help="the Poisson-disk radius: a length, or a percentage of the bounding box "
+                      "diagonal such as 1%%")
+    size.add_argument("--levels", help="nested levels, finest first, such as 50%%,10%%,2%%: one file each")
+    p.add_argument("--fps", action="store_true", help="farthest-point order instead of Poisson-disk (with --rate "
+                   "or --count): the file's first k points are the k-sample LOD")
+    p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
+                   help="the distance the samples are spread in (default: %(default)s)")
+    p.add_argument("--adaptivity", type=float, default=arrays._DOMAIN.adaptivity,
+                   help="curvature-density metric: how much denser rugged parts get (default: %(default)s)")
+    p.add_argument("--recompute-normals", action="store_true", help="estimate normals even where the file has them")
+    p.add_argument("--seed", type=int, default=0, help="the seed of the sampling order (default: %(default)s)")
+    p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "
+                   "is the same on any number")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary")
+    return p
+
+
+class _Bar:
+    """A progress bar on stderr fed with fractions, shown only if the run lasts more than a moment."""
+
+    def __init__(self, quiet: bool, label: str):
+        self.bar = None
+        if not quiet:
+            from tqdm import tqdm
+            self.bar = tqdm(total=1000, desc=label, unit="", delay=0.5, file=sys.stderr, leave=False,
+                            bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")
+
+    def __call__(self, fraction: float):
+        self.bar.update(max(0, int(fraction * 1000) - self.bar.n))
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _request(args) -> dict:
+    """The options that need no input, checked before the file is read (a bad one fails at once)."""
+    if args.fps and args.rate is None and args.count is None:
+        raise ValueError("--fps takes --rate or --count" + (": --levels are nested already (coarser levels "
+                         "are farthest-point prefixes)" if args.levels is not None else ""))
+    if args.levels is not None:
+        return {"levels": _level_items(args.levels)}
+    if args.rate is not None:
+        return {"rate": _percent(args.rate, "--rate")}
+    if args.count is not None:
+        return {"count": _count(args.count, "--count")}
+    _radius(args.radius, np.zeros((1, 3)))
+    return {"radius": args.radius}
+
+
+def _run(args, request: dict, source: point_files.PointFile, progress):
+    common = dict(faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
+                  recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
+                  progress=progress)
+    out = pathlib.Path(args.output)
+    n = source.points.shape[0]
+    if "levels" in request:
+        lod = arrays.lod_pyramid(source.points, source.normals, levels=request["levels"], **common)
+        return lod, [(_level_path(out, item), level) for item, level in zip(request["levels"], lod.levels)]
+    if "radius" in request:
+        return arrays.poisson_lod(source.points, source.normals, radius=_radius(request["radius"], source.points),
+                                  **common), None
+    count = request.get("count") or max(1, int(arrays._core.percent_of(request["rate"], n)))
+    if count > n:
+        raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
+    sampler = arrays.fps_lod if args.fps else arrays.poisson_lod
+    return sampler(source.points, source.normals, count=count, **common), None
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    bar = None
+    try:
+        start = time.perf_counter()
+        request = _request(args)
+        source = point_files.read(args.input)
+        point_files.check_output(source, args.output)
+        bar = _Bar(args.quiet, "sampling")
+        try:
+            lod, outputs = _run(args, request, source, bar if bar.bar is not None else None)
+        except ValueError as e:  # the input's data or a value that depends on it
+            raise point_files.PointFileError(source.path, str(e)) from None
+        bar.close()
+        outputs = outputs or [(pathlib.Path(args.output), lod.indices)]
+        point_files.write_all(source, outputs)
+        if not args.quiet:
+            n = source.points.shape[0]
+            for path, indices in outputs:
+                print(f"{PROG}: {path}: {len(indices):,} of {n:,} points", file=sys.stderr)
+            print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+        return 0
+    except (ValueError, TypeError) as e:
+        _fail(str(e))
+    except KeyboardInterrupt:
+        if bar is not None:
+            bar.close()
+        print(f"{PROG}: stopped", file=sys.stderr)
+        return EXIT_STOPPED
+    except MemoryError:
+        _fail(f"{args.input}: not enough memory for this input")
+    except OSError as e:  # writing: a full disk, a folder without permission
+        print(f"{PROG}: error: {e.filename or args.output}: {e.strerror or e}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

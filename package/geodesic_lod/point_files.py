@@ -1,0 +1,186 @@
+"""Point files in and out: PLY (plyfile), LAS/LAZ (laspy with lazrs) and NumPy .npy.
+
+A LOD is written as the chosen rows of the input, whatever they hold: every PLY vertex property,
+comment and the text/binary encoding; every LAS point record bit for bit, with the header's point
+format, scales, offsets, VLRs (the CRS among them) and EVLRs. Files are written under a temporary
+name in the destination folder and renamed once complete, so no half-written file ever carries
+the name asked for.
+"""
+from __future__ import annotations
+
+import copy
+import os
+import pathlib
+from dataclasses import dataclass
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
+# The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table).
+WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".npy",)}
+
+
+class PointFileError(ValueError):
+    """A point file that cannot be read or written; the message names the file."""
+
+    def __init__(self, path, problem: str):
+        super().__init__(f"{path}: {problem}")
+        self.path = path
+
+
+@dataclass
+class PointFile:
+    """The coordinates the sampler needs, and the rows they came from, for writing the LOD."""
+    path: pathlib.Path
+    kind: str                          #: 'ply', 'las' or 'npy'
+    points: np.ndarray                 #: (n, 3) float64 (LAS: scaled and offset)
+    normals: Optional[np.ndarray]      #: (n, 3), or None when the file has none
+    faces: Optional[np.ndarray]        #: (m, 3) vertex indices of a PLY mesh, else None
+    rows: Any                          #: PLY vertex table, LAS point records or the .npy array
+    source: Any                        #: the parsed PLY or LAS file (header, comments, VLRs)
+
+
+def format_of(path, role: str = "input") -> str:
+    ext = pathlib.Path(path).suffix.lower()
+    if ext not in FORMATS:
+        raise PointFileError(path, f"unknown {role} format '{ext or '(none)'}': use .ply, .las, .laz or .npy")
+    return FORMATS[ext]
+
+
+def check_output(source: PointFile, path) -> None:
+    """Refuses, before any work, an output that could not be written or would replace the input."""
+    out = pathlib.Path(path)
+    format_of(out, "output")
+    if out.suffix.lower() not in WRITABLE[source.kind]:
+        *first, last = WRITABLE[source.kind]
+        raise PointFileError(out, f"a {source.kind.upper()} input can be written as "
+                             f"{', '.join(first)} or {last}")
+    if not out.parent.resolve().is_dir():
+        raise PointFileError(out, f"the folder {out.parent} does not exist")
+    if out.exists() and out.resolve() == source.path.resolve():
+        raise PointFileError(out, "is the input: choose another output name (the input is never modified)")
+
+
+def read(path) -> PointFile:
+    path = pathlib.Path(path)
+    kind = format_of(path)
+    if not path.is_file():
+        raise PointFileError(path, "no such file" if not path.exists() else "is not a file")
+    try:
+        return {"ply": _read_ply, "las": _read_las, "npy": _read_npy}[kind](path)
+    except PointFileError:
+        raise
+    except (OSError, ValueError, EOFError, KeyError, IndexError, TypeError) as e:
+        raise PointFileError(path, f"cannot be read as {kind.upper()}: {e}") from None
+    except Exception as e:  # the readers' own errors (plyfile, laspy) have no common base
+        if type(e).__module__.split(".")[0] in ("plyfile", "laspy", "lazrs"):
+            raise PointFileError(path, f"cannot be read as {kind.upper()}: {e}") from None
+        raise
+
+
+def _xyz(table, path, names=("x", "y", "z")):
+    fields = table.dtype.names or ()
+    missing = [n for n in names if n not in fields]
+    if missing:
+        raise PointFileError(path, f"has no {', '.join(missing)} coordinates (fields: {', '.join(fields)})")
+    return np.column_stack([np.asarray(table[n], dtype=np.float64) for n in names])
+
+
+def _normals(table, names=("nx", "ny", "nz")):
+    fields = table.dtype.names or ()
+    if all(n in fields for n in names):
+        return np.column_stack([np.asarray(table[n], dtype=np.float64) for n in names])
+    return None
+
+
+def _read_ply(path):
+    import plyfile
+    try:  # triangles read as one fixed-size table (fast); any other polygon needs the general reader
+        ply = plyfile.PlyData.read(str(path), known_list_len={"face": {"vertex_indices": 3, "vertex_index": 3}})
+    except plyfile.PlyElementParseError:
+        ply = plyfile.PlyData.read(str(path))
+    if "vertex" not in ply:
+        raise PointFileError(path, "has no vertex element")
+    vertex = ply["vertex"].data
+    faces = None
+    if "face" in ply and ply["face"].count > 0:
+        faces = _triangles(ply["face"], len(vertex), path)
+    return PointFile(path, "ply", _xyz(vertex, path), _normals(vertex), faces, vertex, ply)
+
+
+def _triangles(face, n, path):
+    """A PLY face element as triangles: polygons fanned, indices checked."""
+    name = next((p.name for p in face.properties if p.name in ("vertex_indices", "vertex_index")), None)
+    if name is None:
+        raise PointFileError(path, "has faces without a vertex_indices property")
+    polygons = face.data[name]
+    if polygons.dtype != object:
+        t = polygons.astype(np.int64).reshape(-1, 3)
+    else:
+        t = np.array([(p[0], p[k], p[k + 1]) for p in polygons for k in range(1, len(p) - 1)],
+                     dtype=np.int64).reshape(-1, 3)
+    if t.size and (t.min() < 0 or t.max() >= n):
+        raise PointFileError(path, f"has faces with vertex indices outside 0 to {n - 1}")
+    return t
+
+
+def _read_las(path):
+    import laspy
+    las = laspy.read(str(path))
+    points = np.column_stack([np.asarray(las.x, dtype=np.float64), np.asarray(las.y, dtype=np.float64),
+                              np.asarray(las.z, dtype=np.float64)])
+    return PointFile(path, "las", points, None, None, las.points, las)
+
+
+def _read_npy(path):
+    a = np.load(str(path), mmap_mode="r", allow_pickle=False)
+    if a.dtype.names:
+        return PointFile(path, "npy", _xyz(a, path), _normals(a), None, a, None)
+    if a.ndim != 2 or a.shape[1] not in (3, 6) or a.dtype.kind != "f":
+        raise PointFileError(path, f"holds a {a.dtype} array of shape {a.shape}: expected floats of shape "
+                             "(n, 3) (x y z), (n, 6) (x y z nx ny nz) or a table with fields x, y, z")
+    return PointFile(path, "npy", np.asarray(a[:, :3], dtype=np.float64),
+                     np.asarray(a[:, 3:], dtype=np.float64) if a.shape[1] == 6 else None, None, a, None)
+
+
+def _partial(path: pathlib.Path) -> pathlib.Path:
+    return path.with_name(f".{path.name}.partial-{os.getpid()}")
+
+
+def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
+    """Writes each (path, indices) as the input's rows at those indices: all files or none.
+
+    Every file is first written under a temporary name beside it; the names asked for appear only
+    once all are complete."""
+    done = []
+    try:
+        for path, indices in outputs:
+            path = pathlib.Path(path)
+            tmp = _partial(path)
+            done.append((tmp, path))
+            with open(tmp, "wb") as f:
+                _write(source, np.asarray(indices, dtype=np.int64), path.suffix.lower(), f)
+        for tmp, path in done:
+            os.replace(tmp, path)
+    except BaseException:
+        for tmp, _ in done:
+            tmp.unlink(missing_ok=True)
+        raise
+
+
+def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
+    if ext == ".npy":
+        rows = source.rows.array if source.kind == "las" else source.rows
+        np.save(f, np.asarray(rows[idx]), allow_pickle=False)
+    elif source.kind == "ply":
+        import plyfile
+        ply = source.source
+        vertex = plyfile.PlyElement.describe(source.rows[idx], "vertex", comments=ply["vertex"].comments)
+        plyfile.PlyData([vertex], text=ply.text, byte_order=ply.byte_order, comments=ply.comments,
+                        obj_info=ply.obj_info).write(f)
+    else:
+        import laspy
+        header = copy.deepcopy(source.source.header)
+        out = laspy.LasData(header, points=source.rows[idx])
+        out.write(f, do_compress=ext == ".laz")

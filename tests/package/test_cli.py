@@ -1,0 +1,156 @@
+"""The command geodesic-lod as a user runs it: the same samples as the array API, the input untouched,
+one file per level, and for every bad input one line on stderr, exit status 2 and no output file."""
+import hashlib
+import signal
+import subprocess
+import sys
+import threading
+
+import laspy
+import numpy as np
+import plyfile
+import pytest
+
+import geodesic_lod as gl
+from geodesic_lod import point_files as pf
+from conftest import bumpy_sphere
+from point_file_inputs import las_cloud, ply_cloud, ply_mesh
+
+COMMAND = [sys.executable, "-m", "geodesic_lod"]
+
+
+def run(*args, cwd=None):
+    return subprocess.run(COMMAND + [str(a) for a in args], capture_output=True, text=True, timeout=300, cwd=cwd)
+
+
+def digest(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def names(folder):
+    return sorted(p.name for p in folder.iterdir())
+
+
+def test_laz_lod_equals_the_array_api_and_leaves_the_input(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    before = digest(src)
+    r = run(src, "-o", tmp_path / "lod.laz", "--count", 300, "--seed", 3, "--quiet")
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert digest(src) == before
+    points = pf.read(src).points
+    expected = gl.poisson_lod(points, count=300, seed=3).indices
+    records = laspy.read(str(src)).points.array
+    assert laspy.read(str(tmp_path / "lod.laz")).points.array.tobytes() == records[expected].tobytes()
+
+
+def test_ply_mesh_samples_over_its_faces(tmp_path):
+    path, pts, tris = ply_mesh(tmp_path / "mesh.ply")
+    assert run(path, "-o", tmp_path / "lod.ply", "--rate", "10%", "--quiet").returncode == 0
+    out = plyfile.PlyData.read(str(tmp_path / "lod.ply"))["vertex"].data
+    expected = gl.poisson_lod(pts, faces=tris, rate=10)
+    assert expected.mesh_geodesics
+    assert np.array_equal(np.column_stack([out["x"], out["y"], out["z"]]), pts[expected.indices])
+
+
+def test_radius_as_a_share_of_the_diagonal_and_fps_order(tmp_path):
+    src = ply_cloud(tmp_path / "in.ply")
+    points, normals = pf.read(src).points, pf.read(src).normals
+    diagonal = np.linalg.norm(points.max(axis=0) - points.min(axis=0))
+    assert run(src, "-o", tmp_path / "r.ply", "--radius", "4%", "-q").returncode == 0
+    expected = gl.poisson_lod(points, normals, radius=0.04 * diagonal).indices
+    got = plyfile.PlyData.read(str(tmp_path / "r.ply"))["vertex"].data
+    assert np.array_equal(got["label"], expected * 3)  # the label column is 3 x the row
+    assert run(src, "-o", tmp_path / "f.ply", "--count", 50, "--fps", "-q").returncode == 0
+    got = plyfile.PlyData.read(str(tmp_path / "f.ply"))["vertex"].data
+    assert np.array_equal(got["label"], gl.fps_lod(points, normals, count=50).indices * 3)
+
+
+def test_levels_give_one_nested_file_each(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    r = run(src, "-o", tmp_path / "lod.laz", "--levels", "50%,10%,100")
+    assert r.returncode == 0, r.stderr
+    files = [tmp_path / f"lod_{label}.laz" for label in ("50pct", "10pct", "100")]
+    assert names(tmp_path) == sorted(["in.laz"] + [f.name for f in files])
+    rows = [laspy.read(str(f)).points.array for f in files]
+    assert [len(r) for r in rows] == [1500, 300, 100]
+    for fine, coarse in zip(rows, rows[1:]):
+        assert fine[: len(coarse)].tobytes() == coarse.tobytes()  # each level a prefix of the finer one
+    assert "1,500 of 3,000 points" in r.stderr  # the summary, without --quiet
+
+
+def test_npy_with_normals(tmp_path):
+    p = bumpy_sphere(2000)
+    np.save(tmp_path / "in.npy", np.hstack([p, p]))
+    assert run(tmp_path / "in.npy", "-o", tmp_path / "out.npy", "--rate", "5", "-q").returncode == 0
+    assert np.array_equal(np.load(tmp_path / "out.npy")[:, :3], p[gl.poisson_lod(p, p, rate=5).indices])
+
+
+def nan_npy(d):
+    p = bumpy_sphere(500)
+    p[7] = np.nan
+    np.save(d / "nan.npy", p)
+    return d / "nan.npy"
+
+
+BAD = [
+    (lambda d: ["absent.laz", "-o", "o.laz", "--rate", "10%"], "absent.laz: no such file"),
+    (lambda d: [ply_cloud(d / "in.ply").rename(d / "in.xyz"), "-o", "o.ply", "--rate", "10%"],
+     "unknown input format '.xyz'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.txt", "--rate", "10%"], "unknown output format '.txt'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.laz", "--rate", "10%"], "can be written as .ply or .npy"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "in.ply", "--rate", "10%"], "is the input"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "no/o.ply", "--rate", "10%"], "does not exist"),
+    (lambda d: [nan_npy(d), "-o", "o.npy", "--rate", "10%"], "1 row has NaN or infinite coordinates"),
+    (lambda d: [(d / "cut.laz").write_bytes(b"LASF") and d / "cut.laz", "-o", "o.laz", "--rate", "1%"],
+     "cut.laz: cannot be read as LAS"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "10%", "--metric", "manhattan"],
+     "argument --metric: invalid choice: 'manhattan'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "0%"], "--rate must be a percentage"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "1e19"], "--rate must be a percentage"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "0"], "--count must be a whole number"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "2.5"], "--count must be a whole number"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "3001"], "at most the number of points (3000)"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "-1"], "--radius must be a positive length"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "nan"], "--radius must be a positive length"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,,10%"], "comma-separated list"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "10%,50%"], "levels must get strictly coarser"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,10%", "--fps"], "--fps takes"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--fps"], "--fps takes --rate or --count"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "one of the arguments --rate --count --radius --levels"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--count", "9"], "not allowed with"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--seed", "-1"], "seed must be from 0"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--threads", "0"], "threads must be at least 1"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
+     "adaptivity must be a non-negative"),
+]
+
+
+@pytest.mark.parametrize("make, problem", BAD, ids=[b[1] for b in BAD])
+def test_bad_input_is_one_line_and_exit_2(tmp_path, make, problem):
+    args = make(tmp_path)
+    before = names(tmp_path)
+    r = run(*args, cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.startswith("geodesic-lod: error: ") and r.stderr.count("\n") == 1, r.stderr
+    assert problem in r.stderr and "Traceback" not in r.stderr
+    assert names(tmp_path) == before  # no output, no partial file
+
+
+def test_ctrl_c_stops_and_writes_nothing(tmp_path):
+    p = bumpy_sphere(1_500_000)
+    np.save(tmp_path / "big.npy", p)
+    proc = subprocess.Popen(COMMAND + [str(tmp_path / "big.npy"), "-o", str(tmp_path / "lod.npy"), "--count",
+                                       "100000"], stderr=subprocess.PIPE, text=True)
+    seen, started = [], threading.Event()
+
+    def read():  # the progress bar's first frame shows the sampler is running
+        while ch := proc.stderr.read(1):
+            seen.append(ch)
+            if "sampling" in "".join(seen[-40:]):
+                started.set()
+    threading.Thread(target=read, daemon=True).start()
+    assert started.wait(120), "".join(seen)
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(60) == 130
+    assert "geodesic-lod: stopped" in "".join(seen) and "Traceback" not in "".join(seen)
+    assert names(tmp_path) == ["big.npy"]

@@ -1,0 +1,124 @@
+"""geodesic_lod.point_files: the chosen rows written with everything the input held, all files or none,
+and every unreadable file refused with its name."""
+import os
+
+import laspy
+import numpy as np
+import plyfile
+import pytest
+
+from geodesic_lod import point_files as pf
+from point_file_inputs import WKT, las_cloud, ply_cloud, ply_mesh
+
+PICK = np.array([17, 3, 2999, 0, 1500])
+
+
+def leftovers(folder):
+    return [p.name for p in folder.iterdir() if ".partial-" in p.name]
+
+
+@pytest.mark.parametrize("text", [False, True], ids=["binary", "ascii"])
+def test_ply_rows_keep_every_property_comment_and_encoding(tmp_path, text):
+    src = pf.read(ply_cloud(tmp_path / "in.ply", text=text))
+    assert src.points.shape == (3000, 3) and src.normals is not None and src.faces is None
+    pf.write_all(src, [(tmp_path / "out.ply", PICK)])
+    before, after = plyfile.PlyData.read(str(tmp_path / "in.ply")), plyfile.PlyData.read(str(tmp_path / "out.ply"))
+    assert after["vertex"].data.dtype == before["vertex"].data.dtype
+    assert after["vertex"].data.tobytes() == before["vertex"].data[PICK].tobytes()
+    assert (after.text, after.comments, after.obj_info) == (text, before.comments, before.obj_info)
+    assert after["vertex"].comments == ["per-vertex comment"]
+
+
+@pytest.mark.parametrize("quads", [False, True], ids=["triangles", "quads"])
+def test_ply_faces_are_read_as_triangles(tmp_path, quads):
+    path, pts, tris = ply_mesh(tmp_path / "m.ply", quads=quads)
+    src = pf.read(path)
+    assert np.array_equal(src.points, pts)
+    assert src.faces.shape == tris.shape and src.faces.min() >= 0 and src.faces.max() < len(pts)
+    if not quads:
+        assert np.array_equal(src.faces, tris)
+
+
+@pytest.mark.parametrize("ext", [".las", ".laz"])
+def test_las_records_header_vlrs_and_evlrs_are_kept(tmp_path, ext):
+    src = pf.read(las_cloud(tmp_path / "in.laz"))
+    before = laspy.read(str(tmp_path / "in.laz"))
+    assert np.allclose(src.points[:, 0], before.x) and src.points[0, 1] > 4e6
+    pf.write_all(src, [(tmp_path / f"out{ext}", PICK)])
+    after = laspy.read(str(tmp_path / f"out{ext}"))
+    assert after.points.array.tobytes() == before.points.array[PICK].tobytes()  # bit-identical records
+    h0, h1 = before.header, after.header
+    assert (h1.version, h1.point_format.id, list(h1.point_format.dimension_names)) == \
+        (h0.version, h0.point_format.id, list(h0.point_format.dimension_names))
+    assert np.array_equal(h1.scales, h0.scales) and np.array_equal(h1.offsets, h0.offsets)
+    assert h1.point_count == len(PICK) and h1.global_encoding.wkt
+    assert any(v.record_id == 2112 and v.string == WKT.rstrip(b"\0").decode() for v in h1.vlrs)
+    assert [(v.user_id, v.record_id, v.record_data) for v in after.evlrs] == \
+        [(v.user_id, v.record_id, v.record_data) for v in before.evlrs]
+    assert np.allclose(h1.mins, src.points[PICK].min(axis=0)) and np.allclose(h1.maxs, src.points[PICK].max(axis=0))
+    with laspy.open(str(tmp_path / f"out{ext}")) as f:
+        assert f.header.are_points_compressed == (ext == ".laz")
+
+
+def test_npy_layouts(tmp_path):
+    rng = np.random.default_rng(0)
+    plain = rng.normal(size=(100, 3)).astype(np.float32)
+    with_normals = rng.normal(size=(100, 6))
+    table = np.zeros(100, dtype=[("x", "f8"), ("y", "f8"), ("z", "f8"), ("intensity", "u2")])
+    table["x"], table["intensity"] = np.arange(100), np.arange(100) * 2
+    for name, a in [("plain", plain), ("normals", with_normals), ("table", table)]:
+        np.save(tmp_path / f"{name}.npy", a)
+        src = pf.read(tmp_path / f"{name}.npy")
+        assert src.points.shape == (100, 3) and (src.normals is not None) == (name == "normals")
+        pf.write_all(src, [(tmp_path / f"{name}_lod.npy", PICK[PICK < 100])])
+        assert np.load(tmp_path / f"{name}_lod.npy").tobytes() == a[PICK[PICK < 100]].tobytes()
+
+
+def test_las_and_ply_rows_as_npy(tmp_path):
+    src = pf.read(las_cloud(tmp_path / "in.las"))
+    pf.write_all(src, [(tmp_path / "rows.npy", PICK)])
+    assert np.load(tmp_path / "rows.npy").tobytes() == laspy.read(str(tmp_path / "in.las")).points.array[PICK].tobytes()
+
+
+def test_all_files_or_none(tmp_path):
+    src = pf.read(ply_cloud(tmp_path / "in.ply"))
+    with pytest.raises(OSError):
+        pf.write_all(src, [(tmp_path / "a.ply", PICK), (tmp_path / "missing" / "b.ply", PICK)])
+    assert not (tmp_path / "a.ply").exists() and leftovers(tmp_path) == []
+
+
+def truncated(path):
+    data = path.read_bytes()
+    path.write_bytes(data[: len(data) // 2])
+    return path
+
+
+@pytest.mark.parametrize("make, problem", [
+    (lambda d: d / "absent.ply", "no such file"),
+    (lambda d: (d / "scan.xyz").write_text("0 0 0\n") and d / "scan.xyz", "unknown input format '.xyz'"),
+    (lambda d: d, "unknown input format"),
+    (lambda d: (d / "empty.laz").write_bytes(b"") or d / "empty.laz", "cannot be read as LAS"),
+    (lambda d: truncated(las_cloud(d / "cut.laz")), "cannot be read as LAS"),
+    (lambda d: truncated(ply_cloud(d / "cut.ply")), "cannot be read as PLY"),
+    (lambda d: (d / "text.ply").write_text("not a ply\n") and d / "text.ply", "cannot be read as PLY"),
+    (lambda d: np.save(d / "flat.npy", np.zeros(9)) or d / "flat.npy", "expected floats of shape (n, 3)"),
+    (lambda d: np.save(d / "ints.npy", np.zeros((9, 3), dtype=int)) or d / "ints.npy", "expected floats"),
+    (lambda d: np.save(d / "noxyz.npy", np.zeros(9, dtype=[("a", "f8")])) or d / "noxyz.npy", "has no x, y, z"),
+], ids=["missing", "extension", "folder", "empty laz", "truncated laz", "truncated ply", "not ply", "flat npy",
+        "integer npy", "table without xyz"])
+def test_unreadable_files_are_named(tmp_path, make, problem):
+    path = make(tmp_path)
+    with pytest.raises(pf.PointFileError) as e:
+        pf.read(path)
+    assert str(e.value).startswith(str(path)) and problem in str(e.value)
+
+
+def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
+    src = pf.read(las_cloud(tmp_path / "in.laz"))
+    for out, problem in [(tmp_path / "out.ply", "can be written as .las, .laz or .npy"),
+                         (tmp_path / "out.txt", "unknown output format"),
+                         (tmp_path / "no" / "out.laz", "does not exist"),
+                         (tmp_path / "in.laz", "is the input")]:
+        with pytest.raises(pf.PointFileError, match=problem):
+            pf.check_output(src, out)
+    assert sorted(os.listdir(tmp_path)) == ["in.laz"]
