@@ -42,6 +42,7 @@ class GeodesicDomain {
     int normalNeighbours = 20;        ///< k of the normal fit and of eq. 1
     int graphNeighbours = 10;         ///< k of the neighbour graph
     bool useInputNormals = true;     ///< keep the input's valid normals
+    bool keepReach = false;          ///< fill `reach` (a tile checks its halo with it)
   };
 
   /// Numbered in the cells' Morton order, near points at near numbers
@@ -56,6 +57,7 @@ class GeodesicDomain {
   NeighbourGraph<Scalar> graph;     ///< point-graph geodesics
   FastMarchingMesh<Scalar> fmMesh;  ///< mesh geodesics
   std::vector<std::array<int, 3>> triangles;  ///< the layer's usable triangles, point indices
+  std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
   size_t skippedFaces = 0;          ///< faces with a deleted or repeated corner
@@ -111,11 +113,16 @@ class GeodesicDomain {
     {
       // One grid and one kNN table serve the normals, eq. 1 and the graph.
       KnnTable<Scalar> knn;
+      const int k = graph ? std::max(p.normalNeighbours, p.graphNeighbours) : p.normalNeighbours;
       {
-        const int k = graph ? std::max(p.normalNeighbours, p.graphNeighbours) : p.normalNeighbours;
         CellGrid<Scalar> grid(d.points.pos, KnnTable<Scalar>::CellSide(d.points.pos, k));
         SpatialOrder(grid.TakeOrder(), d.points, d.triangles);
-        knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35));
+        // Ties by input index: a tile of a larger cloud gets the rows the whole cloud would.
+        knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35), &d.points.vertIndex);
+      }
+      if (p.keepReach) {
+        d.reach.resize(d.size());
+        for (size_t i = 0; i < d.size(); ++i) d.reach[i] = vcg::Distance(d.points.pos[i], d.points.pos[knn.Row(i)[k - 1]]);
       }
       auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
       d.normal = std::move(nr.normal);

@@ -13,6 +13,7 @@
 #include "lod_result.h"
 #include "poisson_disk.h"
 #include "poisson_target_count.h"
+#include "priority_order.h"
 
 namespace vcg_ext {
 
@@ -44,13 +45,20 @@ class GeodesicPoissonLod {
       throw InputError(Field::Radius, "must be a positive number (got " + std::to_string(r) + ")");
   }
 
+  /// The Poisson visiting order of the domain's points: by the seed and each
+  /// point's input index, so the same point has the same rank in any subset.
+  static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed) {
+    return PriorityOrder(d.points.vertIndex, seed);
+  }
+
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
                                     Progress progress = Progress(nullptr)) {
     CheckRadius(radius);
+    const std::vector<int> order = VisitingOrder(d, seed);
     PoissonDisk::Param pp;
     pp.radius = radius;
-    pp.seed = seed;
+    pp.order = &order;
     PoissonDisk::Result r;
     d.WithSearch([&](auto& search) { r = PoissonDisk::Compute(d.size(), search, pp, progress); });
     return r;
@@ -63,6 +71,8 @@ class GeodesicPoissonLod {
     tp.tolerance = p.tolerance;
     tp.maxIterations = p.maxIterations;
     tp.seed = p.seed;
+    const std::vector<int> order = VisitingOrder(d, p.seed);
+    tp.order = &order;
     // The metric is never shorter than the Euclidean one: start where disks of
     // this radius would about tile the diagonal plane of the box holding the
     // middle 98% of the points on each axis (a few stray points far away would

@@ -39,7 +39,9 @@ class KnnTable {
 
   /// kNN of all points, excluding the point itself; 1 <= k < pos.size().
   /// Exact. Cost O(n k) on well-sampled surfaces, on all threads; the same
-  /// table for any thread count.
+  /// table for any thread count. Neighbours at equal distances are ranked by
+  /// `id` (distinct, below 2^31; default: the point numbers), so a subset
+  /// numbered otherwise but with the same ids gets the same rows.
   static KnnTable Compute(const std::vector<Coord>& pos, int k, Progress progress = Progress(nullptr)) {
     const CellGrid<Scalar> grid(pos, CellSide(pos, k));
     return Compute(grid, pos, k, progress);
@@ -55,20 +57,25 @@ class KnnTable {
   /// closer than the block's boundary; the few points still unsure (isolated
   /// outliers) are asked of a kd-tree.
   static KnnTable Compute(const CellGrid<Scalar>& grid, const std::vector<Coord>& pos, int k,
-                          Progress progress = Progress(nullptr)) {
+                          Progress progress = Progress(nullptr), const std::vector<int>* id = nullptr) {
     constexpr int kMaxRing = 3;
+    // Candidates sort by (d^2, id, number): the number rides in the key's low bits.
+    constexpr int64_t kLow = int64_t(1) << 31;
+    auto key = [&](int j) { return id ? int64_t((*id)[j]) * kLow + j : int64_t(j); };
+    auto number = [&](int64_t key) { return int(id ? key % kLow : key); };
     KnnTable t;
     t.k = k;
     t.idx.assign(pos.size() * k, -1);
     ParallelChunks(pos.size(), progress, "Finding nearest neighbours", [&](size_t b, size_t e) {
       std::vector<double> bx, by, bz, d2;  // the block of cells searched: positions, numbers
-      std::vector<int> bi;
-      std::vector<std::pair<double, int>> cand;
+      std::vector<int64_t> bi;  // the block's sort keys
+      std::vector<std::pair<double, int64_t>> cand;
       typename CellGrid<Scalar>::Cell last = {-2, -2, -2};
       int lastRing = 0;
       double hint = std::numeric_limits<double>::infinity();  // the previous point's k-th d^2
       for (size_t r = b; r < e; ++r) {
         const int i = grid.Point(r);
+        const int64_t self = key(i);
         const typename CellGrid<Scalar>::Cell cell = grid.CellOf(pos[i]);
         for (int ring = 1; ring <= kMaxRing; ++ring) {
           if (cell != last || ring != lastRing) {  // near points share their cell's block
@@ -76,7 +83,7 @@ class KnnTable {
             grid.ForBlock(cell, ring, [&](int s, int t2) {
               for (int c = s; c < t2; ++c) {
                 const int j = grid.Point(c);
-                bx.push_back(pos[j][0]), by.push_back(pos[j][1]), bz.push_back(pos[j][2]), bi.push_back(j);
+                bx.push_back(pos[j][0]), by.push_back(pos[j][1]), bz.push_back(pos[j][2]), bi.push_back(key(j));
               }
             });
             last = cell, lastRing = ring;
@@ -93,15 +100,15 @@ class KnnTable {
             found = 0;
             for (size_t c = 0; c < bx.size(); ++c) {
               cand[found] = {d2[c], bi[c]};
-              found += d2[c] <= bound && bi[c] != i;
+              found += d2[c] <= bound && bi[c] != self;
             }
             if (found >= size_t(k)) break;
           }
           if (found < size_t(k)) continue;  // some of the k nearest may lie beyond the block
-          // Ties (duplicate points) are broken by index so the table is deterministic.
+          // Ties (duplicate points) are broken by id so the table is deterministic.
           std::nth_element(cand.begin(), cand.begin() + (k - 1), cand.begin() + found);
           std::sort(cand.begin(), cand.begin() + k);
-          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = cand[c].second;
+          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = number(cand[c].second);
           hint = cand[k - 1].first;
           break;
         }
@@ -116,14 +123,14 @@ class KnnTable {
         typename vcg::KdTree<Scalar>::PriorityQueue heap;
         std::vector<unsigned int> ball;
         std::vector<Scalar> ballD2;
-        std::vector<std::pair<double, int>> row;
+        std::vector<std::pair<double, int64_t>> row;
         for (size_t r = b; r < e; ++r) {
           const int i = rest[r];
           const vcg::Point3d q = vcg::Point3d::Construct(pos[i]);
           auto d2 = [&](int j) { return (vcg::Point3d::Construct(pos[j]) - q).SquaredNorm(); };
           // The tree breaks ties at the k-th distance arbitrarily: take every
           // point as near as the k-th (a little more, for rounding), then rank
-          // them exactly, ties by index, like the grid.
+          // them exactly, ties by id, like the grid.
           tree.doQueryK(pos[i], k + 1, heap);
           double kth = 0;
           for (int h = 0; h < heap.getNofElements(); ++h) kth = std::max(kth, d2(heap.getIndex(h)));
@@ -131,10 +138,10 @@ class KnnTable {
           tree.doQueryDist(pos[i], Scalar(std::sqrt(kth) * (1 + 1e-5) + 1e-30), ball, ballD2);
           row.clear();
           for (unsigned int j : ball)
-            if (int(j) != i) row.emplace_back(d2(int(j)), int(j));
+            if (int(j) != i) row.emplace_back(d2(int(j)), key(int(j)));
           std::nth_element(row.begin(), row.begin() + (k - 1), row.end());
           std::sort(row.begin(), row.begin() + k);
-          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = row[c].second;
+          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = number(row[c].second);
         }
       });
     }

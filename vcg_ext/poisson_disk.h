@@ -6,22 +6,22 @@
 #include <new>
 #include <vector>
 #include "progress.h"
-#include "seeded_order.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 namespace vcg_ext {
 
-/// Points are visited in a seeded random order; an unvisited point becomes a
+/// Points are visited in a given order (PriorityOrder: seeded, and the same
+/// for a point whatever else is present); an unvisited point becomes a
 /// sample and every point within `radius` of it (by the disk search) is marked
 /// visited. Result: samples pairwise farther apart than `radius`, and every
 /// point within `radius` of a sample (coverage), in every connected part.
 class PoissonDisk {
  public:
   struct Param {
-    double radius = 0;  ///< disk radius, in the metric of the disk search
-    uint64_t seed = 0;  ///< visiting order
+    double radius = 0;                     ///< disk radius, in the metric of the disk search
+    const std::vector<int>* order = nullptr;  ///< visiting order, a permutation of the points
   };
   struct Result {
     std::vector<int> samples;  ///< point indices, in the order they were chosen
@@ -42,20 +42,42 @@ class PoissonDisk {
   static Result Compute(size_t n, DiskSearch& disk, const Param& p, Progress progress = Progress(nullptr)) {
     Result r;
     r.owner.assign(n, -1);
-    const std::vector<int> order = SeededOrder(n, p.seed);
+    size_t covered = 0;
+    InOrder(n, disk, p.radius, *p.order, [&](int i) { return r.owner[i] < 0; },
+            [&](int i, const std::vector<int>& members) {
+              if (r.owner[i] >= 0) return;  // covered by an earlier disk of its batch
+              const int id = int(r.samples.size());
+              r.samples.push_back(i);
+              for (int j : members)
+                if (r.owner[j] < 0) r.owner[j] = id, ++covered;
+            },
+            [&] { return covered; }, progress);
+    return r;
+  }
+
+  /// The walk Compute makes, for other rules of who becomes a sample: visits
+  /// `order`, searching the disks of the next points `wanted(i)` still accepts
+  /// in batches on all threads, then calls take(i, disk) for each in order
+  /// (wanted(i) may have turned false meanwhile). `done()` counts the points
+  /// settled so far, for the batch size and progress.
+  template <class DiskSearch, class Wanted, class Take, class Done>
+  static void InOrder(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
+                      Take take, Done done, Progress progress) {
     const int threads = Threads();
     std::vector<DiskSearch> copies(size_t(threads - 1), disk);
     std::vector<int> cand;
     std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
-    size_t covered = 0, o = 0, searched = 0, reached = 0;
-    while (o < n) {
+    size_t o = 0, searched = 0, reached = 0;
+    const size_t m0 = order.size();
+    while (o < m0) {
       // Batches small enough that their disks rarely overlap: their total
       // expected size is at most an eighth of the points still uncovered.
+      const size_t left = n - std::min(n, done());
       const size_t perDisk = searched ? std::max<size_t>(1, reached / searched) : n;
-      const size_t batch = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, (n - covered) / (8 * perDisk)));
+      const size_t batch = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, left / (8 * perDisk)));
       cand.clear();
-      for (; o < n && cand.size() < batch; ++o)
-        if (r.owner[order[o]] < 0) cand.push_back(order[o]);
+      for (; o < m0 && cand.size() < batch; ++o)
+        if (wanted(order[o])) cand.push_back(order[o]);
       if (members.size() < cand.size()) members.resize(cand.size());
       const long long m = (long long)cand.size();
       bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
@@ -65,7 +87,7 @@ class PoissonDisk {
         std::vector<int>& list = members[size_t(c)];
         list.clear();
         try {
-          search.Visit(cand[size_t(c)], p.radius, [&](int i, double) { list.push_back(i); });
+          search.Visit(cand[size_t(c)], radius, [&](int i, double) { list.push_back(i); });
         } catch (const std::bad_alloc&) {
 #pragma omp atomic write
           outOfMemory = true;
@@ -74,15 +96,10 @@ class PoissonDisk {
       if (outOfMemory) throw std::bad_alloc();
       for (size_t c = 0; c < cand.size(); ++c) {
         searched += 1, reached += members[c].size();
-        if (r.owner[cand[c]] >= 0) continue;
-        const int id = int(r.samples.size());
-        r.samples.push_back(cand[c]);
-        for (int i : members[c])
-          if (r.owner[i] < 0) r.owner[i] = id, ++covered;
+        take(cand[c], members[c]);
       }
-      progress(covered, n, "Poisson-disk sampling");
+      progress(std::min(n, done()), n, "Poisson-disk sampling");
     }
-    return r;
   }
 
  private:

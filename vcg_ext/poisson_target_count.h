@@ -31,7 +31,8 @@ class PoissonTargetCount {
     double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance)
     int maxIterations = 24;      ///< Poisson runs at most
     double initialRadius = 0;    ///< first radius tried, > 0
-    uint64_t seed = 0;
+    uint64_t seed = 0;           ///< the trim's first sample
+    const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder)
   };
   struct Result {
     std::vector<int> samples;    ///< point indices; in farthest-point order when trimmed
@@ -67,7 +68,7 @@ class PoissonTargetCount {
     Trial accepted;
     const int phase = std::max(1, p.maxIterations);
     for (int it = 0; it < p.maxIterations; ++it) {
-      Trial t = Run(n, search, r, p.seed, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
+      Trial t = Run(n, search, r, *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
       ++out.iterations;
       const double c = double(t.count);
       if (c >= accLo && c <= accHi) {
@@ -115,10 +116,10 @@ class PoissonTargetCount {
   };
 
   template <class Search>
-  static Trial Run(size_t n, Search& search, double r, uint64_t seed, Progress progress) {
+  static Trial Run(size_t n, Search& search, double r, const std::vector<int>& order, Progress progress) {
     PoissonDisk::Param pp;
     pp.radius = r;
-    pp.seed = seed;
+    pp.order = &order;
     PoissonDisk::Result pr = PoissonDisk::Compute(n, search, pp, progress);
     Trial t;
     t.radius = r;

@@ -19,6 +19,8 @@
 #include <vcg_ext/sample_counts.h>
 #include <filter_geodesic_lod/python_names.h>
 #include "array_input.h"
+#include "call_support.h"
+#include "tile_bindings.h"
 #include "python_progress.h"
 
 namespace nb = nanobind;
@@ -40,14 +42,6 @@ typedef vcg_ext::GeodesicFpsLod<ArrayMesh> Fps;
 typedef vcg_ext::GeodesicLodPyramid<ArrayMesh> Pyramid;
 typedef vcg_ext::GeodesicDomain<double> Domain;
 typedef vcg_ext::LodResult<double> LodResult;
-
-// A numpy array owning `v` (moved, not copied).
-template <class T>
-nb::ndarray<nb::numpy, T> ToNumpy(std::vector<T>&& v, std::initializer_list<size_t> shape) {
-  auto* owned = new std::vector<T>(std::move(v));
-  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
-  return nb::ndarray<nb::numpy, T>(owned->data(), shape, owner);
-}
 
 template <class T>
 nb::ndarray<nb::numpy, int64_t> Int64(const std::vector<T>& v) {
@@ -83,27 +77,6 @@ nb::dict Common(const LodResult& r) {
   d["mesh_geodesics"] = r.meshGeodesics;
   return d;
 }
-
-// The OpenMP team size for one call (None: as set for the process).
-class Threads {
- public:
-  explicit Threads(std::optional<int> n) {
-#ifdef _OPENMP
-    previous_ = omp_get_max_threads();
-    if (n) omp_set_num_threads(*n);
-#else
-    (void)n;
-#endif
-  }
-  ~Threads() {
-#ifdef _OPENMP
-    omp_set_num_threads(previous_);
-#endif
-  }
-
- private:
-  int previous_ = 1;
-};
 
 struct Input {
   vcg_ext::PointSet<double> points;
@@ -276,6 +249,7 @@ NB_MODULE(_core, m) {
         "progress"_a.none());
   m.def("lod_pyramid", &LodPyramid, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());
+  BindTiles(m);
   m.def("normal_variation", &NormalVariation, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
         "progress"_a.none());
 }

@@ -3,6 +3,7 @@
 // grid (duplicates, ties on a lattice, far outliers, a thin line).
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <utility>
 #include <vector>
@@ -79,4 +80,28 @@ TEST(KnnTable, AFarOutlierKeepsTheCellsSmallAndTheTableExact) {
     EXPECT_LT(grid.LargestCell(), withOutlier.size() / 50) << "outlier at " << far;
     ExpectExact(withOutlier, k);
   }
+}
+
+// Ties by id: the same cloud numbered otherwise, with each point's id given,
+// has the same rows by id (what lets a tile of a larger cloud, numbered its
+// own way, see the neighbours the whole cloud sees).
+TEST(KnnTable, TiesByIdDoNotDependOnTheNumbering) {
+  std::vector<P> pos;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j) pos.emplace_back(i * 0.01f, j * 0.01f, 0.f);  // lattice ties
+  for (int d = 0; d < 25; ++d) pos.emplace_back(0.1f, 0.1f, 0.f);              // duplicates
+  std::vector<int> perm(pos.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
+  std::vector<P> shuffled(pos.size());
+  std::vector<int> id(pos.size());
+  for (size_t i = 0; i < pos.size(); ++i) shuffled[i] = pos[perm[i]], id[i] = perm[i];
+  const int k = 20;
+  const auto plain = vcg_ext::KnnTable<float>::Compute(pos, k);
+  const vcg_ext::CellGrid<float> grid(shuffled, vcg_ext::KnnTable<float>::CellSide(shuffled, k));
+  const auto byId = vcg_ext::KnnTable<float>::Compute(grid, shuffled, k, vcg_ext::Progress(nullptr), &id);
+  size_t wrong = 0;
+  for (size_t i = 0; i < shuffled.size(); ++i)
+    for (int c = 0; c < k; ++c) wrong += id[size_t(byId.Row(i)[c])] != plain.Row(size_t(perm[i]))[c];
+  EXPECT_EQ(wrong, 0u);
 }

@@ -1,0 +1,107 @@
+#ifndef GEODESIC_LOD_PACKAGE_TILE_BINDINGS_H
+#define GEODESIC_LOD_PACKAGE_TILE_BINDINGS_H
+// _core's functions for sampling a cloud tile by tile (geodesic_lod/tiles.py):
+// the visiting priorities, one tile's decisions, and the settling of the
+// points left open near the seams.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/array.h>
+#include <nanobind/stl/optional.h>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+#include <vcg_ext/poisson_tile.h>
+#include "array_input.h"
+#include "call_support.h"
+#include "python_progress.h"
+
+namespace geodesic_lod_package {
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+typedef nb::ndarray<const uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Ids;
+typedef nb::ndarray<const bool, nb::ndim<1>, nb::c_contig, nb::device::cpu> Flags;
+typedef nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Int64s;
+typedef nb::ndarray<int8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Statuses;
+typedef vcg_ext::PoissonTile<double> Tile;
+
+inline vcg::Box3d Box(const std::array<double, 6>& b) {
+  return vcg::Box3d(vcg::Point3d(b[0], b[1], b[2]), vcg::Point3d(b[3], b[4], b[5]));
+}
+
+inline nb::ndarray<nb::numpy, uint64_t> Priorities(uint64_t seed, const Ids& ids) {
+  std::vector<uint64_t> p(ids.shape(0));
+  for (size_t i = 0; i < p.size(); ++i) p[i] = vcg_ext::Priority(seed, ids(i));
+  return ToNumpy(std::move(p), {ids.shape(0)});
+}
+
+inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> normals, const Ids& ids,
+                               const Flags& core, const vcg_ext::GeodesicDomain<double>::Param& domain,
+                               double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
+                               std::array<double, 6> cloudBox, std::optional<int> threads, nb::object progress) {
+  const size_t rows = points.shape(0);
+  if (ids.shape(0) != rows || core.shape(0) != rows)
+    throw std::invalid_argument("ids and core must have one entry per point");
+  for (size_t i = 1; i < rows; ++i)
+    if (!(ids(i - 1) < ids(i))) throw std::invalid_argument("a tile's points must come in increasing id order");
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  Tile::Result r = pp.Run([&](vcg_ext::Progress pr) {
+    vcg_ext::GeodesicDomain<double>::Param dp = domain;
+    dp.keepReach = true;
+    dp.mode = vcg_ext::GeodesicMode::PointGraph;
+    auto d = vcg_ext::GeodesicDomain<double>::Build(ReadPoints(points, normals ? &*normals : nullptr), {}, dp,
+                                                     pr.Sub(0, 70));
+    Tile::Param tp;
+    tp.radius = radius;
+    tp.seed = seed;
+    tp.core = Box(coreBox);
+    tp.halo = halo;
+    tp.cloud = Box(cloudBox);
+    std::vector<uint64_t> id(ids.data(), ids.data() + rows);
+    std::vector<char> isCore(core.data(), core.data() + rows);
+    return Tile::Compute(d, id, isCore, tp, pr.Sub(70, 100));
+  });
+  nb::dict out;
+  out["certified"] = r.certified;
+  out["needed_halo"] = r.neededHalo;
+  const size_t covers = r.coverers.size(), band = r.band.size();
+  out["status"] = ToNumpy(std::move(r.status), {rows});
+  out["cover_offset"] = ToNumpy(std::move(r.coverOffset), {r.certified ? rows + 1 : 0});
+  out["coverers"] = ToNumpy(std::move(r.coverers), {covers});
+  out["band"] = ToNumpy(std::vector<int64_t>(r.band.begin(), r.band.end()), {band});
+  return out;
+}
+
+inline void Settle(const Int64s& open, const Int64s& coverOffset, const Int64s& cover, Statuses status) {
+  const size_t n = status.shape(0), m = open.shape(0);
+  if (coverOffset.shape(0) != m + 1) throw std::invalid_argument("cover_offset must have one entry per open point + 1");
+  for (size_t k = 0; k < m; ++k)
+    if (open(k) < 0 || size_t(open(k)) >= n || coverOffset(k) > coverOffset(k + 1))
+      throw std::invalid_argument("open and cover_offset must index status");
+  if (m && size_t(coverOffset(m)) > cover.shape(0)) throw std::invalid_argument("cover_offset runs past cover");
+  for (size_t c = 0; c < cover.shape(0); ++c)
+    if (cover(c) < 0 || size_t(cover(c)) >= n) throw std::invalid_argument("cover must index status");
+  nb::gil_scoped_release release;
+  std::vector<int64_t> o(open.data(), open.data() + m), off(coverOffset.data(), coverOffset.data() + m + 1),
+      cv(cover.data(), cover.data() + cover.shape(0));
+  std::vector<int8_t> st(status.data(), status.data() + n);
+  Tile::Settle(o, off, cv, st);
+  std::copy(st.begin(), st.end(), status.data());
+}
+
+inline void BindTiles(nb::module_& m) {
+  m.def("priorities", &Priorities, "seed"_a, "ids"_a, "the Poisson visiting priority of each id (lower first)");
+  m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
+        "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "threads"_a.none(), "progress"_a.none());
+  m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
+  m.attr("TILE_OUT") = int(Tile::Out);
+  m.attr("TILE_IN") = int(Tile::In);
+  m.attr("TILE_OPEN") = int(Tile::Open);
+}
+
+}  // namespace geodesic_lod_package
+#endif

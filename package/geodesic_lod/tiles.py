@@ -1,0 +1,169 @@
+"""Poisson-disk LODs tile by tile, with exactly the samples ``poisson_lod`` gives on the whole cloud.
+
+A cloud is cut into boxes (tiles). Each tile reads its own points (its core) and a halo around them,
+and decides every core point whose earlier neighbours it sees settled (``decide``); points near the
+seams stay open, each with the ids of the points whose disks may cover it. ``settle`` then decides
+all open points at once, in the visiting order. Nothing here needs the whole cloud in one process:
+a tile's decision is small beside its points, and the seams' part of it smaller still. The Dask
+pipeline (``geodesic_lod.distributed``) runs ``decide`` on workers; this module also runs it in one
+process (``poisson_lod_tiled``), which the tests compare with ``poisson_lod``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Optional, Sequence
+
+import numpy as np
+
+from . import _core, arrays
+
+OUT, IN, OPEN = _core.TILE_OUT, _core.TILE_IN, _core.TILE_OPEN
+
+
+@dataclass
+class Box:
+    """An axis-aligned box; a tile's core holds the points with lo <= x < hi (x <= hi on the cloud's far
+    faces, so the tiles' cores partition the cloud)."""
+    lo: np.ndarray
+    hi: np.ndarray
+
+    def core_mask(self, points: np.ndarray, cloud: "Box") -> np.ndarray:
+        far = self.hi >= cloud.hi
+        return np.all((points >= self.lo) & ((points < self.hi) | (far & (points <= self.hi))), axis=1)
+
+    def read_mask(self, points: np.ndarray, halo: float) -> np.ndarray:
+        return np.all((points >= self.lo - halo) & (points <= self.hi + halo), axis=1)
+
+    def as_tuple(self):
+        return tuple(float(v) for v in self.lo) + tuple(float(v) for v in self.hi)
+
+
+def grid_tiles(cloud: Box, shape: Sequence[int]) -> list:
+    """The cloud's box cut into shape[0] x shape[1] x shape[2] equal boxes."""
+    edges = [np.linspace(cloud.lo[a], cloud.hi[a], int(shape[a]) + 1) for a in range(3)]
+    return [Box(np.array([edges[0][i], edges[1][j], edges[2][k]]),
+                np.array([edges[0][i + 1], edges[1][j + 1], edges[2][k + 1]]))
+            for i in range(len(edges[0]) - 1) for j in range(len(edges[1]) - 1) for k in range(len(edges[2]) - 1)]
+
+
+@dataclass
+class Decision:
+    """One tile's decisions: its samples, and what the seams need (the band and the open points)."""
+    samples: np.ndarray        #: ids of core points decided samples
+    band_ids: np.ndarray       #: ids of core points within the radius of the core's boundary
+    band_status: np.ndarray    #: their status (OUT, IN or OPEN)
+    open_ids: np.ndarray       #: ids of core points left open
+    cover_offset: np.ndarray   #: open_ids[k]'s coverers are coverers[cover_offset[k]:cover_offset[k + 1]]
+    coverers: np.ndarray       #: ids
+    halo: float                #: the halo the decision was made with
+    read: int                  #: points read (core and halo)
+
+    def seams(self) -> "Decision":
+        """The part settle needs (no samples): small, for sending to one place."""
+        return Decision(np.empty(0, np.uint64), self.band_ids, self.band_status, self.open_ids, self.cover_offset,
+                        self.coverers, self.halo, self.read)
+
+
+def first_halo(radius: float, spacing: float) -> float:
+    """A halo likely to pass the check: the radius and a few neighbourhoods of the point spacing."""
+    return radius + 12 * spacing
+
+
+def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, core: np.ndarray, *, radius: float,
+           box: Box, cloud: Box, halo: float, domain, seed: int = 0, threads: Optional[int] = None,
+           progress=None) -> tuple:
+    """One tile, from the points read with `halo` (in increasing id order). Returns (Decision, None) or,
+    when the halo is too narrow for the check, (None, a halo that will do)."""
+    r = _core.poisson_tile(points, normals, np.ascontiguousarray(ids, dtype=np.uint64),
+                           np.ascontiguousarray(core, dtype=bool), domain, float(radius), int(seed), box.as_tuple(),
+                           float(halo), cloud.as_tuple(), threads, progress)
+    if not r["certified"]:
+        return None, max(r["needed_halo"] * 1.01, 1.5 * halo)
+    status, offset = r["status"], r["cover_offset"]
+    opened = np.flatnonzero(status == OPEN)
+    counts = offset[opened + 1] - offset[opened]
+    picks = _ranges(offset[opened], counts)
+    return Decision(samples=ids[status == IN].astype(np.uint64), band_ids=ids[r["band"]].astype(np.uint64),
+                    band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
+                    cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
+                    coverers=r["coverers"][picks], halo=halo, read=len(ids)), None
+
+
+def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
+    """The ids of the open points that are samples, from every tile's seams."""
+    opens = [d for d in decisions if len(d.open_ids)]
+    if not opens:
+        return np.empty(0, np.uint64)
+    ids = np.concatenate([d.band_ids for d in decisions] + [d.open_ids for d in opens])
+    status = np.concatenate([d.band_status for d in decisions] + [np.full(len(d.open_ids), OPEN, np.int8)
+                                                                   for d in opens])
+    known, first = np.unique(ids, return_index=True)
+    status = np.ascontiguousarray(status[first], dtype=np.int8)
+    open_ids = np.concatenate([d.open_ids for d in opens])
+    counts = np.concatenate([np.diff(d.cover_offset) for d in opens])
+    coverers = np.concatenate([d.coverers for d in opens])
+    rank = np.lexsort((open_ids, _core.priorities(seed, open_ids)))  # visiting order, ties by id
+    starts = np.concatenate([[0], np.cumsum(counts)])[:-1]
+    pick = _ranges(starts[rank], counts[rank])
+    cover = np.searchsorted(known, coverers[pick])
+    if len(cover) and (cover.max() >= len(known) or not np.array_equal(known[cover], coverers[pick])):
+        raise RuntimeError("a coverer's status is missing: a tile's band is incomplete")
+    ordered = open_ids[rank]
+    _core.settle(np.searchsorted(known, ordered).astype(np.int64),
+                 np.concatenate([[0], np.cumsum(counts[rank])]).astype(np.int64), cover.astype(np.int64), status)
+    return ordered[status[np.searchsorted(known, ordered)] == IN]
+
+
+def _ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """The concatenation of arange(starts[k], starts[k] + counts[k]) over k, without a Python loop."""
+    counts = np.asarray(counts, dtype=np.int64)
+    ends = np.cumsum(counts)
+    return np.repeat(np.asarray(starts, dtype=np.int64) - (ends - counts), counts) + np.arange(ends[-1] if len(ends)
+                                                                                             else 0)
+
+
+def in_visiting_order(ids: np.ndarray, seed: int) -> np.ndarray:
+    """Sample ids in the order poisson_lod lists them."""
+    ids = np.asarray(ids, dtype=np.uint64)
+    return ids[np.lexsort((ids, _core.priorities(seed, ids)))]
+
+
+def spacing_of(points: np.ndarray) -> float:
+    """A rough point spacing: the box's diagonal area shared among the points (a surface's)."""
+    extent = np.sort(points.max(axis=0) - points.min(axis=0))
+    area = max(extent[2] * extent[1], 1e-300)
+    return math.sqrt(area / len(points))
+
+
+def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
+                      metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays._DOMAIN.adaptivity,
+                      halo: Optional[float] = None, threads: Optional[int] = None,
+                      on_tile: Optional[Callable[[int, Decision], None]] = None) -> np.ndarray:
+    """poisson_lod(points, normals, radius=radius, seed=seed).indices, computed tile by tile in one process
+    (shape: tiles per axis). For tests and for seeing what the tiling costs; the Dask pipeline runs the
+    same steps on workers."""
+    p, n = arrays._points(points, normals)
+    domain = arrays._domain(len(p), False, metric, "point-graph", arrays._DOMAIN.curvature_exponent, adaptivity,
+                            arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors,
+                            not arrays._DOMAIN.use_input_normals)
+    cloud = Box(p.min(axis=0), p.max(axis=0))
+    ids = np.arange(len(p), dtype=np.uint64)
+    width = halo if halo is not None else first_halo(radius, spacing_of(p))
+    decisions = []
+    for t, box in enumerate(grid_tiles(cloud, shape)):
+        if not box.core_mask(p, cloud).any():
+            continue
+        w = width
+        while True:
+            read = box.read_mask(p, w)
+            core = box.core_mask(p[read], cloud)
+            d, w = decide(p[read], None if n is None else n[read], ids[read], core, radius=radius, box=box,
+                          cloud=cloud, halo=w, domain=domain, seed=seed, threads=threads)
+            if d is not None:
+                break
+        if on_tile:
+            on_tile(t, d)
+        decisions.append(d)
+    samples = np.concatenate([d.samples for d in decisions] + [settle([d.seams() for d in decisions], seed)])
+    return in_visiting_order(samples, seed).astype(np.int64)

@@ -1,0 +1,66 @@
+"""Tile by tile, the same Poisson-disk samples as the whole cloud: for any tiling, seed, radius and
+metric, with halos that start too narrow, with duplicates and uneven density; separation and
+coverage checked by brute force across every seam."""
+import numpy as np
+import pymeshlab
+import pytest
+
+import geodesic_lod as gl
+import geodesic_lod.pymeshlab  # noqa: F401  (binds the filters)
+from geodesic_lod import tiles
+from conftest import bumpy_sphere
+
+
+def uneven(n=12000, seed=1):
+    """A bumpy sphere, four times denser on one side, with 40 points repeated."""
+    p = bumpy_sphere(n, seed)
+    p = np.vstack([p, p[p[:, 2] > 0.3][: n // 2] * 1.0000001, p[:40]])
+    return p
+
+
+@pytest.mark.parametrize("shape, seed, radius, metric", [
+    ((2, 2, 1), 0, 0.05, "curvature-density"),
+    ((3, 2, 2), 7, 0.08, "curvature-density"),
+    ((5, 1, 1), 3, 0.03, "eq3"),
+    ((2, 3, 2), 1, 0.06, "geodesic"),
+    ((3, 3, 1), 2, 0.05, "euclidean"),
+])
+def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
+    p = uneven()
+    whole = gl.poisson_lod(p, radius=radius, seed=seed, metric=metric).indices
+    opened = []
+    tiled = tiles.poisson_lod_tiled(p, radius=radius, shape=shape, seed=seed, metric=metric,
+                                    on_tile=lambda t, d: opened.append(len(d.open_ids)))
+    assert np.array_equal(tiled, whole)
+    assert len(opened) > 1 and sum(opened) > 0  # the seams were really settled across tiles
+
+
+def test_a_halo_too_narrow_is_widened_and_changes_nothing():
+    p, normals = bumpy_sphere(8000), None
+    widened = []
+    tiled = tiles.poisson_lod_tiled(p, normals, radius=0.07, shape=(2, 2, 2), halo=0.0701,
+                                    on_tile=lambda t, d: widened.append(d.halo > 0.0701))
+    assert any(widened)
+    assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.07).indices)
+
+
+def test_given_normals_and_the_pymeshlab_filter_agree():
+    p = bumpy_sphere(6000)
+    normals = p / np.linalg.norm(p, axis=1)[:, None]
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=p, v_normals_matrix=normals))
+    ms.generate_geodesic_poisson_lod(radius=pymeshlab.PureValue(0.06), seed=4)
+    filtered = ms.current_mesh().vertex_matrix()
+    tiled = tiles.poisson_lod_tiled(p, normals, radius=0.06, shape=(2, 2, 1), seed=4)
+    assert np.array_equal(p[tiled], filtered)
+
+
+def test_separation_and_coverage_hold_across_every_seam():
+    p, r = uneven(6000), 0.05
+    tiled = tiles.poisson_lod_tiled(p, radius=r, shape=(4, 4, 1), metric="euclidean")
+    s = p[tiled]
+    d2 = ((s[:, None, :] - s[None, :, :]) ** 2).sum(-1)
+    np.fill_diagonal(d2, np.inf)
+    assert d2.min() > r * r  # no two samples within r, seams included
+    nearest = np.min([((p - q) ** 2).sum(-1) for q in s], axis=0)
+    assert nearest.max() <= r * r  # every point within r of a sample

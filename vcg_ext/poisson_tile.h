@@ -1,0 +1,190 @@
+#ifndef VCG_EXT_POISSON_TILE_H
+#define VCG_EXT_POISSON_TILE_H
+// Poisson-disk sampling of a cloud too large for one process, tile by tile,
+// with exactly the samples the whole cloud would get. A tile reads its own
+// points (the core, a box) and a halo around them; it decides every core point
+// whose earlier neighbours it can see settled, and leaves the rest "open",
+// each with the points whose disks may cover it. Open points lie near the
+// seams; Settle decides them all at once, in the visiting order.
+//
+// Why the result equals the whole cloud's: Poisson-disk sampling in a visiting
+// order is the greedy independent set of "within r" in that order
+// (PriorityOrder: a point's rank depends only on its id). A point is a sample
+// iff no earlier sample's disk covers it, and every weight is at least the
+// Euclidean length, so only points within r matter, and the halo holds them
+// with everything their distances depend on (checked: Check).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+#include <vcg/space/box3.h>
+#include "geodesic_domain.h"
+#include "poisson_disk.h"
+#include "priority_order.h"
+
+namespace vcg_ext {
+
+template <class Scalar>
+class PoissonTile {
+ public:
+  typedef GeodesicDomain<Scalar> Domain;
+  enum Status : int8_t { Out = 0, In = 1, Open = 2 };
+
+  struct Param {
+    double radius = 0;
+    uint64_t seed = 0;
+    vcg::Box3d core;           ///< the tile's own points lie in it (half-open boxes partition the cloud)
+    double halo = 0;           ///< the points within this distance of `core` were read too (on every side
+                               ///< where the cloud goes on)
+    vcg::Box3d cloud;          ///< the whole cloud's bounding box: no points beyond it
+  };
+  struct Result {
+    /// The halo is wide enough: every core point's disks and the neighbourhoods
+    /// their weights depend on lie inside what was read. Otherwise nothing
+    /// else is filled, and `neededHalo` is a halo that will do (at least).
+    bool certified = false;
+    double neededHalo = 0;
+    std::vector<int8_t> status;          ///< per input row: Out, In or Open (core rows; others Out)
+    std::vector<int64_t> coverOffset;    ///< per input row + 1: rows of `coverers`
+    std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
+    std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
+  };
+
+  /// `d` built with keepReach on the tile's rows (core and halo) in increasing
+  /// `id` order; `core[row]` tells the tile's own rows. Cost: the disks of the
+  /// samples and of the points near the seams.
+  static Result Compute(const Domain& d, const std::vector<uint64_t>& id, const std::vector<char>& core,
+                        const Param& p, Progress progress = Progress(nullptr)) {
+    Result r;
+    const size_t n = d.size(), rows = id.size();
+    r.status.assign(rows, Out);
+    r.coverOffset.assign(rows + 1, 0);
+    const double radius = p.radius;
+    std::vector<double> toCore(n);  // Euclidean distance to the core box (0 inside)
+    for (size_t i = 0; i < n; ++i) toCore[i] = Outside(p.core, d.points.pos[i]);
+    const std::pair<bool, double> halo = CheckHalo(d, toCore, p);
+    r.certified = halo.first;
+    r.neededHalo = halo.second;
+    if (!r.certified) return r;
+
+    // Points that can reach a core point within r; the others never matter.
+    std::vector<uint64_t> pid(n);
+    for (size_t i = 0; i < n; ++i) pid[i] = id[size_t(d.points.vertIndex[i])];
+    std::vector<int> order = PriorityOrder(pid, p.seed), rank(n);
+    for (size_t k = 0; k < n; ++k) rank[size_t(order[k])] = int(k);
+    order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !(toCore[i] <= radius); }),
+                order.end());
+    auto isCore = [&](int i) { return core[size_t(d.points.vertIndex[i])] != 0; };
+
+    // covered: by a sample for sure (2), or only by points still open (1).
+    std::vector<char> covered(n, 0), state(n, Out);
+    std::vector<std::vector<int>> maybe(n);  // per open core point: the open points covering it
+    size_t settled = 0;
+    d.WithSearch([&](auto& search) {
+      PoissonDisk::InOrder(n, search, radius, order, [&](int i) { return covered[i] != 2; },
+                           [&](int i, const std::vector<int>& disk) {
+                             if (covered[i] == 2) return;  // an earlier disk of its batch covered it
+                             // A core point is a sample if nothing may cover it; a halo point's
+                             // fate is its own tile's, so here it may only be one.
+                             const bool sure = isCore(i) && covered[i] == 0;
+                             state[i] = sure ? In : Open;
+                             for (int j : disk) {  // a disk decides nothing for earlier points
+                               if (rank[j] < rank[i] || j == i || covered[j] == 2) continue;
+                               if (sure) {
+                                 covered[j] = 2, ++settled;
+                                 maybe[j].clear();
+                               } else if (isCore(j)) {
+                                 covered[j] = 1;
+                                 maybe[j].push_back(i);
+                               }
+                             }
+                           },
+                           [&] { return settled; }, progress);
+    });
+    for (size_t i = 0; i < n; ++i) {
+      if (!isCore(int(i))) continue;
+      const size_t row = size_t(d.points.vertIndex[i]);
+      r.status[row] = covered[i] == 2 ? Out : state[i];
+    }
+    // Open rows and their coverers, by row.
+    std::vector<int> pointOfRow(rows, -1);
+    for (size_t i = 0; i < n; ++i) pointOfRow[size_t(d.points.vertIndex[i])] = int(i);
+    for (size_t row = 0; row < rows; ++row) {
+      const int i = pointOfRow[row];
+      if (i >= 0 && r.status[row] == Open)
+        for (int c : maybe[size_t(i)]) r.coverers.push_back(pid[size_t(c)]);
+      r.coverOffset[row + 1] = int64_t(r.coverers.size());
+    }
+    for (size_t i = 0; i < n; ++i)
+      if (isCore(int(i)) && Inside(p.core, d.points.pos[i]) <= radius) r.band.push_back(d.points.vertIndex[i]);
+    std::sort(r.band.begin(), r.band.end());
+    return r;
+  }
+
+  /// Decides the open points of all tiles: `open` in visiting order; coverers
+  /// of open[k] are cover[coverOffset[k] .. coverOffset[k+1]), indices into
+  /// `status`, which holds the band's and the open points' statuses and gets
+  /// each open point's. A point is a sample iff none of its coverers is.
+  static void Settle(const std::vector<int64_t>& open, const std::vector<int64_t>& coverOffset,
+                     const std::vector<int64_t>& cover, std::vector<int8_t>& status) {
+    for (size_t k = 0; k < open.size(); ++k) {
+      bool in = true;
+      for (int64_t c = coverOffset[k]; c < coverOffset[k + 1] && in; ++c) in = status[size_t(cover[size_t(c)])] != In;
+      status[size_t(open[k])] = in ? In : Out;
+    }
+  }
+
+ private:
+  // The halo every core point needs: the points within r of the core (any
+  // disk touching a core point lies there, as no weight is shorter than the
+  // straight line), their kNN rows, and the rows of those rows' points (the
+  // normals that eq. 1 compares); a row is exact when it lies closer than the
+  // read region's edge. Reach measured in the tile can only overstate the true
+  // reach (points are missing, never added), so the check is safe. Returns
+  // whether the halo read is enough, and a halo that would be.
+  static std::pair<bool, double> CheckHalo(const Domain& d, const std::vector<double>& toCore, const Param& p) {
+    const size_t n = d.size();
+    double m1 = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (toCore[i] <= p.radius) m1 = std::max(m1, double(d.reach[i]));
+    double need = p.radius + m1;
+    bool exact = need < p.halo;  // the rows that matter were all read
+    for (size_t i = 0; i < n; ++i) {
+      if (!(toCore[i] <= p.radius + m1)) continue;
+      const double reach = double(d.reach[i]);
+      need = std::max(need, toCore[i] + reach);
+      exact = exact && reach < ToEdge(p, d.points.pos[i]);
+    }
+    return {exact, need};
+  }
+
+  // Distance from x to the edge of the region read (open where the cloud ends).
+  static double ToEdge(const Param& p, const vcg::Point3<Scalar>& x) {
+    double m = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      const double v = double(x[a]), lo = p.core.min[a] - p.halo, hi = p.core.max[a] + p.halo;
+      if (lo > p.cloud.min[a]) m = std::min(m, v - lo);
+      if (hi < p.cloud.max[a]) m = std::min(m, hi - v);
+    }
+    return m;
+  }
+  static double Outside(const vcg::Box3d& b, const vcg::Point3<Scalar>& x) {
+    double s = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double v = double(x[a]), e = std::max({b.min[a] - v, 0.0, v - b.max[a]});
+      s += e * e;
+    }
+    return std::sqrt(s);
+  }
+  // Distance from x (inside b) to b's boundary, counting only faces inside the cloud's box.
+  static double Inside(const vcg::Box3d& b, const vcg::Point3<Scalar>& x) {
+    double m = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) m = std::min({m, double(x[a]) - b.min[a], b.max[a] - double(x[a])});
+    return m;
+  }
+};
+
+}  // namespace vcg_ext
+#endif

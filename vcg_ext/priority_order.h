@@ -1,0 +1,54 @@
+#ifndef VCG_EXT_PRIORITY_ORDER_H
+#define VCG_EXT_PRIORITY_ORDER_H
+// The order Poisson-disk sampling visits points in: by a hash of the seed and
+// each point's id (its input index), ties by id. A point's rank depends only on
+// its own id, never on which other points are present or how they are
+// numbered, so a tile of a larger cloud visits its points in the order the
+// whole cloud would: the basis of the same samples tile by tile.
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+#include <vector>
+#ifdef _OPENMP
+#include <parallel/algorithm>
+#endif
+
+namespace vcg_ext {
+
+/// SplitMix64's finaliser: a bijection of 64-bit words that mixes every bit.
+inline uint64_t Mix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// The priority of id under seed: lower comes first.
+inline uint64_t Priority(uint64_t seed, uint64_t id) { return Mix64(Mix64(seed) ^ id); }
+
+/// order[k] = the point (index into `id`) visited k-th. O(n log n), the sort
+/// on all threads; the same order for any thread count.
+template <class Id>
+std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
+  std::vector<std::pair<uint64_t, int>> key(id.size());
+  for (size_t i = 0; i < id.size(); ++i) key[i] = {Priority(seed, uint64_t(id[i])), int(i)};
+#ifdef _OPENMP
+  __gnu_parallel::sort(key.begin(), key.end());
+#else
+  std::sort(key.begin(), key.end());
+#endif
+  // Equal hashes (about 3 pairs among 10^10 ids) ranked by id, not by numbering.
+  for (size_t b = 0, e; b < key.size(); b = e) {
+    for (e = b + 1; e < key.size() && key[e].first == key[b].first; ++e) {}
+    if (e - b > 1)
+      std::sort(key.begin() + b, key.begin() + e, [&](const auto& x, const auto& y) {
+        return uint64_t(id[x.second]) < uint64_t(id[y.second]);
+      });
+  }
+  std::vector<int> order(id.size());
+  for (size_t k = 0; k < key.size(); ++k) order[k] = key[k].second;
+  return order;
+}
+
+}  // namespace vcg_ext
+#endif
