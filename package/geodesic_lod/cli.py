@@ -3,6 +3,7 @@
     geodesic-lod scan.laz -o lod.laz --rate 10%
     geodesic-lod scan.ply -o lod.ply --radius 1%          (1% of the bounding box diagonal)
     geodesic-lod scan.laz -o lod.laz --levels 50%,10%,2%  (lod_50pct.laz, lod_10pct.laz, lod_2pct.laz)
+    geodesic-lod tiles/*.laz -o lod/ --radius 0.5 --workers 4   (many files as one cloud, on Dask)
 
 Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130. Output files
 appear only when complete.
@@ -83,9 +84,10 @@ def parser() -> argparse.ArgumentParser:
                 epilog="Formats: PLY (every vertex property kept), LAS/LAZ (every point record kept bit for bit, "
                 "with the header, scales, offsets, CRS and VLRs), NumPy .npy ((n, 3), (n, 6) with normals, or a "
                 "table with fields x, y, z). A LAS/PLY input may also be written as .npy.")
-    p.add_argument("input", help="the point file (.ply, .las, .laz or .npy)")
+    p.add_argument("input", nargs="+", help="the point file (.ply, .las, .laz or .npy); several files, a folder "
+                   "or a glob are sampled as one cloud on a Dask cluster")
     p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "
-                   "file is derived from (lod.laz gives lod_50pct.laz, ...)")
+                   "file is derived from (lod.laz gives lod_50pct.laz, ...); on a cluster, a folder")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--rate", help="a percentage of the points, such as 10%%: exactly that many samples")
     size.add_argument("--count", help="exactly this many samples")
@@ -103,7 +105,68 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "
                    "is the same on any number")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary")
+    dask = p.add_argument_group("on a Dask cluster (with --radius): the same samples as on one machine, written "
+                                "as tiles with an index.json")
+    dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
+    dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
+    dask.add_argument("--tile-points", type=int, default=2_000_000, help="points per tile, about "
+                      "(default: %(default)s)")
+    dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
+                      "(default: %(default)s, a share of this machine's)")
     return p
+
+
+def _on_cluster(args) -> bool:
+    one = args.input[0]
+    return bool(args.workers or args.scheduler or len(args.input) > 1 or pathlib.Path(one).is_dir()
+                or any(c in one for c in "*?["))
+
+
+def _run_on_cluster(args, request: dict) -> int:
+    """Many files, or a cloud too large for one machine: tiles on Dask workers."""
+    from . import distributed
+    if set(request) != {"radius"} or args.fps:
+        raise ValueError("on a cluster give --radius (counts, rates, levels and --fps run on one machine)")
+    if args.workers is not None and args.scheduler:
+        raise ValueError("give --workers (a cluster on this machine) or --scheduler (an existing one), not both")
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be at least 1, got {args.workers}")
+    from dask.distributed import Client
+    start = time.perf_counter()
+    cluster = None
+    if args.scheduler:
+        client = Client(args.scheduler, timeout="20s")
+    else:
+        import os
+        workers = args.workers or max(1, min(4, os.cpu_count() or 1))
+        cluster = distributed.local_cluster(workers, args.worker_memory)
+        client = Client(cluster)
+        args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
+    bar = None
+    try:
+        if not args.quiet:
+            print(f"{PROG}: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
+            from tqdm import tqdm
+            bar = tqdm(total=1, desc="tiles", unit="task", file=sys.stderr, leave=False)
+
+        def progress(done, total):
+            if bar is not None:
+                bar.total = total
+                bar.update(done - bar.n)
+        index = distributed.lod_files(args.input, args.output, radius=request["radius"], seed=args.seed,
+                                      metric=args.metric, adaptivity=args.adaptivity, tile_points=args.tile_points,
+                                      client=client, threads=args.threads, progress=progress)
+    finally:
+        if bar is not None:
+            bar.close()
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    if not args.quiet:
+        print(f"{PROG}: {args.output}: {index['samples']:,} of {index['points']:,} points in "
+              f"{len(index['tiles'])} tiles, radius {index['radius']:.6g}", file=sys.stderr)
+        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+    return 0
 
 
 class _Bar:
@@ -164,7 +227,9 @@ def main(argv=None) -> int:
     try:
         start = time.perf_counter()
         request = _request(args)
-        source = point_files.read(args.input)
+        if _on_cluster(args):
+            return _run_on_cluster(args, request)
+        source = point_files.read(args.input[0])
         point_files.check_output(source, args.output)
         bar = _Bar(args.quiet, "sampling")
         try:
@@ -188,7 +253,7 @@ def main(argv=None) -> int:
         print(f"{PROG}: stopped", file=sys.stderr)
         return EXIT_STOPPED
     except MemoryError:
-        _fail(f"{args.input}: not enough memory for this input")
+        _fail(f"{args.input[0]}: not enough memory for this input")
     except OSError as e:  # writing: a full disk, a folder without permission
         print(f"{PROG}: error: {e.filename or args.output}: {e.strerror or e}", file=sys.stderr)
         return 1

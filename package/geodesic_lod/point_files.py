@@ -26,7 +26,10 @@ class PointFileError(ValueError):
 
     def __init__(self, path, problem: str):
         super().__init__(f"{path}: {problem}")
-        self.path = path
+        self.path, self.problem = path, problem
+
+    def __reduce__(self):  # raised in a Dask worker, re-raised where the job was started
+        return PointFileError, (self.path, self.problem)
 
 
 @dataclass

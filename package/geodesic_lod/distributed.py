@@ -1,0 +1,337 @@
+"""Poisson-disk LODs of point files larger than one machine's memory, on a Dask cluster.
+
+The files are cut into spatial tiles of about `tile_points` points each. Every tile is a Dask task
+that reads its points and a halo around them, and decides its samples (``tiles.decide``); the
+points left open near the seams are settled in one pass where the job was started (``tiles.settle``);
+then every tile writes its samples' records, bit for bit, as a file of the input's format. The
+result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
+file order (for the same parameters and seed), whatever the tiling and the number of workers.
+
+Tasks are pure functions of their inputs: Dask reruns those of a worker that dies, and the output
+is the same. Files are written under a temporary name and renamed when complete; ``index.json``,
+written last, lists the tiles, their bounds and counts, the radius, the parameters and the seed.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import pathlib
+from dataclasses import dataclass, field
+from typing import Optional, Sequence
+
+import numpy as np
+
+from . import arrays, point_files, tiles
+
+INDEX = "index.json"
+CHUNK = 1_000_000  # points read at a time from a LAS/LAZ file
+
+
+@dataclass
+class Source:
+    """One input file as the tiles see it: where its ids start, its bounds and what its records are."""
+    path: str
+    kind: str
+    count: int
+    first_id: int
+    lo: np.ndarray
+    hi: np.ndarray
+    signature: tuple = field(default_factory=tuple)  #: what must match across files to write them together
+
+
+def _las_signature(header) -> tuple:
+    crs = b"".join(bytes(v.record_data) for v in header.vlrs if v.user_id == "LASF_Projection")
+    return ("las", header.point_format.id, tuple(d.name for d in header.point_format.extra_dimensions),
+            tuple(np.round(header.scales, 15)), tuple(header.offsets), crs)
+
+
+def survey(path: str) -> dict:
+    """Counts, bounds and record layout of one file (a LAS header only; other formats are read)."""
+    kind = point_files.format_of(path)
+    p = pathlib.Path(path)
+    if not p.is_file():
+        raise point_files.PointFileError(path, "no such file")
+    if kind == "las":
+        import laspy
+        try:
+            with laspy.open(path) as f:
+                h = f.header
+                return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
+                        "hi": np.array(h.maxs, float), "signature": _las_signature(h)}
+        except Exception as e:  # laspy's errors have no common base
+            raise point_files.PointFileError(path, f"cannot be read as LAS: {e}") from None
+    src = point_files.read(path)
+    fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
+    return {"kind": kind, "count": len(src.points), "lo": src.points.min(axis=0), "hi": src.points.max(axis=0),
+            "signature": (kind, str(fields))}
+
+
+def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
+    """The files in order with their first ids; refuses files that cannot be written together."""
+    out, first = [], 0
+    for path, s in zip(paths, surveys):
+        if s["count"] == 0:
+            continue
+        if out and s["signature"] != out[0].signature:
+            what = "point format, extra dimensions, scale, offset or CRS" if s["kind"] == "las" else "fields"
+            raise point_files.PointFileError(path, f"its {what} differ from {out[0].path}'s: the files cannot "
+                                                   "be sampled as one cloud")
+        out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"]))
+        first += s["count"]
+    if not out:
+        raise point_files.PointFileError(paths[0] if paths else "(no input)", "holds no points")
+    if first >= 2 ** 63:
+        raise point_files.PointFileError(paths[0], "too many points for 63-bit ids")
+    return out
+
+
+def plan(srcs: Sequence[Source], tile_points: int) -> tuple:
+    """The cloud's box and tiles of about `tile_points` points each (split along the longer axes)."""
+    cloud = tiles.Box(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0))
+    total = sum(s.count for s in srcs)
+    want = max(1, math.ceil(total / max(1, tile_points)))
+    extent = np.maximum(cloud.hi - cloud.lo, 0)
+    shape = [1, 1, 1]
+    while np.prod(shape) < want:  # halve the tiles' longest side until there are enough of them
+        a = int(np.argmax(extent / shape))
+        if extent[a] == 0:
+            break
+        shape[a] += 1
+    return cloud, tiles.grid_tiles(cloud, shape), tuple(shape)
+
+
+def _overlapping(srcs, lo, hi):
+    return [s for s in srcs if np.all(s.hi >= lo) and np.all(s.lo <= hi)]
+
+
+def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple:
+    """Points within [lo, hi] of every file, in id order: (points, normals or None, ids)."""
+    pts, nrm, ids = [], [], []
+    for s in _overlapping(srcs, lo, hi):
+        for start, xyz, normals in _chunks(s):
+            keep = np.all((xyz >= lo) & (xyz <= hi), axis=1)
+            pts.append(xyz[keep])
+            nrm.append(None if normals is None else normals[keep])
+            ids.append(np.uint64(s.first_id + start) + np.flatnonzero(keep).astype(np.uint64))
+    if not pts:
+        return np.empty((0, 3)), None, np.empty(0, np.uint64)
+    normals = None if any(n is None for n in nrm) else np.concatenate(nrm)
+    return np.concatenate(pts), normals, np.concatenate(ids)
+
+
+def _chunks(s: Source):
+    """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
+    if s.kind == "las":
+        import laspy
+        with laspy.open(s.path) as f:
+            start = 0
+            for chunk in f.chunk_iterator(CHUNK):
+                xyz = np.column_stack([np.asarray(chunk.x, float), np.asarray(chunk.y, float),
+                                       np.asarray(chunk.z, float)])
+                yield start, xyz, None
+                start += len(xyz)
+    else:
+        src = point_files.read(s.path)
+        yield 0, src.points, src.normals
+
+
+def read_records(srcs: Sequence[Source], ids: np.ndarray):
+    """The records of the given ids (any order), in that order, and a source to write them with."""
+    ids = np.asarray(ids, dtype=np.uint64)
+    order = np.argsort(ids, kind="stable")
+    parts, first = [], None
+    for s in srcs:
+        lo, hi = np.searchsorted(ids[order], [s.first_id, s.first_id + s.count])
+        if hi <= lo:
+            continue
+        rows = (ids[order][lo:hi] - np.uint64(s.first_id)).astype(np.int64)
+        if s.kind == "las":
+            import laspy
+            with laspy.open(s.path) as f:
+                header = f.header
+                picked, start = [], 0
+                for chunk in f.chunk_iterator(CHUNK):
+                    a, b = np.searchsorted(rows, [start, start + len(chunk)])
+                    picked.append(chunk.array[rows[a:b] - start])
+                    start += len(chunk)
+            records = np.concatenate(picked)
+            if first is None:
+                first = laspy.LasData(header)
+        else:
+            src = point_files.read(s.path)
+            records = np.asarray(src.rows[rows])
+            first = src.source if first is None else first
+        parts.append(records)
+    records = np.concatenate(parts)
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    records = records[inverse]
+    if srcs[0].kind == "las":
+        import laspy
+        rows = laspy.PackedPointRecord(records, first.header.point_format)
+        return point_files.PointFile(pathlib.Path(srcs[0].path), "las", None, None, None, rows, first)
+    return point_files.PointFile(pathlib.Path(srcs[0].path), srcs[0].kind, None, None, None, records, first)
+
+
+@dataclass
+class Job:
+    """What every tile task needs: the files, the cloud, the radius and the sampler's parameters."""
+    srcs: list
+    cloud: tiles.Box
+    radius: float
+    seed: int
+    domain: dict          #: DomainParam fields (plain values, so the job pickles)
+    threads: Optional[int]
+    halo: float
+
+    def domain_param(self):
+        d = arrays._core.DomainParam()
+        for k, v in self.domain.items():
+            setattr(d, k, v)
+        return d
+
+
+def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
+    """A Dask task: one tile's decision, reading a wider halo until the check passes."""
+    halo = job.halo
+    while True:
+        points, normals, ids = read_region(job.srcs, box.lo - halo, box.hi + halo)
+        core = box.core_mask(points, job.cloud)
+        if not core.any():
+            return None
+        if len(points) <= max(job.domain["normal_neighbors"], job.domain["graph_neighbors"]):
+            raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
+                             "the normals and the graph need: the cloud is too sparse for this radius")
+        d, wider = tiles.decide(points, normals, ids, core, radius=job.radius, box=box, cloud=job.cloud, halo=halo,
+                                domain=job.domain_param(), seed=job.seed, threads=job.threads)
+        if d is not None:
+            return d
+        halo = wider
+
+
+def seams(d: Optional[tiles.Decision]):
+    return None if d is None else d.seams()
+
+
+def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str) -> Optional[dict]:
+    """A Dask task: the tile's samples (its own and the settled open ones) written in visiting order."""
+    if d is None:
+        return None
+    ids = tiles.in_visiting_order(np.concatenate([d.samples, settled]).astype(np.uint64), job.seed)
+    if len(ids) == 0:
+        return {"file": None, "count": 0}
+    source = read_records(job.srcs, ids)
+    point_files.write_all(source, [(path, np.arange(len(ids)))])
+    return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo}
+
+
+def domain_fields(metric: str, adaptivity: float) -> dict:
+    d = arrays._domain(10 ** 9, False, metric, "point-graph", arrays._DOMAIN.curvature_exponent, adaptivity,
+                       arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors,
+                       not arrays._DOMAIN.use_input_normals)
+    return {k: getattr(d, k) for k in ("metric", "mode", "curvature_exponent", "adaptivity", "normal_neighbors",
+                                       "graph_neighbors", "use_input_normals")}
+
+
+def expand_inputs(inputs: Sequence[str]) -> list:
+    """Files, folders (their point files) and globs, in a stable order: the order of the ids."""
+    import glob
+    out = []
+    for item in inputs:
+        p = pathlib.Path(item)
+        if p.is_dir():
+            found = sorted(str(f) for f in p.iterdir() if f.suffix.lower() in point_files.FORMATS)
+            if not found:
+                raise point_files.PointFileError(item, "holds no .ply, .las, .laz or .npy files")
+            out += found
+        elif any(c in item for c in "*?["):
+            found = sorted(glob.glob(item))
+            if not found:
+                raise point_files.PointFileError(item, "matches no files")
+            out += found
+        else:
+            out.append(item)
+    for path in out:
+        point_files.format_of(path)
+    kinds = {point_files.format_of(p) for p in out}
+    if len(kinds) > 1:
+        raise point_files.PointFileError(out[0], "the inputs mix formats: give files of one format")
+    return out
+
+
+def local_cluster(workers: int, memory_limit="auto"):
+    """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
+    127.0.0.1 only (its dashboard too)."""
+    from dask.distributed import LocalCluster
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
+                        host="127.0.0.1", dashboard_address="127.0.0.1:0", silence_logs=40)
+
+
+def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
+              adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000,
+              client=None, threads: Optional[int] = None, progress=None) -> dict:
+    """Samples the files as one cloud on a Dask client (its workers do the tiles; see local_cluster) and
+    writes the LOD as tiles in `out_dir` with an index. `radius`: a length, or a string such as '1%' of
+    the cloud's diagonal. `threads`: per task (None: all the worker machine's cores). Returns the index.
+    `progress(done, total)` hears of finished tasks."""
+    from dask.distributed import as_completed
+
+    paths = expand_inputs(inputs)
+    out = pathlib.Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise point_files.PointFileError(out, "exists and is not a folder")
+    if not out.parent.resolve().is_dir():
+        raise point_files.PointFileError(out, f"the folder {out.parent} does not exist")
+    seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
+    domain = domain_fields(metric, adaptivity)
+    if not isinstance(tile_points, int) or tile_points < 1000:
+        raise ValueError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
+    surveys = client.gather(client.map(survey, paths, pure=False))
+    srcs = sources(paths, surveys)
+    cloud, boxes, shape = plan(srcs, tile_points)
+    r = _radius(radius, cloud)
+    total = sum(s.count for s in srcs)
+    spacing = math.sqrt(max(np.prod(np.sort(cloud.hi - cloud.lo)[1:]), 1e-300) / total)
+    job = Job(srcs, cloud, r, seed, domain, threads, tiles.first_halo(r, spacing))
+    steps = 2 * len(boxes)
+    done = 0
+    decisions = client.map(decide_tile, [job] * len(boxes), boxes, pure=False)
+    for _ in as_completed(decisions):
+        done += 1
+        if progress:
+            progress(done, steps)
+    parts = client.gather(client.map(seams, decisions, pure=False))
+    settled = tiles.settle([p for p in parts if p is not None], seed)
+    owned = [np.empty(0, np.uint64) if p is None else
+             settled[np.isin(settled, p.open_ids)] for p in parts]
+    out.mkdir(exist_ok=True)
+    ext = pathlib.Path(srcs[0].path).suffix.lower()
+    names = [str(out / f"tile_{k:05d}{ext}") for k in range(len(boxes))]
+    written = client.map(write_tile, [job] * len(boxes), decisions, owned, names, pure=False)
+    for _ in as_completed(written):
+        done += 1
+        if progress:
+            progress(done, steps)
+    results = client.gather(written)
+    index = {"inputs": [s.path for s in srcs], "points": total, "samples": 0, "radius": r, "seed": seed,
+             "metric": metric, "adaptivity": adaptivity, "tiles_per_axis": list(shape), "tiles": []}
+    for box, res in zip(boxes, results):
+        if res is None or res["count"] == 0:
+            continue
+        index["tiles"].append({"file": res["file"], "count": res["count"], "lo": box.lo.tolist(),
+                               "hi": box.hi.tolist(), "points_read": res["read"], "halo": res["halo"]})
+        index["samples"] += res["count"]
+    tmp = out / f".{INDEX}.partial-{os.getpid()}"
+    tmp.write_text(json.dumps(index, indent=1))
+    os.replace(tmp, out / INDEX)
+    return index
+
+
+def _radius(radius, cloud: tiles.Box) -> float:
+    if isinstance(radius, str) and radius.strip().endswith("%"):
+        pct = float(radius.strip()[:-1])
+        if not (math.isfinite(pct) and 0 < pct <= 100):
+            raise ValueError(f"radius must be a percentage from above 0 to 100 such as 1%, got {radius!r}")
+        return pct / 100 * float(np.linalg.norm(cloud.hi - cloud.lo))
+    return arrays._real(float(radius), "radius", positive=True)

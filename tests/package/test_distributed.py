@@ -1,0 +1,160 @@
+"""Many LAZ files sampled as one cloud on Dask: exactly the single-machine samples for several tilings and
+seeds, on a local cluster, on a real scheduler and workers (127.0.0.1), and with a worker killed in the
+middle; records bit-identical; files that cannot go together refused naming the file."""
+import json
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import time
+
+import laspy
+import numpy as np
+import pytest
+from dask.distributed import Client
+
+import geodesic_lod as gl
+from geodesic_lod import distributed as dist
+from geodesic_lod import point_files as pf
+from conftest import bumpy_sphere
+
+PARTS, RADIUS = 5, 0.5
+COMMAND = [sys.executable, "-m", "geodesic_lod"]
+
+
+def write_parts(folder, p, scales=(1e-4,) * 3, parts=PARTS):
+    """p split into LAZ files; each record's gps_time is its row in p (its id)."""
+    folder.mkdir(exist_ok=True)
+    for k, rows in enumerate(np.array_split(np.arange(len(p)), parts)):
+        header = laspy.LasHeader(point_format=6, version="1.4")
+        header.scales, header.offsets = list(scales), [0.0, 0.0, 0.0]
+        las = laspy.LasData(header)
+        las.x, las.y, las.z = p[rows, 0], p[rows, 1], p[rows, 2]
+        las.gps_time, las.intensity = rows.astype(float), rows % 4096
+        las.write(str(folder / f"part{k}.laz"))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def cloud(tmp_path_factory):
+    folder = write_parts(tmp_path_factory.mktemp("parts"), bumpy_sphere(24000) * 10)
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(PARTS)])
+    points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
+    return folder, points, records
+
+
+@pytest.fixture(scope="module")
+def client():
+    with dist.local_cluster(2) as cluster, Client(cluster) as c:
+        yield c
+
+
+def output_records(out):
+    index = json.loads((out / dist.INDEX).read_text())
+    assert sorted(p.name for p in out.iterdir()) == sorted([dist.INDEX] + [t["file"] for t in index["tiles"]])
+    tiles = [laspy.read(str(out / t["file"])).points.array for t in index["tiles"]]
+    assert [len(t) for t in tiles] == [t["count"] for t in index["tiles"]]
+    return index, np.concatenate(tiles)
+
+
+def check_equal(out, points, records, seed):
+    index, got = output_records(out)
+    whole = gl.poisson_lod(points, radius=RADIUS, seed=seed).indices
+    ids = got["gps_time"].astype(np.int64)
+    assert sorted(ids) == sorted(whole)
+    assert got.tobytes() == records[ids].tobytes()  # bit-identical records
+    assert index["samples"] == len(whole) and index["seed"] == seed and index["radius"] == RADIUS
+    return index
+
+
+@pytest.mark.parametrize("tile_points, seed", [(30000, 0), (6000, 0), (2500, 9)])
+def test_any_tiling_gives_the_single_machine_samples(cloud, client, tmp_path, tile_points, seed):
+    folder, points, records = cloud
+    index = dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, seed=seed, tile_points=tile_points,
+                           client=client, threads=1)
+    assert len(index["tiles"]) >= min(8, 24000 // tile_points)
+    check_equal(tmp_path / "lod", points, records, seed)
+
+
+def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
+    folder, points, records = cloud
+    scheduler_file = tmp_path / "scheduler.json"
+    dask = str(pathlib.Path(sys.executable).parent / "dask")
+    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+                               "--scheduler-file", str(scheduler_file)], stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.time() + 60
+        while not scheduler_file.exists() and time.time() < deadline:
+            time.sleep(0.2)
+        address = json.loads(scheduler_file.read_text())["address"]
+        assert address.startswith("tcp://127.0.0.1:")
+        for _ in range(2):
+            procs.append(subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--host", "127.0.0.1",
+                                           "--no-dashboard", "--no-nanny"], stderr=subprocess.DEVNULL))
+        with Client(address, timeout="30s") as c:
+            c.wait_for_workers(2, timeout=60)
+        r = subprocess.run(COMMAND + [str(folder / "part*.laz"), "-o", str(tmp_path / "lod"), "--radius",
+                                      str(RADIUS), "--scheduler", address, "--tile-points", "5000", "--threads", "1",
+                                      "--seed", "4"], capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stderr
+        assert "tiles, radius 0.5" in r.stderr
+        check_equal(tmp_path / "lod", points, records, 4)
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
+def test_a_worker_killed_in_the_middle_changes_nothing(cloud, tmp_path):
+    folder, points, records = cloud
+    with dist.local_cluster(2) as cluster, Client(cluster) as c:
+        pids = list(c.run(os.getpid).values())
+        killed = []
+
+        def kill_once(done, total):
+            if not killed:
+                os.kill(pids[0], signal.SIGKILL)
+                killed.append(done)
+        dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=2000, client=c, threads=1,
+                       progress=kill_once)
+        assert killed and pids[0] not in c.run(os.getpid).values()
+    check_equal(tmp_path / "lod", points, records, 0)
+
+
+def test_the_command_on_a_local_cluster(cloud, tmp_path):
+    folder, points, records = cloud
+    r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "lod"), "--radius", str(RADIUS), "--workers",
+                                  "2", "--tile-points", "8000", "-q"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    check_equal(tmp_path / "lod", points, records, 0)
+
+
+def test_files_that_cannot_go_together_are_named(client, tmp_path):
+    p = bumpy_sphere(3000)
+    a = write_parts(tmp_path / "a", p, parts=2)
+    write_parts(tmp_path / "b", p, scales=(1e-3,) * 3, parts=1)
+    os.replace(tmp_path / "b" / "part0.laz", a / "part9.laz")
+    with pytest.raises(pf.PointFileError, match="part9.laz: its point format, extra dimensions, scale"):
+        dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
+    (a / "part9.laz").write_bytes(b"LASF truncated")
+    with pytest.raises(pf.PointFileError, match="part9.laz: cannot be read as LAS"):
+        dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
+    assert not (tmp_path / "lod").exists()
+
+
+@pytest.mark.parametrize("args, problem", [
+    (["--count", "100", "--workers", "2"], "on a cluster give --radius"),
+    (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
+    (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
+])
+def test_bad_cluster_options_are_one_line_and_exit_2(cloud, tmp_path, args, problem):
+    folder = cloud[0]
+    r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "lod")] + args, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and problem in r.stderr, r.stderr
+    assert not (tmp_path / "lod").exists()
