@@ -252,8 +252,8 @@ def main(argv=None) -> int:
             bar.close()
         print(f"{PROG}: stopped", file=sys.stderr)
         return EXIT_STOPPED
-    except MemoryError:
-        _fail(f"{args.input[0]}: not enough memory for this input")
+    except MemoryError as e:
+        _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
     except OSError as e:  # writing: a full disk, a folder without permission
         print(f"{PROG}: error: {e.filename or args.output}: {e.strerror or e}", file=sys.stderr)
         return 1

@@ -17,6 +17,7 @@ import json
 import math
 import os
 import pathlib
+import time
 from dataclasses import dataclass, field
 from typing import Optional, Sequence
 
@@ -120,17 +121,28 @@ def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple
     return np.concatenate(pts), normals, np.concatenate(ids)
 
 
+def _las_chunks(path: str):
+    """(header, first row, records) of a LAS/LAZ file a chunk at a time; a file that ends early or
+    does not decode is named."""
+    import laspy
+    try:
+        with laspy.open(path) as f:
+            start = 0
+            for chunk in f.chunk_iterator(CHUNK):
+                yield f.header, start, chunk
+                start += len(chunk)
+            if start != f.header.point_count:
+                raise ValueError(f"holds {start} of the {f.header.point_count} points its header announces")
+    except Exception as e:  # laspy's and lazrs's errors have no common base
+        raise point_files.PointFileError(path, f"cannot be read as LAS: {e}") from None
+
+
 def _chunks(s: Source):
     """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
     if s.kind == "las":
-        import laspy
-        with laspy.open(s.path) as f:
-            start = 0
-            for chunk in f.chunk_iterator(CHUNK):
-                xyz = np.column_stack([np.asarray(chunk.x, float), np.asarray(chunk.y, float),
-                                       np.asarray(chunk.z, float)])
-                yield start, xyz, None
-                start += len(xyz)
+        for _, start, chunk in _las_chunks(s.path):
+            yield start, np.column_stack([np.asarray(chunk.x, float), np.asarray(chunk.y, float),
+                                          np.asarray(chunk.z, float)]), None
     else:
         src = point_files.read(s.path)
         yield 0, src.points, src.normals
@@ -148,13 +160,10 @@ def read_records(srcs: Sequence[Source], ids: np.ndarray):
         rows = (ids[order][lo:hi] - np.uint64(s.first_id)).astype(np.int64)
         if s.kind == "las":
             import laspy
-            with laspy.open(s.path) as f:
-                header = f.header
-                picked, start = [], 0
-                for chunk in f.chunk_iterator(CHUNK):
-                    a, b = np.searchsorted(rows, [start, start + len(chunk)])
-                    picked.append(chunk.array[rows[a:b] - start])
-                    start += len(chunk)
+            picked = []
+            for header, start, chunk in _las_chunks(s.path):
+                a, b = np.searchsorted(rows, [start, start + len(chunk)])
+                picked.append(chunk.array[rows[a:b] - start])
             records = np.concatenate(picked)
             if first is None:
                 first = laspy.LasData(header)
@@ -275,7 +284,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
     writes the LOD as tiles in `out_dir` with an index. `radius`: a length, or a string such as '1%' of
     the cloud's diagonal. `threads`: per task (None: all the worker machine's cores). Returns the index.
     `progress(done, total)` hears of finished tasks."""
-    from dask.distributed import as_completed
+    from dask.distributed import KilledWorker
 
     paths = expand_inputs(inputs)
     out = pathlib.Path(out_dir)
@@ -287,6 +296,17 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
     domain = domain_fields(metric, adaptivity)
     if not isinstance(tile_points, int) or tile_points < 1000:
         raise ValueError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
+    try:
+        return _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads,
+                          progress)
+    except KilledWorker as e:
+        raise MemoryError(f"a tile's task was lost with its worker several times ({e}): a worker's memory may be "
+                          f"too small for tiles of {tile_points} points; lower tile_points or give workers more "
+                          "memory") from None
+
+
+def _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
+    from dask.distributed import as_completed
     surveys = client.gather(client.map(survey, paths, pure=False))
     srcs = sources(paths, surveys)
     cloud, boxes, shape = plan(srcs, tile_points)
@@ -296,16 +316,20 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
     job = Job(srcs, cloud, r, seed, domain, threads, tiles.first_halo(r, spacing))
     steps = 2 * len(boxes)
     done = 0
+    clock = {"start": time.perf_counter()}
     decisions = client.map(decide_tile, [job] * len(boxes), boxes, pure=False)
     for _ in as_completed(decisions):
         done += 1
         if progress:
             progress(done, steps)
+    clock["decided"] = time.perf_counter()
     parts = client.gather(client.map(seams, decisions, pure=False))
     settled = tiles.settle([p for p in parts if p is not None], seed)
+    clock["settled"] = time.perf_counter()
     owned = [np.empty(0, np.uint64) if p is None else
              settled[np.isin(settled, p.open_ids)] for p in parts]
     out.mkdir(exist_ok=True)
+    (out / INDEX).unlink(missing_ok=True)  # a folder without an index is an unfinished one
     ext = pathlib.Path(srcs[0].path).suffix.lower()
     names = [str(out / f"tile_{k:05d}{ext}") for k in range(len(boxes))]
     written = client.map(write_tile, [job] * len(boxes), decisions, owned, names, pure=False)
@@ -314,8 +338,15 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
         if progress:
             progress(done, steps)
     results = client.gather(written)
+    clock["written"] = time.perf_counter()
     index = {"inputs": [s.path for s in srcs], "points": total, "samples": 0, "radius": r, "seed": seed,
-             "metric": metric, "adaptivity": adaptivity, "tiles_per_axis": list(shape), "tiles": []}
+             "metric": metric, "adaptivity": adaptivity, "tiles_per_axis": list(shape),
+             "open_points": int(sum(len(p.open_ids) for p in parts if p is not None)),
+             "seams_bytes": int(sum(p.nbytes() for p in parts if p is not None)),
+             "seconds": {"tiles": round(clock["decided"] - clock["start"], 3),
+                         "seams": round(clock["settled"] - clock["decided"], 3),
+                         "writing": round(clock["written"] - clock["settled"], 3)},
+             "tiles": []}
     for box, res in zip(boxes, results):
         if res is None or res["count"] == 0:
             continue
@@ -325,6 +356,12 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
     tmp = out / f".{INDEX}.partial-{os.getpid()}"
     tmp.write_text(json.dumps(index, indent=1))
     os.replace(tmp, out / INDEX)
+    # Tiles of an earlier run into this folder that this one did not write, and files left half-written
+    # by interrupted tasks.
+    kept = {t["file"] for t in index["tiles"]}
+    for f in out.iterdir():
+        if (f.name.startswith("tile_") and f.name not in kept) or (f.name.startswith(".tile_") and ".partial-" in f.name):
+            f.unlink(missing_ok=True)
     return index
 
 

@@ -59,6 +59,10 @@ class Decision:
     halo: float                #: the halo the decision was made with
     read: int                  #: points read (core and halo)
 
+    def nbytes(self) -> int:
+        return sum(a.nbytes for a in (self.samples, self.band_ids, self.band_status, self.open_ids, self.cover_offset,
+                                      self.coverers))
+
     def seams(self) -> "Decision":
         """The part settle needs (no samples): small, for sending to one place."""
         return Decision(np.empty(0, np.uint64), self.band_ids, self.band_status, self.open_ids, self.cover_offset,

@@ -147,6 +147,22 @@ def test_files_that_cannot_go_together_are_named(client, tmp_path):
     assert not (tmp_path / "lod").exists()
 
 
+def test_a_file_cut_short_is_named(client, tmp_path):
+    a = write_parts(tmp_path / "a", bumpy_sphere(20000), parts=2)
+    data = (a / "part1.laz").read_bytes()
+    (a / "part1.laz").write_bytes(data[: len(data) * 2 // 3])  # the header intact, points missing
+    with pytest.raises(pf.PointFileError, match="part1.laz: cannot be read as LAS"):
+        dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client, tile_points=5000)
+
+
+def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, tmp_path):
+    folder, points, records = cloud
+    for tile_points in (2500, 30000):
+        dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=tile_points, client=client,
+                       threads=1)
+        check_equal(tmp_path / "lod", points, records, 0)  # lists exactly the index's tiles
+
+
 @pytest.mark.parametrize("args, problem", [
     (["--count", "100", "--workers", "2"], "on a cluster give --radius"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
