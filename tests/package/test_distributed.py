@@ -163,6 +163,21 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
         check_equal(tmp_path / "lod", points, records, 0)  # lists exactly the index's tiles
 
 
+def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud, client, tmp_path):
+    from dask.distributed import KilledWorker
+
+    class Dying:  # the client as it answers when a tile's worker keeps dying (Dask's KilledWorker)
+        def __getattr__(self, name):
+            return getattr(client, name)
+
+        def map(self, fn, *args, **kw):
+            if fn is dist.decide_tile:
+                raise KilledWorker("decide_tile-0", "tcp://127.0.0.1:1", 3)
+            return client.map(fn, *args, **kw)
+    with pytest.raises(MemoryError, match="memory may be too small for tiles of 6000 points"):
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=Dying())
+
+
 @pytest.mark.parametrize("args, problem", [
     (["--count", "100", "--workers", "2"], "on a cluster give --radius"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
