@@ -300,10 +300,9 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
         return _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads,
                           progress)
     except KilledWorker as e:
-        raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: "
-                          f"a worker's memory may be "
-                          f"too small for tiles of {tile_points} points; lower tile_points or give workers more "
-                          "memory") from None
+        raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
+                          f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
+                          "or give workers more memory") from None
 
 
 def _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
