@@ -47,6 +47,24 @@ class PoissonTargetCount {
     double coveringRadius = 0;
   };
 
+  /// The next radius to try after a run at `r` gave `count`: inside the bracket
+  /// once there is one (above: the largest radius with count >= target, below:
+  /// the smallest with count < target; radius 0 where none yet), by the local
+  /// slope of log N over log r (about -2 on a surface), clamped so each step
+  /// makes progress. Public for searches whose runs are made elsewhere (tiles).
+  static double NextRadius(double aboveRadius, double aboveCount, double belowRadius, double belowCount,
+                           double count, double r, double target) {
+    if (aboveRadius > 0 && belowRadius > 0) {
+      const double la = std::log(aboveRadius), lb = std::log(belowRadius);
+      const double ca = std::log(aboveCount), cb = std::log(belowCount);
+      double f = ca > cb ? (ca - std::log(target)) / (ca - cb) : 0.5;
+      f = std::min(0.9, std::max(0.1, f));
+      return std::exp(la + f * (lb - la));
+    }
+    const double step = std::sqrt(count / target);  // N ~ 1/r^2
+    return r * std::min(8.0, std::max(1.0 / 8, step));
+  }
+
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
   /// FastMarching, EuclideanBall).
   template <class Scalar, class Search>
@@ -81,7 +99,7 @@ class PoissonTargetCount {
         below = std::move(t);
       }
       if (below.radius > 0 && below.radius <= above.radius * (1 + 1e-9)) break;  // the count jumps here
-      r = Next(above, below, double(c), r, target);
+      r = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, target);
     }
     const bool found = accepted.radius > 0;
     Trial& from = found ? accepted : above;
@@ -129,19 +147,6 @@ class PoissonTargetCount {
     return t;
   }
 
-  // The next radius: inside the bracket once there is one, by the local slope of
-  // log N over log r (about -2 on a surface), clamped so each step makes progress.
-  static double Next(const Trial& above, const Trial& below, double count, double r, double target) {
-    if (above.radius > 0 && below.radius > 0) {
-      const double la = std::log(above.radius), lb = std::log(below.radius);
-      const double ca = std::log(double(above.count)), cb = std::log(double(below.count));
-      double f = ca > cb ? (ca - std::log(target)) / (ca - cb) : 0.5;
-      f = std::min(0.9, std::max(0.1, f));
-      return std::exp(la + f * (lb - la));
-    }
-    const double step = std::sqrt(count / target);  // N ~ 1/r^2
-    return r * std::min(8.0, std::max(1.0 / 8, step));
-  }
 
   static std::vector<int> AllPoints(size_t n) {
     std::vector<int> all(n);

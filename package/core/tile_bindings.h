@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
+#include <vcg_ext/poisson_target_count.h>
 #include <vcg_ext/poisson_tile.h>
 #include "array_input.h"
 #include "call_support.h"
@@ -98,6 +99,9 @@ inline void BindTiles(nb::module_& m) {
   m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
         "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "threads"_a.none(), "progress"_a.none());
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
+  m.def("next_radius", &vcg_ext::PoissonTargetCount::NextRadius, "above_radius"_a, "above_count"_a,
+        "below_radius"_a, "below_count"_a, "count"_a, "radius"_a, "target"_a,
+        "the count search's next radius, as the single-machine search steps");
   m.attr("TILE_OUT") = int(Tile::Out);
   m.attr("TILE_IN") = int(Tile::In);
   m.attr("TILE_OPEN") = int(Tile::Open);

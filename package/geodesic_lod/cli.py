@@ -105,10 +105,12 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "
                    "is the same on any number")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary")
-    dask = p.add_argument_group("on a Dask cluster (with --radius): the same samples as on one machine, written "
-                                "as tiles with an index.json")
+    dask = p.add_argument_group("on a Dask cluster: the same samples as on one machine at the same radius, "
+                                "written as tiles with an index.json")
     dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
     dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
+    dask.add_argument("--tolerance", type=float, help="with --count or --rate, a Poisson set within this percentage "
+                      "of the count, untrimmed (default: 1; on one machine the count is exact)")
     dask.add_argument("--tile-points", type=int, default=2_000_000, help="points per tile, about "
                       "(default: %(default)s)")
     dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
@@ -125,8 +127,8 @@ def _on_cluster(args) -> bool:
 def _run_on_cluster(args, request: dict) -> int:
     """Many files, or a cloud too large for one machine: tiles on Dask workers."""
     from . import distributed
-    if set(request) != {"radius"} or args.fps:
-        raise ValueError("on a cluster give --radius (counts, rates, levels and --fps run on one machine)")
+    if "levels" in request or args.fps:
+        raise ValueError("on a cluster give --radius, --count or --rate (levels and --fps run on one machine)")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --workers (a cluster on this machine) or --scheduler (an existing one), not both")
     if args.workers is not None and args.workers < 1:
@@ -153,9 +155,10 @@ def _run_on_cluster(args, request: dict) -> int:
             if bar is not None:
                 bar.total = total
                 bar.update(done - bar.n)
-        index = distributed.lod_files(args.input, args.output, radius=request["radius"], seed=args.seed,
-                                      metric=args.metric, adaptivity=args.adaptivity, tile_points=args.tile_points,
-                                      client=client, threads=args.threads, progress=progress)
+        index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
+                                      adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
+                                      threads=args.threads, progress=progress,
+                                      tolerance=1.0 if args.tolerance is None else args.tolerance)
     finally:
         if bar is not None:
             bar.close()
@@ -192,6 +195,10 @@ def _request(args) -> dict:
     if args.fps and args.rate is None and args.count is None:
         raise ValueError("--fps takes --rate or --count" + (": --levels are nested already (coarser levels "
                          "are farthest-point prefixes)" if args.levels is not None else ""))
+    if args.tolerance is not None and (args.fps or (args.rate is None and args.count is None)):
+        raise ValueError("--tolerance goes with --count or --rate (Poisson-disk)")
+    if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
+        raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
     if args.levels is not None:
         return {"levels": _level_items(args.levels)}
     if args.rate is not None:
@@ -217,8 +224,10 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
     count = request.get("count") or max(1, int(arrays._core.percent_of(request["rate"], n)))
     if count > n:
         raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
-    sampler = arrays.fps_lod if args.fps else arrays.poisson_lod
-    return sampler(source.points, source.normals, count=count, **common), None
+    if args.fps:
+        return arrays.fps_lod(source.points, source.normals, count=count, **common), None
+    return arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
+                              **common), None
 
 
 def main(argv=None) -> int:

@@ -13,6 +13,7 @@ written last, lists the tiles, their bounds and counts, the radius, the paramete
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
@@ -277,13 +278,18 @@ def local_cluster(workers: int, memory_limit="auto"):
                         host="127.0.0.1", dashboard_address="127.0.0.1:0", silence_logs=40)
 
 
-def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
-              adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000,
-              client=None, threads: Optional[int] = None, progress=None) -> dict:
+def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
+              rate: Optional[float] = None, tolerance: float = 1.0, max_runs: int = 12, seed: int = 0,
+              metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays._DOMAIN.adaptivity,
+              tile_points: int = 2_000_000, client=None, threads: Optional[int] = None, progress=None) -> dict:
     """Samples the files as one cloud on a Dask client (its workers do the tiles; see local_cluster) and
-    writes the LOD as tiles in `out_dir` with an index. `radius`: a length, or a string such as '1%' of
-    the cloud's diagonal. `threads`: per task (None: all the worker machine's cores). Returns the index.
-    `progress(done, total)` hears of finished tasks."""
+    writes the LOD as tiles in `out_dir` with an index. Give `radius` (a length, or a string such as
+    '1%' of the cloud's diagonal): the samples are exactly poisson_lod's at that radius. Or give `count`
+    or `rate` (a percentage of the points): the radius is searched as poisson_lod's count search
+    steps, with the counts summed over the tiles, until a Poisson set lies within `tolerance` percent
+    of the count (or after `max_runs` runs, the nearest); there is no trim to the exact count, which
+    would need the whole set in one place. `threads`: per task (None: all the worker machine's
+    cores). Returns the index. `progress(done, total)` hears of finished tasks."""
     from dask.distributed import KilledWorker
 
     paths = expand_inputs(inputs)
@@ -292,60 +298,141 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius, seed: int = 0, metric: 
         raise point_files.PointFileError(out, "exists and is not a folder")
     if not out.parent.resolve().is_dir():
         raise point_files.PointFileError(out, f"the folder {out.parent} does not exist")
+    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
+    if len(given) != 1:
+        raise ValueError("give exactly one of radius, count or rate" + (f" (got {' and '.join(given)})" if given
+                                                                          else ""))
+    tolerance = arrays._real(tolerance, "tolerance", positive=True)
+    max_runs = arrays._integer(max_runs, "max_runs", 1)
     seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     if not isinstance(tile_points, int) or tile_points < 1000:
         raise ValueError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
     try:
-        return _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads,
-                          progress)
+        return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, tolerance=tolerance,
+                                           max_runs=max_runs), seed, metric, adaptivity, domain, tile_points,
+                          client, threads, progress)
     except KilledWorker as e:
         raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
 
 
-def _lod_files(paths, out, radius, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
+@dataclass
+class _Run:
+    """One Poisson run over all tiles at a radius: the tiles' decisions (kept on the workers) and the seams."""
+    radius: float
+    decisions: list
+    parts: list
+    settled: np.ndarray
+    count: int
+    seconds: dict  #: tiles (their decisions) and seams (settling them)
+
+
+class _Ticks:
+    def __init__(self, progress):
+        self.progress, self.done, self.total = progress, 0, 0
+
+    def expect(self, n):
+        self.total += n
+
+    def __call__(self):
+        self.done += 1
+        if self.progress:
+            self.progress(self.done, self.total)
+
+
+def sample_count(d: Optional[tiles.Decision]) -> int:
+    return 0 if d is None else len(d.samples)
+
+
+def _poisson_run(client, job: Job, boxes, ticks: _Ticks) -> _Run:
+    from dask.distributed import as_completed
+    ticks.expect(len(boxes))
+    start = time.perf_counter()
+    decisions = client.map(decide_tile, [job] * len(boxes), boxes, pure=False)
+    for _ in as_completed(decisions):
+        ticks()
+    decided = time.perf_counter()
+    parts = client.gather(client.map(seams, decisions, pure=False))
+    settled = tiles.settle([p for p in parts if p is not None], job.seed)
+    count = sum(client.gather(client.map(sample_count, decisions, pure=False))) + len(settled)
+    return _Run(job.radius, decisions, parts, settled, int(count),
+                {"tiles": decided - start, "seams": time.perf_counter() - decided})
+
+
+def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: _Ticks,
+                  spacing: float) -> tuple:
+    """poisson_lod's count search, each run over all tiles: (the accepted or nearest run, runs made)."""
+    lo, hi = target * (1 - tolerance / 100), target * (1 + tolerance / 100)
+    above_r, above_c, below_r, below_c = 0.0, float(sum(s.count for s in job.srcs)), 0.0, 0.0
+    r = float(np.linalg.norm(job.cloud.hi - job.cloud.lo)) / math.sqrt(target)
+    best, runs, spent = None, 0, {"tiles": 0.0, "seams": 0.0}
+    for runs in range(1, max_runs + 1):
+        run = _poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
+                           ticks)
+        spent = {k: spent[k] + run.seconds[k] for k in spent}
+        if best is None or abs(run.count - target) < abs(best.count - target):
+            best = run
+        if lo <= run.count <= hi:
+            break
+        if run.count >= target:
+            if r > above_r:
+                above_r, above_c = r, float(run.count)
+        elif below_r == 0 or r < below_r:
+            below_r, below_c = r, float(run.count)
+        if below_r > 0 and below_r <= above_r * (1 + 1e-9):
+            break  # the count jumps across the target here
+        r = arrays._core.next_radius(above_r, above_c, below_r, below_c, float(run.count), r, float(target))
+    best.seconds = spent  # every run's, not only the one kept
+    return best, runs
+
+
+def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
     from dask.distributed import as_completed
     surveys = client.gather(client.map(survey, paths, pure=False))
     srcs = sources(paths, surveys)
     cloud, boxes, shape = plan(srcs, tile_points)
-    r = _radius(radius, cloud)
     total = sum(s.count for s in srcs)
     spacing = math.sqrt(max(np.prod(np.sort(cloud.hi - cloud.lo)[1:]), 1e-300) / total)
-    job = Job(srcs, cloud, r, seed, domain, threads, tiles.first_halo(r, spacing))
-    steps = 2 * len(boxes)
-    done = 0
-    clock = {"start": time.perf_counter()}
-    decisions = client.map(decide_tile, [job] * len(boxes), boxes, pure=False)
-    for _ in as_completed(decisions):
-        done += 1
-        if progress:
-            progress(done, steps)
-    clock["decided"] = time.perf_counter()
-    parts = client.gather(client.map(seams, decisions, pure=False))
-    settled = tiles.settle([p for p in parts if p is not None], seed)
-    clock["settled"] = time.perf_counter()
+    ticks = _Ticks(progress)
+    search = {}
+    if size["radius"] is not None:
+        r = _radius(size["radius"], cloud)
+        job = Job(srcs, cloud, r, seed, domain, threads, tiles.first_halo(r, spacing))
+        run = _poisson_run(client, job, boxes, ticks)
+    else:
+        if size["count"] is not None:
+            target = arrays._integer(size["count"], "count", 1, total, " (the number of points)")
+        else:
+            pct = arrays._real(size["rate"], "rate", positive=True)
+            if pct > 100:
+                raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {pct}")
+            target = int(max(1, arrays._core.percent_of(pct, total)))
+        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
+        run, runs = _count_search(client, job, boxes, target, size["tolerance"], size["max_runs"], ticks, spacing)
+        job = dataclasses.replace(job, radius=run.radius)
+        search = {"target": target, "tolerance_percent": size["tolerance"], "runs": runs}
+    parts, settled = run.parts, run.settled
     owned = [np.empty(0, np.uint64) if p is None else
              settled[np.isin(settled, p.open_ids)] for p in parts]
     out.mkdir(exist_ok=True)
     (out / INDEX).unlink(missing_ok=True)  # a folder without an index is an unfinished one
     ext = pathlib.Path(srcs[0].path).suffix.lower()
     names = [str(out / f"tile_{k:05d}{ext}") for k in range(len(boxes))]
-    written = client.map(write_tile, [job] * len(boxes), decisions, owned, names, pure=False)
+    ticks.expect(len(boxes))
+    start = time.perf_counter()
+    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, pure=False)
     for _ in as_completed(written):
-        done += 1
-        if progress:
-            progress(done, steps)
+        ticks()
     results = client.gather(written)
-    clock["written"] = time.perf_counter()
-    index = {"inputs": [s.path for s in srcs], "points": total, "samples": 0, "radius": r, "seed": seed,
-             "metric": metric, "adaptivity": adaptivity, "tiles_per_axis": list(shape),
+    writing = time.perf_counter() - start
+    index = {"inputs": [s.path for s in srcs], "points": total, "samples": 0, "radius": run.radius, "seed": seed,
+             "metric": metric, "adaptivity": adaptivity, **search, "tiles_per_axis": list(shape),
              "open_points": int(sum(len(p.open_ids) for p in parts if p is not None)),
              "seams_bytes": int(sum(p.nbytes() for p in parts if p is not None)),
-             "seconds": {"tiles": round(clock["decided"] - clock["start"], 3),
-                         "seams": round(clock["settled"] - clock["decided"], 3),
-                         "writing": round(clock["written"] - clock["settled"], 3)},
+             "seconds": {"tiles": round(run.seconds["tiles"], 3), "seams": round(run.seconds["seams"], 3),
+                         "writing": round(writing, 3)},
              "tiles": []}
     for box, res in zip(boxes, results):
         if res is None or res["count"] == 0:

@@ -77,6 +77,19 @@ def test_any_tiling_gives_the_single_machine_samples(cloud, client, tmp_path, ti
     check_equal(tmp_path / "lod", points, records, seed)
 
 
+@pytest.mark.parametrize("size", [{"count": 2000}, {"rate": 5}])
+def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client, tmp_path, size):
+    folder, points, records = cloud
+    index = dist.lod_files([str(folder)], tmp_path / "lod", **size, tolerance=1.0, tile_points=6000, client=client,
+                           threads=1)
+    target = size.get("count") or int(gl._core.percent_of(size["rate"], len(points)))
+    assert index["target"] == target and index["runs"] >= 1
+    assert abs(index["samples"] - target) <= 0.01 * target
+    index, got = output_records(tmp_path / "lod")  # the Poisson set of the radius found, as on one machine
+    whole = gl.poisson_lod(points, radius=index["radius"]).indices
+    assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)
+
+
 def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
     folder, points, records = cloud
     scheduler_file = tmp_path / "scheduler.json"
@@ -179,7 +192,9 @@ def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud
 
 
 @pytest.mark.parametrize("args, problem", [
-    (["--count", "100", "--workers", "2"], "on a cluster give --radius"),
+    (["--levels", "50%,10%", "--workers", "2"], "levels and --fps run on one machine"),
+    (["--count", "100", "--fps", "--workers", "2"], "levels and --fps run on one machine"),
+    (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count or --rate"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
 ])
