@@ -38,7 +38,8 @@ class FarthestPoint {
   /// Propagator: `Lower(int src, std::vector<Scalar>& dist, F f)` lowering
   /// dist for a new source and calling f(i, d) for each point it lowers
   /// (BoundedDijkstra). Each step costs in proportion to the points whose
-  /// distance drops (the new sample's region), plus a heap of the changes.
+  /// distance drops (the new sample's region), plus rescans of the few older
+  /// regions whose farthest point the new region took.
   template <class Scalar, class Propagator>
   static Result Compute(size_t n, Propagator& prop, const Param& p, Progress progress = Progress(nullptr)) {
     const size_t m = p.candidates ? p.candidates->size() : n;
@@ -53,13 +54,7 @@ class FarthestPoint {
     std::vector<char> chosen(n, p.candidates ? kBarred : kFree);
     if (p.candidates)
       for (int c : *p.candidates) chosen[c] = kFree;
-    // Max-heap of (distance, free point); entries go stale when a distance drops.
-    typedef std::pair<Scalar, int> Entry;
-    std::vector<Entry> heap;
-    heap.reserve(2 * m);
-    for (size_t i = 0; i < n; ++i)
-      if (chosen[i] == kFree) heap.emplace_back(inf, int(i));
-    std::make_heap(heap.begin(), heap.end());
+    Farthest<Scalar> farthest(chosen, r.owner, dist);
     const size_t first = size_t(std::mt19937_64(p.seed)() % m);
     int next = p.candidates ? (*p.candidates)[first] : int(first);
     for (size_t k = 0; k < p.sampleNum; ++k) {
@@ -67,14 +62,13 @@ class FarthestPoint {
       const int id = int(k);
       r.samples.push_back(next);
       chosen[next] = kChosen;
-      prop.Lower(next, dist, [&](int i, Scalar d) {
+      prop.Lower(next, dist, [&](int i, Scalar) {
+        const int from = r.owner[i];
         r.owner[i] = id;
-        if (chosen[i] != kFree) return;
-        heap.emplace_back(d, i);
-        std::push_heap(heap.begin(), heap.end());
+        farthest.Moved(i, from, id);
       });
-      if (heap.size() > 4 * m) Rebuild(heap, dist, chosen);
-      next = Top(heap, dist, chosen);
+      farthest.Settle(id);
+      next = farthest.Top();
       if ((k & 63) == 0) progress(k, p.sampleNum, "Farthest point sampling");
     }
     r.coveringRadius.push_back(next < 0 ? 0.0 : double(dist[next]));
@@ -84,24 +78,97 @@ class FarthestPoint {
 
  private:
   enum : char { kFree = 0, kChosen = 1, kBarred = 2 };
-  // The farthest free point (-1 when none is left): drops stale
-  // entries and chosen points from the top. A chosen point can tie for the
-  // top when the rest coincide with samples (distance 0).
-  template <class Entry, class Scalar>
-  static int Top(std::vector<Entry>& heap, const std::vector<Scalar>& dist, const std::vector<char>& chosen) {
-    while (!heap.empty() && (heap.front().first != dist[heap.front().second] || chosen[heap.front().second] != kFree)) {
-      std::pop_heap(heap.begin(), heap.end());
-      heap.pop_back();
+
+  // The farthest free point: the largest (distance, index) over the free
+  // points, so ties go to the larger index. Points not reached yet are
+  // infinitely far: the largest such index comes first. Every reached point
+  // belongs to the region of its nearest sample; each region keeps its top,
+  // recomputed only when a newer region takes that top away, and a max-heap
+  // holds the regions' tops.
+  template <class Scalar>
+  class Farthest {
+   public:
+    Farthest(const std::vector<char>& chosen, const std::vector<int>& owner, const std::vector<Scalar>& dist)
+        : chosen_(chosen), owner_(owner), dist_(dist), unreached_(int64_t(chosen.size()) - 1) {}
+
+    /// Point i moved from region `from` (-1: unreached) to region k.
+    void Moved(int i, int from, int k) {
+      if (from >= 0 && top_[size_t(from)].second == i) dirty_.push_back(from);
+      if (size_t(k) >= members_.size()) {
+        members_.resize(size_t(k) + 1);
+        top_.resize(size_t(k) + 1, Entry(-std::numeric_limits<Scalar>::infinity(), -1));
+        stamp_.resize(size_t(k) + 1, 0);
+      }
+      if (chosen_[size_t(i)] != kFree) return;
+      members_[size_t(k)].push_back(i);
+      ++stored_;
     }
-    return heap.empty() ? -1 : heap.front().second;
-  }
-  template <class Entry, class Scalar>
-  static void Rebuild(std::vector<Entry>& heap, const std::vector<Scalar>& dist, const std::vector<char>& chosen) {
-    heap.clear();
-    for (size_t i = 0; i < dist.size(); ++i)
-      if (chosen[i] == kFree) heap.emplace_back(dist[i], int(i));
-    std::make_heap(heap.begin(), heap.end());
-  }
+    /// After region k was filled: its top, and the tops of the regions it robbed.
+    void Settle(int k) {
+      Rescan(k);  // from the final distances, however often a point was lowered
+      Publish(k);
+      std::sort(dirty_.begin(), dirty_.end());
+      dirty_.erase(std::unique(dirty_.begin(), dirty_.end()), dirty_.end());
+      for (int o : dirty_)
+        if (o != k) {
+          Rescan(o);
+          Publish(o);
+        }
+      dirty_.clear();
+      if (stored_ > 4 * chosen_.size() + 1024)  // lists hold points long gone: compact them all
+        for (size_t o = 0; o < members_.size(); ++o) Rescan(int(o));
+    }
+    /// The farthest free point, -1 when none is left.
+    int Top() {
+      while (unreached_ >= 0 && (owner_[size_t(unreached_)] >= 0 || chosen_[size_t(unreached_)] != kFree)) --unreached_;
+      if (unreached_ >= 0) return int(unreached_);
+      while (!heap_.empty() && heap_.front().stamp != stamp_[size_t(heap_.front().region)]) {
+        std::pop_heap(heap_.begin(), heap_.end());
+        heap_.pop_back();
+      }
+      return heap_.empty() ? -1 : heap_.front().top.second;
+    }
+
+   private:
+    typedef std::pair<Scalar, int> Entry;
+    struct Published {
+      Entry top;
+      int region;
+      uint32_t stamp;
+      bool operator<(const Published& o) const { return top < o.top; }
+    };
+    void Publish(int k) {
+      const uint32_t s = ++stamp_[size_t(k)];
+      if (top_[size_t(k)].second < 0) return;
+      heap_.push_back({top_[size_t(k)], k, s});
+      std::push_heap(heap_.begin(), heap_.end());
+    }
+    // Drops the points that left region o or were chosen, and finds its top.
+    void Rescan(int o) {
+      std::vector<int>& list = members_[size_t(o)];
+      Entry top(-std::numeric_limits<Scalar>::infinity(), -1);
+      size_t kept = 0;
+      for (int i : list)
+        if (owner_[size_t(i)] == o && chosen_[size_t(i)] == kFree) {
+          list[kept++] = i;
+          top = std::max(top, Entry(dist_[size_t(i)], i));
+        }
+      stored_ -= list.size() - kept;
+      list.resize(kept);
+      top_[size_t(o)] = top;
+    }
+
+    const std::vector<char>& chosen_;
+    const std::vector<int>& owner_;
+    const std::vector<Scalar>& dist_;
+    int64_t unreached_;                       ///< points above it are all reached or not free
+    std::vector<std::vector<int>> members_;  ///< per region: its free points (and some that left)
+    std::vector<Entry> top_;                  ///< per region: its farthest free point
+    std::vector<uint32_t> stamp_;             ///< per region: the version of its published top
+    std::vector<Published> heap_;
+    std::vector<int> dirty_;
+    size_t stored_ = 0;
+  };
 };
 
 }  // namespace vcg_ext
