@@ -8,7 +8,8 @@ rugged, sparse where it is smooth. Arrays in, indices out::
     small = points[lod.indices]
 
 ``geodesic_lod.pymeshlab`` adds the MeshLab filters to pymeshlab; the command ``geodesic-lod``
-samples PLY, LAS/LAZ and .npy files.
+samples PLY, LAS/LAZ and .npy files; ``geodesic_lod.distributed`` samples files larger than one
+machine on a Dask cluster, with the same samples (``geodesic_lod.tiles`` holds the tile steps).
 """
 from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVariation, PoissonLod, fps_lod,
                      level_counts, lod_pyramid, normal_variation, poisson_lod)
