@@ -21,23 +21,14 @@ CHILD = textwrap.dedent("""
     import json, sys, time
     import numpy as np
     sys.path.insert(0, sys.argv[4])
+    from host import peak_rss_mb, rss_mb
     from make_scan import make_scan
-
-    def hwm():  # kB
-        for line in open("/proc/self/status"):
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1])
-
-    def rss():
-        for line in open("/proc/self/status"):
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
 
     front, n, rate = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
     points, normals = make_scan(n, seed=1, normals=True)
     if front == "array API":
         import geodesic_lod as gl
-        start = rss()
+        start = rss_mb()
         t = time.perf_counter()
         lod = gl.poisson_lod(points, normals, rate=rate)
         count = len(lod.indices)
@@ -48,13 +39,14 @@ CHILD = textwrap.dedent("""
         ms.add_mesh(pymeshlab.Mesh(vertex_matrix=points.astype(np.float64),
                                    v_normals_matrix=normals.astype(np.float64)))
         del points, normals
-        start = rss()
+        start = rss_mb()
         t = time.perf_counter()
         count = ms.generate_geodesic_poisson_lod(samplerate=rate)["sample_num"]
     seconds = time.perf_counter() - t
+    above = peak_rss_mb() - start
     print(json.dumps({"front": front, "points": n, "samples": count, "seconds": round(seconds, 2),
-                      "held_mb": round(start / 1024), "peak_above_mb": round((hwm() - start) / 1024),
-                      "bytes_per_point": round((hwm() - start) * 1024 / n)}))
+                      "held_mb": round(start), "peak_above_mb": round(above),
+                      "bytes_per_point": round(above * 2**20 / n)}))
 """)
 
 

@@ -11,9 +11,7 @@ usage: bench/cluster_scale.py [--points 100000000] [--files-per-side 10] [--tile
 """
 import argparse
 import json
-import os
 import pathlib
-import resource
 import shutil
 import time
 
@@ -22,10 +20,9 @@ import numpy as np
 from dask.distributed import Client
 
 from geodesic_lod import distributed as dist
+from host import ROOT, peak_rss_mb
 from make_scan import _height
 from results import DOCS, publish
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def write_grid(folder: pathlib.Path, n: int, side: int, seed: int = 0):
@@ -50,16 +47,12 @@ def write_grid(folder: pathlib.Path, n: int, side: int, seed: int = 0):
     done.write_text(f"{n} {side} {seed}")
 
 
-def peak_mb():
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-
-
 def run(folder, out, workers, memory, tile_points, radius):
     with dist.local_cluster(workers, memory) as cluster, Client(cluster) as client:
         t = time.perf_counter()
         index = dist.lod_files([str(folder)], out, radius=radius, tile_points=tile_points, client=client, threads=1)
         seconds = time.perf_counter() - t
-        peaks = sorted(client.run(peak_mb).values())
+        peaks = sorted(client.run(peak_rss_mb).values())  # local workers start with our sys.path
     shutil.rmtree(out)
     read = sum(t["points_read"] for t in index["tiles"])
     return {"workers": workers, "points": index["points"], "samples": index["samples"], "tiles": len(index["tiles"]),

@@ -9,19 +9,16 @@ import os
 import pathlib
 import time
 
-import pymeshlab
-
+from host import SHARED_DATA, add_plugin_option, load_plugin
 from results import publish
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("model", nargs="?", default=str(ROOT.parent / "shared" / "data" / "bunny_35k.ply"))
-    ap.add_argument("--plugin", default=str(ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+    ap.add_argument("model", nargs="?", default=str(SHARED_DATA / "bunny_35k.ply"))
+    add_plugin_option(ap)
     a = ap.parse_args()
-    pymeshlab.load_plugin(a.plugin)
+    pymeshlab = load_plugin(a.plugin)
     rows = []
     for rate in (50, 25, 10, 5, 2):
         ms = pymeshlab.MeshSet()

@@ -6,15 +6,13 @@ usage: bench/far_outlier.py [--sizes 200000,1000000] [--plugin PATH]
 """
 import argparse
 import os
-import pathlib
 import time
 
 import numpy as np
 import pymeshlab
 
+from host import add_plugin_option, load_plugin
 from results import publish
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def sphere(n):
@@ -32,9 +30,9 @@ def timed(ms, **params):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sizes", default="200000,1000000")
-    ap.add_argument("--plugin", default=str(ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+    add_plugin_option(ap)
     a = ap.parse_args()
-    pymeshlab.load_plugin(a.plugin)
+    load_plugin(a.plugin)
     rows = []
     for n in (int(s) for s in a.sizes.split(",")):
         pts = sphere(n)

@@ -6,20 +6,12 @@ usage: bench/poisson_vs_meshlab.py [--points N] [--plugin PATH] [--with-normals]
 Peak memory is read from the kernel (VmHWM) after each step; ours runs first.
 """
 import argparse
-import pathlib
 import time
 
 import numpy as np
 import pymeshlab
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-
-
-def peak_rss_mb():
-    for line in open("/proc/self/status"):
-        if line.startswith("VmHWM:"):
-            return int(line.split()[1]) / 1024
-    return float("nan")
+from host import add_plugin_option, load_plugin, peak_rss_mb
 
 
 def scan_like_cloud(n, seed=0):
@@ -36,12 +28,12 @@ def scan_like_cloud(n, seed=0):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--points", type=int, default=1_000_000)
-    ap.add_argument("--plugin", default=str(ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+    add_plugin_option(ap)
     ap.add_argument("--with-normals", action="store_true", help="give the cloud normals (skips estimation)")
     ap.add_argument("--radius-pct", type=float, default=0.5)
     args = ap.parse_args()
 
-    pymeshlab.load_plugin(args.plugin)
+    load_plugin(args.plugin)
     pts = scan_like_cloud(args.points)
     ms = pymeshlab.MeshSet()
     if args.with_normals:

@@ -11,8 +11,9 @@ import time
 import numpy as np
 import pymeshlab
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-DEFAULT = ROOT.parent / "shared" / "data" / "bunny_scans_362k.ply"
+from host import SHARED_DATA, add_plugin_option, load_plugin
+
+DEFAULT = SHARED_DATA / "bunny_scans_362k.ply"
 
 
 def load(ms, path):
@@ -30,9 +31,9 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("model", nargs="?", default=str(DEFAULT))
     ap.add_argument("--levels", default="50%,25%,10%,5%,2%")
-    ap.add_argument("--plugin", default=str(ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"))
+    add_plugin_option(ap)
     a = ap.parse_args()
-    pymeshlab.load_plugin(a.plugin)
+    load_plugin(a.plugin)
     ms = pymeshlab.MeshSet()
     name = load(ms, a.model)
     n = ms.current_mesh().vertex_number()

@@ -5,106 +5,34 @@ a reconstruction-free measure. Writes docs/benchmarks.md and its plots (bench/qu
 
 usage: bench/run_quality [--quick] [--no-tuning] [--report-only] [--fresh]
 Every run is cached in out/bench/runs/ (one JSON file per model, method and rate), keyed by
-everything that changes its result (run_key): a second call only runs what is missing or stale,
-and the report leaves out stale rows. --fresh clears the cache first.
+everything that changes its result (bench/quality_cache.py): a second call only runs what is missing
+or stale, and the report leaves out stale rows. --fresh clears the cache first. What is run, and with
+which parameters, is in bench/quality_config.py.
 """
 import argparse
-import hashlib
 import json
 import os
-import pathlib
 import shutil
 import subprocess
-import sys
 import time
 
 import numpy as np
 import pymeshlab
 from scipy.spatial import cKDTree
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-DATA = ROOT.parent / "shared" / "data"
-OUT = ROOT / "out" / "bench"
-PLUGIN = ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"
-PEER_TOOL = ROOT / "build" / "bench-peers" / "peer_simplify"
-
-# dragon_100k rather than the 437k-vertex dragon: the raw bunny scans (362k points) already
-# take half of the run.
-MODELS = {
-    "bunny": "bunny_35k.ply",
-    "dragon": "dragon_100k.ply",
-    "bunny scans": "bunny_scans_362k.ply",
-    "terrain": "terrain_n44w072_crop301x301.ply",
-}
-RATES = [0.5, 0.25, 0.10, 0.05, 0.02]
-QUICK_MODELS = ["bunny", "terrain"]
-QUICK_RATES = [0.10, 0.02]
-COUNT_TOLERANCE = 0.02  # searched counts land within 2% of the target
-
-# The same reconstruction for every method. threads=1: the machine is shared, and one
-# thread keeps its time steady.
-RECONSTRUCTION = dict(depth=8, preclean=True, threads=1)
-PLANE_NEIGHBOURS = 8  # LOD points per plane of the reconstruction-free measure
-WLOP_MAX_SAMPLES = 10000  # WLOP costs seconds per thousand samples: larger LODs are not run
-MESHLAB_RADIUS_VARIANCE = 3.0  # adaptive Poisson: radii from r to 3 r by curvature
-DENSITY = "Curvature-density geodesic"
-EQ3 = "Weighted geodesic (eq. 3)"
-UNWEIGHTED = "Geodesic (unweighted)"
-DEFAULT_ADAPTIVITY, DEFAULT_EXPONENT = 3.0, 1.0  # the plugin's defaults
-
-# Tuning sweeps (ours, Poisson), at the rates where the weighting matters most.
-TUNE_ADAPTIVITY = [1.0, 3.0, 10.0, 30.0, 100.0]
-TUNE_EXPONENT = [0.5, 1.0, 2.0]
-TUNE_RATES = [0.10, 0.05, 0.02]
-
-
-def ours_poisson(metric, **params):
-    return lambda ctx, target: ctx.ours_poisson(target, metric=metric, **params)
-
-
-# method key -> (label, runner(ctx, target) -> LOD dict)
-METHODS = {
-    "ours_density": (f"ours, Poisson, curvature-density (a = {DEFAULT_ADAPTIVITY:g})",
-                     ours_poisson(DENSITY, adaptivity=DEFAULT_ADAPTIVITY)),
-    "ours_eq3": (f"ours, Poisson, weighted eq. 3 (c = {DEFAULT_EXPONENT:g})",
-                 ours_poisson(EQ3, curvatureexponent=DEFAULT_EXPONENT)),
-    "ours_unweighted": ("ours, Poisson, unweighted geodesic", ours_poisson(UNWEIGHTED)),
-    "ours_fps": (f"ours, FPS, curvature-density (a = {DEFAULT_ADAPTIVITY:g})",
-                 lambda ctx, target: ctx.ours_fps(target, metric=DENSITY, adaptivity=DEFAULT_ADAPTIVITY)),
-    "meshlab_simplify": ("MeshLab point cloud simplification", lambda ctx, target: ctx.meshlab_simplify(target)),
-    "meshlab_adaptive": ("MeshLab adaptive Poisson (curvature)", lambda ctx, target: ctx.meshlab_adaptive(target)),
-    "cgal_hierarchy": ("CGAL hierarchy", lambda ctx, target: ctx.peer("cgal_hierarchy", target)),
-    "cgal_wlop": ("CGAL WLOP", lambda ctx, target: ctx.peer("cgal_wlop", target)),
-    "cgal_grid": ("CGAL grid", lambda ctx, target: ctx.peer("cgal_grid", target)),
-    "open3d_fps": ("Open3D farthest point", lambda ctx, target: ctx.peer("open3d_fps", target)),
-    "open3d_voxel": ("Open3D voxel", lambda ctx, target: ctx.peer("open3d_voxel", target)),
-    "random": ("uniform random", lambda ctx, target: ctx.random(target)),
-}
-TUNING = {
-    **{f"tune_a{a:g}": (f"curvature-density, a = {a:g}", ours_poisson(DENSITY, adaptivity=a))
-       for a in TUNE_ADAPTIVITY if a != DEFAULT_ADAPTIVITY},
-    **{f"tune_c{c:g}": (f"eq. 3, c = {c:g}", ours_poisson(EQ3, curvatureexponent=c))
-       for c in TUNE_EXPONENT if c != DEFAULT_EXPONENT},
-}
-
-# The spread over seeds: two more seeds of ours and of random, at the tuning rates on the two
-# smaller models (seed 0 is the main run).
-SEEDS = [1, 2]
-SEED_MODELS = ["bunny", "dragon"]
-SEED_RUNS = {
-    **{f"seed{s}_ours_density": (f"ours, curvature-density, seed {s}",
-                                 ours_poisson(DENSITY, adaptivity=DEFAULT_ADAPTIVITY, seed=s)) for s in SEEDS},
-    **{f"seed{s}_random": (f"uniform random, seed {s}", lambda ctx, target, s=s: ctx.random(target, seed=s))
-       for s in SEEDS},
-}
-ALL_RUNS = {**METHODS, **TUNING, **SEED_RUNS}
+import quality_report
+from host import PEER_TOOL, PLUGIN, load_plugin
+from quality_cache import ALL_POINTS, RunCache, run_context
+from quality_config import (ALL_RUNS, COUNT_TOLERANCE, DATA, MESHLAB_RADIUS_VARIANCE, METHODS, MODELS, OUT,
+                            PLANE_NEIGHBOURS, QUICK_MODELS, QUICK_RATES, RATES, RECONSTRUCTION, RUNS, SEED_MODELS,
+                            SEED_RUNS, TUNE_RATES, TUNING, WLOP_MAX_SAMPLES)
 
 
 class Model:
     """One shared scan with normals (layer 0 of a MeshSet), and the samplers run on it."""
 
-    def __init__(self, key):
-        self.key = key
+    def __init__(self, key, peer_tool=PEER_TOOL):
+        self.key, self.peer_tool = key, peer_tool
         self.path = OUT / "inputs" / (key.replace(" ", "_") + ".ply")
         self.path.parent.mkdir(parents=True, exist_ok=True)
         if not self.path.is_file():
@@ -207,7 +135,7 @@ class Model:
             return None
         out = OUT / "tmp" / f"{self.path.stem}_{method}.ply"  # one file per model and method
         out.parent.mkdir(parents=True, exist_ok=True)
-        proc = subprocess.run([str(PEER_TOOL), str(self.path), str(out), method, str(target),
+        proc = subprocess.run([str(self.peer_tool), str(self.path), str(out), method, str(target),
                                "--tolerance", str(COUNT_TOLERANCE)], capture_output=True, text=True, check=True)
         info = json.loads(proc.stdout.strip().splitlines()[-1])
         ms = pymeshlab.MeshSet()
@@ -271,7 +199,8 @@ def reconstruction_error(model, lod):
 
 
 def evaluate(model, method, target):
-    lod = ALL_RUNS[method][1](model, target)
+    run = ALL_RUNS[method]
+    lod = getattr(model, run.sampler)(target=target, **run.params)
     if lod is None:
         return dict(skipped=f"not run above {WLOP_MAX_SAMPLES} samples")
     plane = plane_fit_error(model.points, lod["points"]) / model.diag
@@ -281,68 +210,32 @@ def evaluate(model, method, target):
                 plane=dict(mean=float(plane.mean()), rms=float(np.sqrt((plane ** 2).mean())), max=float(plane.max())))
 
 
-def file_digest(path):
-    path = pathlib.Path(path)
-    return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else "absent"
-
-
-def run_context():
-    """What changes every run's result besides its model, method and rate: the plugin and the peer
-    tool (their binaries), this script (the methods' parameters), the measure and the reconstruction."""
-    return dict(plugin=file_digest(PLUGIN), peer_tool=file_digest(PEER_TOOL), script=file_digest(__file__),
-                pymeshlab=pymeshlab.__version__ if hasattr(pymeshlab, "__version__") else "?",
-                measure=measure_name(), reconstruction=RECONSTRUCTION, plane_neighbours=PLANE_NEIGHBOURS)
-
-
-_CONTEXT = None
-
-
-def run_key(model_key, method, rate):
-    """A cached run is valid only under the same key: the context and the model file's bytes."""
-    global _CONTEXT
-    if _CONTEXT is None:
-        _CONTEXT = run_context()
-        _CONTEXT["models"] = {k: file_digest(DATA / f) for k, f in MODELS.items()}
-    blob = json.dumps(dict(context=_CONTEXT, model=_CONTEXT["models"].get(model_key), method=method, rate=rate),
-                      sort_keys=True)
-    return hashlib.sha256(blob.encode()).hexdigest()
-
-
-def cached(path, key):
-    """The cached row at path if it was made under `key`, else None (absent or stale)."""
-    if not path.is_file():
-        return None
-    row = json.loads(path.read_text())
-    return row if row.get("key") == key else None
-
-
-def run_all(models, rates, methods, log):
+def run_all(cache, peer_tool, models, rates, methods, log):
     for key in models:
         model = None
         for rate in rates:
             for method in methods:
-                path = OUT / "runs" / key.replace(" ", "_") / f"{method}_{rate:g}.json"
-                if cached(path, run_key(key, method, rate)) is not None:
+                if cache.get(key, method, rate) is not None:
                     continue
                 if model is None:
-                    model = Model(key)
+                    model = Model(key, peer_tool)
                 target = max(1, round(rate * len(model.points)))
                 t = time.perf_counter()
                 row = evaluate(model, method, target)
                 # The 1-minute load average: the machine is shared, times depend on it.
                 row.update(model=key, method=method, rate=rate, input_count=len(model.points), load=os.getloadavg()[0],
-                           wall_seconds=time.perf_counter() - t, key=run_key(key, method, rate))
+                           wall_seconds=time.perf_counter() - t, key=cache.key(key, method, rate))
+                path = cache.path(key, method, rate)
                 path.parent.mkdir(parents=True, exist_ok=True)
                 path.write_text(json.dumps(row, indent=1))
                 log(f"{key:12} {rate:5.0%} {method:18} {row.get('count', '-'):>7} "
                     f"err {row.get('recon', {}).get('mean', float('nan')) * 1e3:7.3f} "
                     f"({time.perf_counter() - t:5.1f} s)")
-        if model is not None:
-            full = OUT / "runs" / key.replace(" ", "_") / "all_points.json"
-            if cached(full, run_key(key, "all_points", 1.0)) is None:
-                recon, secs = reconstruction_error(model, dict(points=model.points, normals=model.normals))
-                full.write_text(json.dumps(dict(model=key, recon=recon, recon_seconds=secs, input_count=len(model.points),
-                                                faces=model.faces, key=run_key(key, "all_points", 1.0))))
+        if model is not None and cache.get(key, *ALL_POINTS) is None:
+            recon, secs = reconstruction_error(model, dict(points=model.points, normals=model.normals))
+            cache.path(key, *ALL_POINTS).write_text(json.dumps(dict(
+                model=key, recon=recon, recon_seconds=secs, input_count=len(model.points), faces=model.faces,
+                key=cache.key(key, *ALL_POINTS))))
 
 
 def main():
@@ -352,25 +245,24 @@ def main():
     ap.add_argument("--report-only", action="store_true", help="only rewrite the report from the cache")
     ap.add_argument("--fresh", action="store_true", help="clear the cache of runs first")
     ap.add_argument("--plugin", default=str(PLUGIN))
-    ap.add_argument("--peer-tool", default=str(ROOT / "build" / "bench-peers" / "peer_simplify"))
+    ap.add_argument("--peer-tool", default=str(PEER_TOOL))
     args = ap.parse_args()
-    pymeshlab.load_plugin(args.plugin)
-    global PEER_TOOL
-    PEER_TOOL = pathlib.Path(args.peer_tool)
+    load_plugin(args.plugin)
+    cache = RunCache(run_context(args.plugin, args.peer_tool, measure_name(), getattr(pymeshlab, "__version__", "?")))
     if args.fresh:
-        shutil.rmtree(OUT / "runs", ignore_errors=True)
+        shutil.rmtree(RUNS, ignore_errors=True)
     models = QUICK_MODELS if args.quick else list(MODELS)
     rates = QUICK_RATES if args.quick else RATES
     start = time.perf_counter()
     log = lambda s: print(f"[{time.perf_counter() - start:6.0f} s] {s}", flush=True)
     if not args.report_only:
-        run_all(models, rates, list(METHODS), log)
+        run_all(cache, args.peer_tool, models, rates, list(METHODS), log)
         if not args.no_tuning:
-            run_all(models, [r for r in TUNE_RATES if r in rates], list(TUNING), log)
-            run_all([m for m in models if m in SEED_MODELS], [r for r in TUNE_RATES if r in rates], list(SEED_RUNS), log)
-    sys.path.insert(0, str(ROOT / "bench"))
-    import quality_report
-    quality_report.write(models, rates, measure_name(), log)
+            run_all(cache, args.peer_tool, models, [r for r in TUNE_RATES if r in rates], list(TUNING), log)
+            run_all(cache, args.peer_tool, [m for m in models if m in SEED_MODELS],
+                    [r for r in TUNE_RATES if r in rates], list(SEED_RUNS), log)
+    runs, stale = cache.current()
+    quality_report.write(runs, models, rates, measure_name(), log, stale=len(stale))
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
-"""docs/benchmarks.md and its plots from the cached runs of bench/quality.py."""
-import json
+"""docs/benchmarks.md and its plots from the runs of bench/quality.py, given as arguments (write):
+this module runs nothing and reads no cache."""
 import os
+import pathlib
 import platform
 import time
 
@@ -11,40 +12,24 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import numpy as np
 
-import quality as q
+import quality_config as config
+from host import ROOT
 
-DOC = q.ROOT / "docs" / "benchmarks.md"
-IMAGES = q.ROOT / "docs" / "images"
-OURS = [k for k in q.METHODS if k.startswith("ours")]
-PEERS = [k for k in q.METHODS if not k.startswith("ours")]
+DOC = ROOT / "docs" / "benchmarks.md"  # its plots go to images/ beside it
+OURS = [k for k in config.METHODS if k.startswith("ours")]
+PEERS = [k for k in config.METHODS if not k.startswith("ours")]
 
 
-def speed_section():
+def speed_section(docs):
     """The speed table and time-against-size plot of bench/speed.py (docs/benchmarks-speed.md),
     so this page holds both halves of the benchmark."""
-    speed = q.ROOT / "docs" / "benchmarks-speed.md"
+    speed = docs / "benchmarks-speed.md"
     if not speed.is_file():
         return ["", "## Speed and scale", "", "Not measured yet: run `bench/speed.py`."]
     body = speed.read_text().split("\n", 1)[1].strip()  # without its title
     return ["", "## Speed and scale (1M to 14M points)", "",
             "Copied from `docs/benchmarks-speed.md`, which `bench/speed.py` writes (a separate run: it needs an "
             "otherwise idle machine).", "", body.replace("\n## ", "\n### ")]
-
-
-STALE = []  # cached rows left out: made by another plugin, script, measure or model file
-
-
-def load_runs():
-    """The cached rows made under the current run_key; stale ones are counted in STALE, never reported."""
-    runs = {}
-    for path in (q.OUT / "runs").glob("*/*.json"):
-        row = json.loads(path.read_text())
-        key = (row["model"], "all_points", 1.0) if path.stem == "all_points" else (row["model"], row["method"], row["rate"])
-        if row.get("key") != q.run_key(*key):
-            STALE.append(path)
-            continue
-        runs[key] = row
-    return runs
 
 
 def value(runs, model, method, rate, what):
@@ -59,14 +44,14 @@ def value(runs, model, method, rate, what):
 
 
 def label(method):
-    return q.ALL_RUNS.get(method, (method,))[0]
+    return config.ALL_RUNS.get(method, (method,))[0]
 
 
 def seed_section(runs, models, rates):
     """Mean reconstruction error over seeds 0, 1, 2 and its spread, for ours and for random."""
-    models = [m for m in models if m in q.SEED_MODELS]
+    models = [m for m in models if m in config.SEED_MODELS]
     lines = ["## Spread over seeds", "",
-             f"Seeds 0, {', '.join(map(str, q.SEEDS))} of ours (curvature-density, a = {q.DEFAULT_ADAPTIVITY:g}) and of "
+             f"Seeds 0, {', '.join(map(str, config.SEEDS))} of ours (curvature-density, a = {config.DEFAULT_ADAPTIVITY:g}) and of "
              "uniform random: mean reconstruction error (‰ of the diagonal) and spread ((max - min) / mean).", "",
              "| model | rate | ours, mean | ours, spread | random, mean | random, spread | ours below random for every seed |",
              "|---|---:|---:|---:|---:|---:|---|"]
@@ -75,7 +60,7 @@ def seed_section(runs, models, rates):
         for r in rates:
             errs = {}
             for base in ("ours_density", "random"):
-                keys = [base] + [f"seed{s}_{base}" for s in q.SEEDS]
+                keys = [base] + [f"seed{s}_{base}" for s in config.SEEDS]
                 errs[base] = [runs[(m, k, r)]["recon"]["mean"] for k in keys if (m, k, r) in runs]
             if len(errs["ours_density"]) < 2 or len(errs["random"]) < 2:
                 continue
@@ -109,13 +94,13 @@ def table(runs, models, rates, methods, what, fmt, best=min):
     return "\n".join(lines)
 
 
-def section(runs, models, rates, title, what, ylabel, image, fmt):
-    methods = list(q.METHODS)
-    lines = [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, image + ".png"), ""]
+def section(runs, models, rates, title, what, ylabel, images, image, fmt):
+    methods = list(config.METHODS)
+    lines = [f"## {title}", "", plot(runs, models, rates, methods, what, ylabel, images, image + ".png"), ""]
     if what in ("recon", "plane"):
         lines += ["The same divided by uniform random's error at each rate (below 1: better than random; "
                   f"the axis stops at {RELATIVE_TOP:g}, the tables have every value):", "",
-                  plot(runs, models, rates, methods, what, "error / uniform random's", image + "_relative.png",
+                  plot(runs, models, rates, methods, what, "error / uniform random's", images, image + "_relative.png",
                        relative=True), ""]
     return lines + [table(runs, models, rates, methods, what, fmt), ""]
 
@@ -125,7 +110,7 @@ def summary_table(runs, models, rates):
     random's, for both measures: one number per cell, below 1 is better than random."""
     head = " | ".join(f"{m}" for m in models)
     lines = [f"| method | {head} | all (reconstruction) | all (plane fit) |", "|---|" + "---:|" * (len(models) + 2)]
-    for meth in q.METHODS:
+    for meth in config.METHODS:
         ratio = lambda model, r, what: value(runs, model, meth, r, what) / value(runs, model, "random", r, what)
         cells = [geomean([ratio(model, r, "recon") for r in rates]) for model in models]
         every = [geomean([ratio(model, r, what) for model in models for r in rates]) for what in ("recon", "plane")]
@@ -141,10 +126,10 @@ def total_text(runs):
     return f"The final sampling runs and the reconstructions of the {len(rows)} runs took {busy / 60:.0f} min together."
 
 
-def missing_lines(runs, models, rates):
+def missing_lines(runs, models, rates, stale):
     gone = missing_runs(runs, models, rates)
-    stale = [f"{len(STALE)} cached runs made by another build, script, measure or model file were left out.", ""] \
-        if STALE else []
+    stale = [f"{stale} cached runs made by another build, script, measure or model file were left out.", ""] \
+        if stale else []
     if not gone:
         return stale
     listed = "; ".join(f"{m} {label(k)} {r:.0%}" for m, k, r in gone)
@@ -154,8 +139,8 @@ def missing_lines(runs, models, rates):
 
 def missing_runs(runs, models, rates):
     """The runs this report expects that are not in the cache (an interrupted run)."""
-    expect = [(m, k, r) for m in models for k in q.METHODS for r in rates] + \
-             [(m, k, r) for m in models for k in q.TUNING for r in q.TUNE_RATES if r in rates]
+    expect = [(m, k, r) for m in models for k in config.METHODS for r in rates] + \
+             [(m, k, r) for m in models for k in config.TUNING for r in config.TUNE_RATES if r in rates]
     return [e for e in expect if e not in runs]
 
 
@@ -191,7 +176,7 @@ COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:
 RELATIVE_TOP = 1.6  # relative plots stop here: one outlier would flatten the rest
 
 
-def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
+def plot(runs, models, rates, methods, what, ylabel, images, name, relative=False):
     """Per model, the measure against the rate, one line per method; relative: divided by
     uniform random's at the same rate, on a linear axis."""
     fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 4), squeeze=False)
@@ -204,7 +189,7 @@ def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
                 ys = ys * 1e3
             ours = m.startswith("ours")
             ax.plot([100 * r for r in rates], ys, "-o" if ours else "--.", label=label(m),
-                    color=COLOURS[list(q.METHODS).index(m)], linewidth=2 if ours else 1)
+                    color=COLOURS[list(config.METHODS).index(m)], linewidth=2 if ours else 1)
         ax.set_xscale("log")
         if relative:
             ax.set_ylim(top=min(ax.get_ylim()[1], RELATIVE_TOP))
@@ -221,8 +206,8 @@ def plot(runs, models, rates, methods, what, ylabel, name, relative=False):
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
     fig.tight_layout(rect=(0, 0.14, 1, 1))
-    IMAGES.mkdir(parents=True, exist_ok=True)
-    fig.savefig(IMAGES / name, dpi=90)
+    images.mkdir(parents=True, exist_ok=True)
+    fig.savefig(images / name, dpi=90)
     plt.close(fig)
     return f"![{ylabel}](images/{name})"
 
@@ -287,7 +272,7 @@ def best_per_rate(ratios, value_of, rates):
     return out
 
 
-def tuning_plot(runs, models, rates, configs, values, param, name):
+def tuning_plot(runs, models, rates, configs, values, param, images, name):
     fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False)
     for ax, model in zip(axes[0], models):
         for r in rates:
@@ -303,7 +288,7 @@ def tuning_plot(runs, models, rates, configs, values, param, name):
     axes[0][0].set_ylabel("error / unweighted geodesic")
     axes[0][0].legend(title="rate", fontsize=8)
     fig.tight_layout()
-    fig.savefig(IMAGES / name, dpi=90)
+    fig.savefig(images / name, dpi=90)
     plt.close(fig)
     return f"![{param} sweep](images/{name})"
 
@@ -335,7 +320,7 @@ def wins_line(runs, models, rates):
     cells = wins = 0
     for model in models:
         for r in rates:
-            vals = {m: value(runs, model, m, r, "recon") for m in q.METHODS}
+            vals = {m: value(runs, model, m, r, "recon") for m in config.METHODS}
             vals = {m: v for m, v in vals.items() if np.isfinite(v)}
             if vals:
                 cells += 1
@@ -357,25 +342,29 @@ def time_line(runs, models, rates):
 
 
 def mean_rank(runs, models, rates, what):
-    ranks = {m: [] for m in q.METHODS}
+    ranks = {m: [] for m in config.METHODS}
     for model in models:
         for r in rates:
-            vals = {m: value(runs, model, m, r, what) for m in q.METHODS}
+            vals = {m: value(runs, model, m, r, what) for m in config.METHODS}
             ordered = sorted((v, m) for m, v in vals.items() if np.isfinite(v))
             for i, (_, m) in enumerate(ordered):
                 ranks[m].append(i + 1)
     return {m: (np.mean(v) if v else np.nan, len(v)) for m, v in ranks.items()}
 
 
-def write(models, rates, measure, log):
-    runs = load_runs()
-    methods = list(q.METHODS)
+def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
+    """Writes doc_path and its plots (in images/ beside it). runs: {(model, method, rate): row} as
+    bench/quality.py caches them, (model, "all_points", 1.0) for the reconstruction from every point;
+    stale: how many cached rows were left out as stale."""
+    doc_path = pathlib.Path(doc_path)
+    images = doc_path.parent / "images"
+    methods = list(config.METHODS)
     pm = lambda v: f"{1e3 * v:.3f}"
     secs = lambda v: f"{v:.2f}" if v < 10 else f"{v:.0f}"
-    tune_rates = [r for r in q.TUNE_RATES if r in rates]
+    tune_rates = [r for r in config.TUNE_RATES if r in rates]
     a_keys = [("ours_unweighted", 0.0)] + [
-        ("ours_density" if a == q.DEFAULT_ADAPTIVITY else f"tune_a{a:g}", a) for a in q.TUNE_ADAPTIVITY]
-    c_keys = [("ours_eq3" if c == q.DEFAULT_EXPONENT else f"tune_c{c:g}", c) for c in q.TUNE_EXPONENT]
+        ("ours_density" if a == config.DEFAULT_ADAPTIVITY else f"tune_a{a:g}", a) for a in config.TUNE_ADAPTIVITY]
+    c_keys = [("ours_eq3" if c == config.DEFAULT_EXPONENT else f"tune_c{c:g}", c) for c in config.TUNE_EXPONENT]
     a_text, a_best, a_ratios = sweep_section(runs, models, tune_rates, "Adaptivity a (curvature-density geodesic)",
                                              [k for k, _ in a_keys[1:]], "ours_unweighted", "a",
                                              [v for _, v in a_keys[1:]])
@@ -402,31 +391,31 @@ def write(models, rates, measure, log):
     ]
     for model in models:
         full = runs.get((model, "all_points", 1.0))
-        doc.append(f"| {model} | `{q.MODELS[model]}` | {full['input_count'] if full else '?'} | "
+        doc.append(f"| {model} | `{config.MODELS[model]}` | {full['input_count'] if full else '?'} | "
                    f"{full['faces'] if full else '?'} | {pm(full['recon']['mean']) if full else '–'} |")
     doc += [
         "",
         f"Sampling rates: {', '.join(f'{r:.0%}' for r in rates)} of the input points; each method is "
-        f"asked for the same count (within {q.COUNT_TOLERANCE:.0%} where it takes no count; actual "
+        f"asked for the same count (within {config.COUNT_TOLERANCE:.0%} where it takes no count; actual "
         "counts below).",
         "",
         "Methods:",
         "",
         f"- ours: `generate_geodesic_poisson_lod` in three metrics (curvature-density with a = "
-        f"{q.DEFAULT_ADAPTIVITY:g}, eq. 3 with c = {q.DEFAULT_EXPONENT:g}, unweighted geodesic) and "
+        f"{config.DEFAULT_ADAPTIVITY:g}, eq. 3 with c = {config.DEFAULT_EXPONENT:g}, unweighted geodesic) and "
         "`generate_geodesic_fps_lod` (exact count), seed 0, default neighbour counts; meshes use "
         "fast marching over their triangles, clouds the point graph. Poisson gets the count as "
         "`samplenum` and finds its radius itself (its time includes that search).",
         "- MeshLab: `generate_simplified_point_cloud` (Euclidean Poisson-disk pruning of the points) and "
         "`generate_sampling_poisson_disk` with `subsample` and `radiusvariance` = "
-        f"{q.MESHLAB_RADIUS_VARIANCE:g} on the vertex quality set to minus eq. 1's curvature "
+        f"{config.MESHLAB_RADIUS_VARIANCE:g} on the vertex quality set to minus eq. 1's curvature "
         "(`compute_scalar_by_normal_variation`): disk radii from r at the highest curvature to "
-        f"{q.MESHLAB_RADIUS_VARIANCE:g} r at the lowest. Both reach the count by the same radius search "
+        f"{config.MESHLAB_RADIUS_VARIANCE:g} r at the lowest. Both reach the count by the same radius search "
         "(the point cloud simplification ignores its own `exactnumflag`).",
         "- CGAL 5.5 (Debian's `libcgal-dev`), `bench/peers/peer_simplify.cpp`: "
         "`hierarchy_simplify_point_set` (cluster size searched, variation 1/3), "
         "`grid_simplify_point_set` (cell size searched), `wlop_simplify_and_regularize_point_set` "
-        f"(retained percentage = rate, default neighbour radius; not run above {q.WLOP_MAX_SAMPLES} "
+        f"(retained percentage = rate, default neighbour radius; not run above {config.WLOP_MAX_SAMPLES} "
         "samples, where one run takes minutes). WLOP makes new points without normals: each takes "
         "the normal of its nearest input point.",
         "- Open3D 0.16 (Debian's `libopen3d-dev`): `FarthestPointDownSample` (exact count) and "
@@ -437,14 +426,14 @@ def write(models, rates, measure, log):
         "Error measures, both as the mean over all input points, in ‰ of the model's bounding-box diagonal:",
         "",
         f"- reconstruction error: a screened Poisson surface from the LOD points and normals "
-        f"(`generate_surface_reconstruction_screened_poisson`, {', '.join(f'{k}={v}' for k, v in q.RECONSTRUCTION.items())}, "
+        f"(`generate_surface_reconstruction_screened_poisson`, {', '.join(f'{k}={v}' for k, v in config.RECONSTRUCTION.items())}, "
         f"the same for every method), then the {measure} of the input points from it"
         + (" (MeshLab's `get_hausdorff_distance` from the input vertices to the surface; runs cached "
            "before the plugin had the normal-projection deviation filter)" if measure == "Hausdorff distance"
            else " (`get_normal_projection_deviation`: along each input point's normal line)")
         + ". The paper's measure (Hou et al. 2015, Table 1).",
         f"- plane-fit error (no reconstruction): the distance from each input point to the "
-        f"least-squares plane through its {q.PLANE_NEIGHBOURS} nearest LOD points.",
+        f"least-squares plane through its {config.PLANE_NEIGHBOURS} nearest LOD points.",
         "",
         "Times: ours, the whole filter call (Poisson with its radius search for the count), on all threads (OpenMP); "
         "the others, one run at the parameter their count search found (the search not counted), as their tools run it "
@@ -452,27 +441,27 @@ def write(models, rates, measure, log):
         f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
         "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
         "",
-        *missing_lines(runs, models, rates),
+        *missing_lines(runs, models, rates, stale),
         "## Summary",
         "",
         "Error divided by that of uniform random sampling at the same rate, geometric mean over the "
         "rates (per model: reconstruction error; last two columns: over all models and rates). Below 1 "
         "is better than random. CGAL WLOP's means are over the rates it ran at (not above "
-        f"{q.WLOP_MAX_SAMPLES} samples).",
+        f"{config.WLOP_MAX_SAMPLES} samples).",
         "",
         summary_table(runs, models, rates),
         "",
     ]
     doc += section(runs, models, rates, "Reconstruction error (‰ of the diagonal, lower is better)", "recon",
-                   "reconstruction error (‰ of diagonal)", "bench_reconstruction_error", pm)
+                   "reconstruction error (‰ of diagonal)", images, "bench_reconstruction_error", pm)
     doc += section(runs, models, rates, "Plane-fit error (‰ of the diagonal, lower is better)", "plane",
-                   "plane-fit error (‰ of diagonal)", "bench_plane_fit_error", pm)
-    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", "bench_time", secs)
+                   "plane-fit error (‰ of diagonal)", images, "bench_plane_fit_error", pm)
+    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", images, "bench_time", secs)
     doc += ["## Misses of the reconstruction measure", "",
             "The share of the input's normal lines that meet the reconstructed surface nowhere within half the "
             "diagonal. The error above is the mean over the lines that do meet it, so a surface with holes "
             "would score on fewer points: compare a method's misses with the others' before its error.", "",
-            table(runs, models, rates, list(q.METHODS), "miss", lambda v: f"{100 * v:.2f}%", best=None), ""]
+            table(runs, models, rates, list(config.METHODS), "miss", lambda v: f"{100 * v:.2f}%", best=None), ""]
     doc += [
         "## Mean rank over all models and rates (1 = lowest error)",
         "",
@@ -482,7 +471,7 @@ def write(models, rates, measure, log):
     for m in sorted(methods, key=lambda m: ranks[m][0] if np.isfinite(ranks[m][0]) else 99):
         doc.append(f"| {label(m)} | {ranks[m][0]:.1f} | {plane_ranks[m][0]:.1f} | {ranks[m][1]} |")
     doc += ["", "## Where we lose", "",
-            f"Counts differ by up to {q.COUNT_TOLERANCE:.0%} between methods (more where a table below says so) "
+            f"Counts differ by up to {config.COUNT_TOLERANCE:.0%} between methods (more where a table below says so) "
             "and every LOD comes from one seed: ratios within a few percent are not conclusive.", ""] + loss_lines(lost_recon, "Reconstruction error") + [""] + \
         loss_lines(lost_plane, "Plane-fit error")
     doc += ["", wins_line(runs, models, rates), "", time_line(runs, models, rates), ""]
@@ -496,21 +485,21 @@ def write(models, rates, measure, log):
     if a_text:
         doc += [a_text, "",
                 tuning_plot(runs, models, tune_rates, [k for k, _ in a_keys], [max(v, 0.3) for _, v in a_keys],
-                            "adaptivity a", "bench_tuning_adaptivity.png"),
+                            "adaptivity a", images, "bench_tuning_adaptivity.png"),
                 "", "(a = 0 is drawn at 0.3 on the log axis.)", ""]
     if c_text:
         doc += [c_text, "",
                 tuning_plot(runs, models, tune_rates, [k for k, _ in c_keys], [v for _, v in c_keys],
-                            "exponent c", "bench_tuning_exponent.png"), ""]
+                            "exponent c", images, "bench_tuning_exponent.png"), ""]
     doc += ["### Recommendation", ""]
     if a_best is not None:
         doc.append(f"- adaptivity: a = {a_best:g} has the smallest geometric mean of the error ratio over the "
-                   f"models and rates above (current default {q.DEFAULT_ADAPTIVITY:g}).")
+                   f"models and rates above (current default {config.DEFAULT_ADAPTIVITY:g}).")
         doc += [f"  - at {r:.0%} alone the best is a = {v:g} (geometric mean {g:.3f} over the models)"
                 for r, v, g in best_per_rate(a_ratios, dict(a_keys), tune_rates)]
     if c_best is not None:
         doc.append(f"- curvature exponent: c = {c_best:g} has the smallest geometric mean for eq. 3 "
-                   f"(current default {q.DEFAULT_EXPONENT:g}).")
+                   f"(current default {config.DEFAULT_EXPONENT:g}).")
     if a_ratios:
         doc += ["", "Where the curvature-density weighting does worse than no weighting (error ratio above 1), "
                 "per a:", ""]
@@ -529,6 +518,7 @@ def write(models, rates, measure, log):
                 row = runs.get((model, m, r))
                 if row and row.get("parameter"):
                     doc.append(f"| {model} | {label(m)} | {r:.0%} | {row['parameter']} |")
-    doc += speed_section()
-    DOC.write_text("\n".join(doc) + "\n")
-    log(f"wrote {DOC.relative_to(q.ROOT)} ({time.strftime('%Y-%m-%d %H:%M')})")
+    doc += speed_section(doc_path.parent)
+    doc_path.write_text("\n".join(doc) + "\n")
+    shown = doc_path.relative_to(ROOT) if doc_path.is_relative_to(ROOT) else doc_path
+    log(f"wrote {shown} ({time.strftime('%Y-%m-%d %H:%M')})")

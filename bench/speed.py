@@ -28,10 +28,9 @@ import subprocess
 import sys
 import time
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-PLUGIN = ROOT / "build" / "plugins" / "libfilter_geodesic_lod.so"
+from host import PEER_TOOL, ROOT, load_plugin, peak_rss_mb
+
 CLI = ROOT / "build" / "lod_cli"
-PEER_TOOL = ROOT / "build" / "bench-peers" / "peer_simplify"
 PEERS = {"cgal_grid": "CGAL grid", "cgal_hierarchy": "CGAL hierarchy", "open3d_voxel": "Open3D voxel",
          "open3d_fps": "Open3D farthest point"}
 PEER_TOLERANCE = 0.1  # the grid-like peers search a cell size for the count: within 10%, as MeshLab's
@@ -40,13 +39,6 @@ sys.path.insert(0, str(ROOT / "bench"))
 
 def radius_for(n):
     return 0.00283 * (1e6 / n) ** 0.5
-
-
-def peak_rss_mb():
-    for line in open("/proc/self/status"):
-        if line.startswith("VmHWM:"):
-            return int(line.split()[1]) / 1024
-    return float("nan")
 
 
 def load1():
@@ -61,7 +53,7 @@ def run_one(kind, ply, n, count):
     loaded = peak_rss_mb()
     t = time.perf_counter()
     if kind == "ours":
-        pymeshlab.load_plugin(str(PLUGIN))
+        load_plugin()
         res = ms.apply_filter("generate_geodesic_poisson_lod", radius=pymeshlab.PureValue(radius_for(n)))
         samples = res["sample_num"]
     else:

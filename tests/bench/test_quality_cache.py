@@ -1,5 +1,5 @@
 """The quality benchmark's cache: a run is reused, and reported, only under the key it was made with
-(the plugin's and peer tool's bytes, the script, the measure, the reconstruction settings, the model
+(the plugin's and peer tool's bytes, the scripts, the measure, the reconstruction settings, the model
 file); a stale row is never reported."""
 import json
 import pathlib
@@ -9,48 +9,51 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
-import quality as q  # noqa: E402
-import quality_report as report  # noqa: E402
+import quality_config as config  # noqa: E402
+from quality_cache import RunCache, run_context  # noqa: E402
+
+MEASURE = "normal-projection deviation"
 
 
 @pytest.fixture
-def bench(tmp_path, monkeypatch):
+def tools(tmp_path):
     plugin = tmp_path / "plugin.so"
     plugin.write_bytes(b"build 1")
-    monkeypatch.setattr(q, "PLUGIN", plugin)
-    monkeypatch.setattr(q, "PEER_TOOL", tmp_path / "no-peer-tool")
-    monkeypatch.setattr(q, "OUT", tmp_path / "out")
-    monkeypatch.setattr(q, "_CONTEXT", None)
-    monkeypatch.setattr(report, "STALE", [])
-    return plugin
+    return plugin, tmp_path / "no-peer-tool"
 
 
-def test_the_key_follows_every_input(bench, monkeypatch):
-    key = q.run_key("bunny", "ours_poisson", 0.1)
-    assert key == q.run_key("bunny", "ours_poisson", 0.1)
-    assert len({key, q.run_key("dragon", "ours_poisson", 0.1), q.run_key("bunny", "random", 0.1),
-                q.run_key("bunny", "ours_poisson", 0.05)}) == 4
-    for change in (lambda: bench.write_bytes(b"build 2"),
-                   lambda: monkeypatch.setattr(q, "RECONSTRUCTION", dict(q.RECONSTRUCTION, depth=9)),
-                   lambda: monkeypatch.setattr(q, "PLANE_NEIGHBOURS", q.PLANE_NEIGHBOURS + 1)):
+def cache(tmp_path, tools, measure=MEASURE):
+    return RunCache(run_context(*tools, measure, "2025.7"), tmp_path / "runs")
+
+
+def test_the_key_follows_every_input(tmp_path, tools, monkeypatch):
+    key = cache(tmp_path, tools).key("bunny", "ours_density", 0.1)
+    assert key == cache(tmp_path, tools).key("bunny", "ours_density", 0.1)
+    same = cache(tmp_path, tools)
+    assert len({key, same.key("dragon", "ours_density", 0.1), same.key("bunny", "random", 0.1),
+                same.key("bunny", "ours_density", 0.05)}) == 4
+    plugin, peer_tool = tools
+    for change in (lambda: plugin.write_bytes(b"build 2"),
+                   lambda: peer_tool.write_bytes(b"a peer tool"),
+                   lambda: monkeypatch.setattr(config, "RECONSTRUCTION", dict(config.RECONSTRUCTION, depth=9)),
+                   lambda: monkeypatch.setattr(config, "PLANE_NEIGHBOURS", config.PLANE_NEIGHBOURS + 1)):
         change()
-        monkeypatch.setattr(q, "_CONTEXT", None)
-        assert q.run_key("bunny", "ours_poisson", 0.1) != key
-        key = q.run_key("bunny", "ours_poisson", 0.1)
+        assert cache(tmp_path, tools).key("bunny", "ours_density", 0.1) != key
+        key = cache(tmp_path, tools).key("bunny", "ours_density", 0.1)
+    assert cache(tmp_path, tools, "Hausdorff distance").key("bunny", "ours_density", 0.1) != key
 
 
-def test_stale_rows_are_rerun_and_never_reported(bench, monkeypatch):
-    runs = q.OUT / "runs" / "bunny"
-    runs.mkdir(parents=True)
-    fresh = dict(model="bunny", method="random", rate=0.1, key=q.run_key("bunny", "random", 0.1))
-    (runs / "random_0.1.json").write_text(json.dumps(fresh))
-    (runs / "random_0.05.json").write_text(json.dumps(dict(fresh, rate=0.05)))  # made under 0.1's key
-    (runs / "all_points.json").write_text(json.dumps(dict(model="bunny", key="an older build")))
-    assert q.cached(runs / "random_0.1.json", q.run_key("bunny", "random", 0.1)) == fresh
-    assert q.cached(runs / "random_0.05.json", q.run_key("bunny", "random", 0.05)) is None
-    assert list(report.load_runs()) == [("bunny", "random", 0.1)]
-    assert len(report.STALE) == 2
-    bench.write_bytes(b"build 2")  # a rebuilt plugin: nothing cached is current any more
-    monkeypatch.setattr(q, "_CONTEXT", None)
-    report.STALE.clear()
-    assert report.load_runs() == {} and len(report.STALE) == 3
+def test_stale_rows_are_rerun_and_never_reported(tmp_path, tools):
+    runs = cache(tmp_path, tools)
+    fresh = dict(model="bunny", method="random", rate=0.1, key=runs.key("bunny", "random", 0.1))
+    runs.path("bunny", "random", 0.1).parent.mkdir(parents=True)
+    runs.path("bunny", "random", 0.1).write_text(json.dumps(fresh))
+    runs.path("bunny", "random", 0.05).write_text(json.dumps(dict(fresh, rate=0.05)))  # made under 0.1's key
+    runs.path("bunny", "all_points", 1.0).write_text(json.dumps(dict(model="bunny", key="an older build")))
+    assert runs.get("bunny", "random", 0.1) == fresh
+    assert runs.get("bunny", "random", 0.05) is None
+    current, stale = runs.current()
+    assert list(current) == [("bunny", "random", 0.1)] and len(stale) == 2
+    tools[0].write_bytes(b"build 2")  # a rebuilt plugin: nothing cached is current any more
+    current, stale = cache(tmp_path, tools).current()
+    assert current == {} and len(stale) == 3
