@@ -97,7 +97,8 @@ TEST(GeodesicMesh, PoissonByFastMarchingIsSeparatedAndCovers) {
 
 TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
   test::TMesh m;
-  vcg::tri::Sphere(m, 4);  // 2562 vertices
+  vcg::tri::Sphere(m, 4);  // 2562 vertices, their normals left unset by vcglib
+  for (auto& v : m.vert) v.N() = test::P3(0, 0, 0);  // estimated, not read from uninitialised memory
   for (const int target : {30, 120}) {
     FPS::Param p;
     p.sampleNum = size_t(target);
