@@ -204,20 +204,9 @@ class Job:
 
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     """A Dask task: one tile's decision, reading a wider halo until the check passes."""
-    halo = job.halo
-    while True:
-        points, normals, ids = read_region(job.srcs, box.lo - halo, box.hi + halo)
-        core = box.core_mask(points, job.cloud)
-        if not core.any():
-            return None
-        if len(points) <= max(job.domain["normal_neighbors"], job.domain["graph_neighbors"]):
-            raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
-                             "the normals and the graph need: the cloud is too sparse for this radius")
-        d, wider = tiles.decide(points, normals, ids, core, radius=job.radius, box=box, cloud=job.cloud, halo=halo,
-                                domain=job.domain_param(), seed=job.seed, threads=job.threads)
-        if d is not None:
-            return d
-        halo = wider
+    return tiles.decide_widening(lambda halo: read_region(job.srcs, box.lo - halo, box.hi + halo), box=box,
+                                 cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
+                                 seed=job.seed, threads=job.threads)
 
 
 def seams(d: Optional[tiles.Decision]):

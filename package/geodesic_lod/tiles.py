@@ -94,6 +94,25 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
                     coverers=r["coverers"][picks], halo=halo, read=len(ids)), None
 
 
+def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
+                    seed: int = 0, threads: Optional[int] = None) -> Optional[Decision]:
+    """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
+    the box (points, normals or None, ids; in id order). None when the tile's core holds no point."""
+    neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
+    while True:
+        points, normals, ids = read(halo)
+        core = box.core_mask(points, cloud)
+        if not core.any():
+            return None
+        if len(points) <= neighbours:
+            raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
+                             "the normals and the graph need: the cloud is too sparse for this radius")
+        d, halo = decide(points, normals, ids, core, radius=radius, box=box, cloud=cloud, halo=halo, domain=domain,
+                         seed=seed, threads=threads)
+        if d is not None:
+            return d
+
+
 def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     """The ids of the open points that are samples, from every tile's seams."""
     opens = [d for d in decisions if len(d.open_ids)]
@@ -156,16 +175,13 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
     width = halo if halo is not None else first_halo(radius, spacing_of(p))
     decisions = []
     for t, box in enumerate(grid_tiles(cloud, shape)):
-        if not box.core_mask(p, cloud).any():
+        def read(halo, box=box):
+            m = box.read_mask(p, halo)
+            return p[m], None if n is None else n[m], ids[m]
+        d = decide_widening(read, box=box, cloud=cloud, halo=width, domain=domain, radius=radius, seed=seed,
+                            threads=threads)
+        if d is None:
             continue
-        w = width
-        while True:
-            read = box.read_mask(p, w)
-            core = box.core_mask(p[read], cloud)
-            d, w = decide(p[read], None if n is None else n[read], ids[read], core, radius=radius, box=box,
-                          cloud=cloud, halo=w, domain=domain, seed=seed, threads=threads)
-            if d is not None:
-                break
         if on_tile:
             on_tile(t, d)
         decisions.append(d)
