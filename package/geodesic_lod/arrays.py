@@ -149,6 +149,27 @@ def _real(x, name: str, positive: bool) -> float:
     return x
 
 
+def radius_from(value, diagonal: Callable[[], float], name: str = "radius") -> float:
+    """A radius given as a length or, as in MeshLab's dialog, as a percentage of the bounding box
+    diagonal ('1%'; `diagonal()` is asked only then), checked positive and finite."""
+    if isinstance(value, str) and value.strip().endswith("%"):
+        try:
+            pct = float(value.strip()[:-1])
+        except ValueError:
+            pct = math.nan
+        if not (math.isfinite(pct) and 0 < pct <= 100):
+            raise ValueError(f"{name} must be a percentage of the diagonal from above 0 to 100 such as 1%, "
+                             f"got {value!r}")
+        return pct / 100 * float(diagonal())
+    try:
+        length = float(value)
+    except (TypeError, ValueError):
+        length = math.nan
+    if not (math.isfinite(length) and length > 0):
+        raise ValueError(f"{name} must be a positive length or a percentage of the diagonal such as 1%, got {value!r}")
+    return length
+
+
 def _choice(x, table: dict, name: str):
     if x not in table:
         raise ValueError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")

@@ -52,18 +52,7 @@ def _count(text: str, name: str) -> int:
 
 
 def _radius(text: str, points: np.ndarray) -> float:
-    """An absolute radius, or a percentage of the bounding box diagonal as in MeshLab's dialog."""
-    if text.strip().endswith("%"):
-        diagonal = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
-        return _percent(text, "--radius") / 100 * diagonal
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"--radius must be a positive length or a percentage of the diagonal such as 1%, "
-                         f"got {text!r}")
-    return value
+    return arrays.radius_from(text, lambda: np.linalg.norm(points.max(axis=0) - points.min(axis=0)), "--radius")
 
 
 def _level_items(text: str) -> list:

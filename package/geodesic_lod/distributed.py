@@ -442,9 +442,4 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
 
 
 def _radius(radius, cloud: tiles.Box) -> float:
-    if isinstance(radius, str) and radius.strip().endswith("%"):
-        pct = float(radius.strip()[:-1])
-        if not (math.isfinite(pct) and 0 < pct <= 100):
-            raise ValueError(f"radius must be a percentage from above 0 to 100 such as 1%, got {radius!r}")
-        return pct / 100 * float(np.linalg.norm(cloud.hi - cloud.lo))
-    return arrays._real(float(radius), "radius", positive=True)
+    return arrays.radius_from(radius, lambda: np.linalg.norm(cloud.hi - cloud.lo))
