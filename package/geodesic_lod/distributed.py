@@ -204,7 +204,8 @@ class Job:
 
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     """A Dask task: one tile's decision, reading a wider halo until the check passes."""
-    return tiles.decide_widening(lambda halo: read_region(job.srcs, box.lo - halo, box.hi + halo), box=box,
+    outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
+    return tiles.decide_widening(lambda halo: read_region(job.srcs, outer.lo - halo, outer.hi + halo), box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, threads=job.threads)
 

@@ -23,14 +23,19 @@ OUT, IN, OPEN = _core.TILE_OUT, _core.TILE_IN, _core.TILE_OPEN
 
 @dataclass
 class Box:
-    """An axis-aligned box; a tile's core holds the points with lo <= x < hi (x <= hi on the cloud's far
-    faces, so the tiles' cores partition the cloud)."""
+    """An axis-aligned box; a tile's core holds the points with lo <= x < hi, without a bound on the
+    sides where the tile meets the cloud's box (a point a rounding beyond a file's header bounds still
+    belongs to a tile), so the tiles' cores partition the cloud."""
     lo: np.ndarray
     hi: np.ndarray
 
+    def outer(self, cloud: "Box") -> "Box":
+        """The box with its sides on the cloud's box moved out to infinity."""
+        return Box(np.where(self.lo <= cloud.lo, -np.inf, self.lo), np.where(self.hi >= cloud.hi, np.inf, self.hi))
+
     def core_mask(self, points: np.ndarray, cloud: "Box") -> np.ndarray:
-        far = self.hi >= cloud.hi
-        return np.all((points >= self.lo) & ((points < self.hi) | (far & (points <= self.hi))), axis=1)
+        b = self.outer(cloud)
+        return np.all((points >= b.lo) & (points < b.hi), axis=1)
 
     def read_mask(self, points: np.ndarray, halo: float) -> np.ndarray:
         return np.all((points >= self.lo - halo) & (points <= self.hi + halo), axis=1)
@@ -107,8 +112,8 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
         if len(points) <= neighbours:
             raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
                              "the normals and the graph need: the cloud is too sparse for this radius")
-        d, halo = decide(points, normals, ids, core, radius=radius, box=box, cloud=cloud, halo=halo, domain=domain,
-                         seed=seed, threads=threads)
+        d, halo = decide(points, normals, ids, core, radius=radius, box=box.outer(cloud), cloud=cloud, halo=halo,
+                         domain=domain, seed=seed, threads=threads)
         if d is not None:
             return d
 

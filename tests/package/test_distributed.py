@@ -160,6 +160,25 @@ def test_files_that_cannot_go_together_are_named(client, tmp_path):
     assert not (tmp_path / "lod").exists()
 
 
+def test_points_beyond_their_files_header_bounds_are_sampled_too(client, tmp_path):
+    """Header bounds written a little short (rounding, or other software) must not lose points."""
+    import struct
+    p = bumpy_sphere(8000) * 10
+    folder = write_parts(tmp_path / "a", p, parts=2)
+    for name in ("part0.laz", "part1.laz"):
+        path = folder / name
+        data = bytearray(path.read_bytes())
+        max_x, min_x, max_y, min_y = struct.unpack_from("<4d", data, 179)  # the LAS header's bounds
+        struct.pack_into("<4d", data, 179, max_x - 1.0, min_x + 1.0, max_y - 1.0, min_y + 1.0)
+        path.write_bytes(bytes(data))
+    index = dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=2000, client=client,
+                           threads=1)
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(2)])
+    points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
+    assert len(index["tiles"]) > 2
+    check_equal(tmp_path / "lod", points, records, 0)
+
+
 def test_a_file_cut_short_is_named(client, tmp_path):
     a = write_parts(tmp_path / "a", bumpy_sphere(20000), parts=2)
     data = (a / "part1.laz").read_bytes()
