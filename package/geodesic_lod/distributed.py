@@ -153,12 +153,13 @@ def read_records(srcs: Sequence[Source], ids: np.ndarray):
     """The records of the given ids (any order), in that order, and a source to write them with."""
     ids = np.asarray(ids, dtype=np.uint64)
     order = np.argsort(ids, kind="stable")
+    ordered = ids[order]
     parts, first = [], None
     for s in srcs:
-        lo, hi = np.searchsorted(ids[order], [s.first_id, s.first_id + s.count])
+        lo, hi = np.searchsorted(ordered, [s.first_id, s.first_id + s.count])
         if hi <= lo:
             continue
-        rows = (ids[order][lo:hi] - np.uint64(s.first_id)).astype(np.int64)
+        rows = (ordered[lo:hi] - np.uint64(s.first_id)).astype(np.int64)
         if s.kind == "las":
             import laspy
             picked = []
@@ -384,7 +385,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     srcs = sources(paths, surveys)
     cloud, boxes, shape = plan(srcs, tile_points)
     total = sum(s.count for s in srcs)
-    spacing = math.sqrt(max(np.prod(np.sort(cloud.hi - cloud.lo)[1:]), 1e-300) / total)
+    spacing = tiles.spacing_of(cloud, total)
     ticks = _Ticks(progress)
     search = {}
     if size["radius"] is not None:

@@ -157,11 +157,11 @@ def in_visiting_order(ids: np.ndarray, seed: int) -> np.ndarray:
     return ids[np.lexsort((ids, _core.priorities(seed, ids)))]
 
 
-def spacing_of(points: np.ndarray) -> float:
-    """A rough point spacing: the box's diagonal area shared among the points (a surface's)."""
-    extent = np.sort(points.max(axis=0) - points.min(axis=0))
-    area = max(extent[2] * extent[1], 1e-300)
-    return math.sqrt(area / len(points))
+def spacing_of(box: Box, n: int) -> float:
+    """A rough point spacing of n points in the box: its two larger sides' area shared among them (a
+    surface's)."""
+    extent = np.sort(box.hi - box.lo)
+    return math.sqrt(max(extent[2] * extent[1], 1e-300) / n)
 
 
 def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
@@ -177,7 +177,7 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
                             not arrays._DOMAIN.use_input_normals)
     cloud = Box(p.min(axis=0), p.max(axis=0))
     ids = np.arange(len(p), dtype=np.uint64)
-    width = halo if halo is not None else first_halo(radius, spacing_of(p))
+    width = halo if halo is not None else first_halo(radius, spacing_of(cloud, len(p)))
     decisions = []
     for t, box in enumerate(grid_tiles(cloud, shape)):
         def read(halo, box=box):
