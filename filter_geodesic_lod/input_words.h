@@ -28,6 +28,7 @@ inline QString Worded(const vcg_ext::InputError& e) {
     case Field::MaxDistance: return "maxdist " + problem;
     case Field::ReferencePoints: return "the reference layer " + problem;
     case Field::Surface: return "the surface layer " + problem;
+    case Field::Within: return "the finer level's samples " + problem;
   }
   return problem;
 }

@@ -31,6 +31,10 @@ class GeodesicPoissonLod {
     uint64_t seed = 0;
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
     Regions regions = Regions::None;  ///< fill Result::regionOf
+    /// Input vertices that may become samples (empty: all). Nested levels take a
+    /// finer level's samples here: each level is the Poisson set of its radius
+    /// among them, in the same visiting order, with geodesics over every point.
+    std::vector<int> within;
   };
   struct Result : LodResult<Scalar> {
     double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
@@ -47,15 +51,28 @@ class GeodesicPoissonLod {
 
   /// The Poisson visiting order of the domain's points: by the seed and each
   /// point's input index, so the same point has the same rank in any subset.
-  static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed) {
-    return PriorityOrder(d.points.vertIndex, seed);
+  static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {}) {
+    std::vector<int> order = PriorityOrder(d.points.vertIndex, seed);
+    if (within.empty()) return order;
+    std::vector<char> may;
+    for (int v : within) {
+      if (v < 0) throw InputError(Field::Within, "holds a negative index");
+      if (size_t(v) >= may.size()) may.resize(size_t(v) + 1, 0);
+      may[size_t(v)] = 1;
+    }
+    auto excluded = [&](int i) {
+      const size_t v = size_t(d.points.vertIndex[size_t(i)]);
+      return v >= may.size() || !may[v];
+    };
+    order.erase(std::remove_if(order.begin(), order.end(), excluded), order.end());
+    return order;
   }
 
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
-                                    Progress progress = Progress(nullptr)) {
+                                    Progress progress = Progress(nullptr), const std::vector<int>& within = {}) {
     CheckRadius(radius);
-    const std::vector<int> order = VisitingOrder(d, seed);
+    const std::vector<int> order = VisitingOrder(d, seed, within);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -71,7 +88,7 @@ class GeodesicPoissonLod {
     tp.tolerance = p.tolerance;
     tp.maxIterations = p.maxIterations;
     tp.seed = p.seed;
-    const std::vector<int> order = VisitingOrder(d, p.seed);
+    const std::vector<int> order = VisitingOrder(d, p.seed, p.within);
     tp.order = &order;
     // The metric is never shorter than the Euclidean one: start where disks of
     // this radius would about tile the diagonal plane of the box holding the
@@ -134,7 +151,7 @@ class GeodesicPoissonLod {
       r.trimmed = t.trimmed;
       r.coveringRadius = t.coveringRadius;
     } else {
-      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling);
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

@@ -25,7 +25,8 @@ enum class Field {
   MeshOutput,
   MaxDistance,
   ReferencePoints,    ///< the normal projection's measured points
-  Surface             ///< the normal projection's triangles
+  Surface,            ///< the normal projection's triangles
+  Within              ///< the points that may become samples (nested levels)
 };
 
 /// A std::invalid_argument whose what() is a predicate: written after the
@@ -54,6 +55,7 @@ inline const char* FieldId(Field f) {
     case Field::MaxDistance: return "MaxDistance";
     case Field::ReferencePoints: return "ReferencePoints";
     case Field::Surface: return "Surface";
+    case Field::Within: return "Within";
   }
   return "Unknown";
 }

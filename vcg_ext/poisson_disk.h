@@ -21,7 +21,10 @@ class PoissonDisk {
  public:
   struct Param {
     double radius = 0;                     ///< disk radius, in the metric of the disk search
-    const std::vector<int>* order = nullptr;  ///< visiting order, a permutation of the points
+    /// Visiting order: a permutation of the points, or of the only points that
+    /// may become samples (a finer level's samples, for nested levels); the
+    /// disks still mark every point, so owners cover the points they reach.
+    const std::vector<int>* order = nullptr;
   };
   struct Result {
     std::vector<int> samples;  ///< point indices, in the order they were chosen

@@ -27,12 +27,13 @@ namespace vcg_ext {
 class PoissonTargetCount {
  public:
   struct Param {
-    size_t sampleNum = 0;        ///< wanted samples, 1..n
+    size_t sampleNum = 0;        ///< wanted samples, 1..the points `order` visits
     double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance)
     int maxIterations = 24;      ///< Poisson runs at most
     double initialRadius = 0;    ///< first radius tried, > 0
     uint64_t seed = 0;           ///< the trim's first sample
-    const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder)
+    const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
+                                              ///< every point or only of those that may be samples
   };
   struct Result {
     std::vector<int> samples;    ///< point indices; in farthest-point order when trimmed
@@ -69,8 +70,9 @@ class PoissonTargetCount {
   /// FastMarching, EuclideanBall).
   template <class Scalar, class Search>
   static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr)) {
-    if (p.sampleNum < 1 || p.sampleNum > n)
-      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(n) +
+    const size_t candidates = p.order->size();  // the points that may become samples
+    if (p.sampleNum < 1 || p.sampleNum > candidates)
+      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(candidates) +
                                              "), got " + std::to_string(p.sampleNum));
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))
       throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
@@ -80,7 +82,7 @@ class PoissonTargetCount {
     const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;
     const double accHi = std::max(target * (1 + std::max(p.tolerance, 0.01)), target + 2);
     Trial above, below;  // above: count >= target, largest radius; below: count < target, smallest radius
-    above.count = n;     // radius 0: every point is a sample
+    above.count = candidates;  // radius 0: every point is a sample
     double r = p.initialRadius > 0 ? p.initialRadius : 1;
     Result out;
     Trial accepted;
@@ -112,17 +114,17 @@ class PoissonTargetCount {
       return out;  // a Poisson set as it is
     }
     // Trim to the exact count: the farthest-point order among the set's samples.
-    std::vector<int> candidates = from.radius > 0 ? std::move(from.samples) : AllPoints(n);
+    std::vector<int> pool = from.radius > 0 ? std::move(from.samples) : AllPoints(n, *p.order);
     FarthestPoint::Param fp;
     fp.sampleNum = p.sampleNum;
     fp.seed = p.seed;
-    fp.candidates = &candidates;
+    fp.candidates = &pool;
     FarthestPoint::Result f = FarthestPoint::Compute<Scalar>(n, search, fp, progress.Sub(80, 100));
     out.trimmed = f.samples.size() < from.count;
     out.coveringRadius = f.dist.empty() ? 0.0 : *std::max_element(f.dist.begin(), f.dist.end());
     out.samples = std::move(f.samples);
     out.voronoiOwner = std::move(f.owner);
-    out.diskOwner = DiskOwners(from, candidates, out.samples, out.voronoiOwner);
+    out.diskOwner = DiskOwners(from, pool, out.samples, out.voronoiOwner);
     return out;
   }
 
@@ -148,9 +150,13 @@ class PoissonTargetCount {
   }
 
 
-  static std::vector<int> AllPoints(size_t n) {
+  // The points the order visits (all of them, unless it is restricted), by index.
+  static std::vector<int> AllPoints(size_t n, const std::vector<int>& order) {
     std::vector<int> all(n);
     for (size_t i = 0; i < n; ++i) all[i] = int(i);
+    if (order.size() == n) return all;
+    all = order;
+    std::sort(all.begin(), all.end());
     return all;
   }
 

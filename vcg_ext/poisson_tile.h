@@ -39,6 +39,9 @@ class PoissonTile {
     double halo = 0;           ///< the points within this distance of `core` were read too (on every side
                                ///< where the cloud goes on)
     vcg::Box3d cloud;          ///< the whole cloud's bounding box: no points beyond it
+    /// Per input row: whether it may become a sample (nullptr: every row). Nested
+    /// levels pass a finer level's samples: core and halo alike, as settled.
+    const std::vector<char>* candidate = nullptr;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -74,7 +77,9 @@ class PoissonTile {
     for (size_t i = 0; i < n; ++i) pid[i] = id[size_t(d.points.vertIndex[i])];
     std::vector<int> order = PriorityOrder(pid, p.seed), rank(n);
     for (size_t k = 0; k < n; ++k) rank[size_t(order[k])] = int(k);
-    order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !(toCore[i] <= radius); }),
+    auto mayBe = [&](int i) { return !p.candidate || (*p.candidate)[size_t(d.points.vertIndex[i])] != 0; };
+    order.erase(std::remove_if(order.begin(), order.end(),
+                               [&](int i) { return !(toCore[i] <= radius) || !mayBe(i); }),
                 order.end());
     auto isCore = [&](int i) { return core[size_t(d.points.vertIndex[i])] != 0; };
 
@@ -91,7 +96,7 @@ class PoissonTile {
                              const bool sure = isCore(i) && covered[i] == 0;
                              state[i] = sure ? In : Open;
                              for (int j : disk) {  // a disk decides nothing for earlier points
-                               if (rank[j] < rank[i] || j == i || covered[j] == 2) continue;
+                               if (rank[j] < rank[i] || j == i || covered[j] == 2 || !mayBe(j)) continue;
                                if (sure) {
                                  covered[j] = 2, ++settled;
                                  maybe[j].clear();

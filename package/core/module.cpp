@@ -220,7 +220,16 @@ NB_MODULE(_core, m) {
       .def_rw("max_iterations", &Poisson::Param::maxIterations)
       .def_rw("seed", &Poisson::Param::seed)
       .def_rw("mesh_output", &Poisson::Param::meshOutput)
-      .def_rw("regions", &Poisson::Param::regions);
+      .def_rw("regions", &Poisson::Param::regions)
+      .def_prop_rw(
+          "within", [](const Poisson::Param& p) { return p.within; },
+          [](Poisson::Param& p, const nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>& v) {
+            p.within.resize(v.shape(0));
+            for (size_t k = 0; k < v.shape(0); ++k) {
+              if (v(k) < 0 || v(k) > INT32_MAX) throw std::invalid_argument("within: an index out of range");
+              p.within[k] = int(v(k));
+            }
+          });
   nb::class_<Fps::Param>(m, "FpsParam")
       .def(nb::init<>())
       .def_rw("domain", &Fps::Param::domain)

@@ -42,10 +42,11 @@ inline nb::ndarray<nb::numpy, uint64_t> Priorities(uint64_t seed, const Ids& ids
 inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> normals, const Ids& ids,
                                const Flags& core, const vcg_ext::GeodesicDomain<double>::Param& domain,
                                double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
-                               std::array<double, 6> cloudBox, std::optional<int> threads, nb::object progress) {
+                               std::array<double, 6> cloudBox, std::optional<Flags> candidate,
+                               std::optional<int> threads, nb::object progress) {
   const size_t rows = points.shape(0);
-  if (ids.shape(0) != rows || core.shape(0) != rows)
-    throw std::invalid_argument("ids and core must have one entry per point");
+  if (ids.shape(0) != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
+    throw std::invalid_argument("ids, core and candidate must have one entry per point");
   for (size_t i = 1; i < rows; ++i)
     if (!(ids(i - 1) < ids(i))) throw std::invalid_argument("a tile's points must come in increasing id order");
   Threads team(threads);
@@ -63,7 +64,11 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
     tp.halo = halo;
     tp.cloud = Box(cloudBox);
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
-    std::vector<char> isCore(core.data(), core.data() + rows);
+    std::vector<char> isCore(core.data(), core.data() + rows), may;
+    if (candidate) {
+      may.assign(candidate->data(), candidate->data() + rows);
+      tp.candidate = &may;
+    }
     return Tile::Compute(d, id, isCore, tp, pr.Sub(70, 100));
   });
   nb::dict out;
@@ -97,7 +102,8 @@ inline void Settle(const Int64s& open, const Int64s& coverOffset, const Int64s& 
 inline void BindTiles(nb::module_& m) {
   m.def("priorities", &Priorities, "seed"_a, "ids"_a, "the Poisson visiting priority of each id (lower first)");
   m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
-        "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "threads"_a.none(), "progress"_a.none());
+        "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(),
+        "progress"_a.none());
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
   m.def("next_radius", &vcg_ext::PoissonTargetCount::NextRadius, "above_radius"_a, "above_count"_a,
         "below_radius"_a, "below_count"_a, "count"_a, "radius"_a, "target"_a,

@@ -214,7 +214,8 @@ def _common(seed, threads, progress, mesh_output, has_faces):
 _FIELD_WORDS = {"Points": "points", "Coordinates": "points", "Radius": "radius", "SampleNum": "count",
                 "Tolerance": "tolerance", "Levels": "levels", "NormalNeighbours": "normal_neighbors",
                 "GraphNeighbours": "graph_neighbors", "CurvatureExponent": "curvature_exponent",
-                "Adaptivity": "adaptivity", "GeodesicMode": "geodesics", "MeshOutput": "mesh_output"}
+                "Adaptivity": "adaptivity", "GeodesicMode": "geodesics", "MeshOutput": "mesh_output",
+                "Within": "within"}
 
 
 def _run(fn, *args):
@@ -225,6 +226,23 @@ def _run(fn, *args):
         if len(e.args) == 2 and e.args[0] in _FIELD_WORDS:
             raise ValueError(f"{_FIELD_WORDS[e.args[0]]} {e.args[1]}") from None
         raise
+
+
+def _indices(values, n: int, name: str) -> np.ndarray:
+    """Point indices: a non-empty 1-D array of distinct integers in [0, n), sorted."""
+    a = np.asarray(values)
+    if a.ndim != 1 or a.size == 0 or not (np.issubdtype(a.dtype, np.integer) or a.dtype == bool):
+        raise ValueError(f"{name} must be a non-empty 1-D array of point indices")
+    if a.dtype == bool:
+        if len(a) != n:
+            raise ValueError(f"{name} as a mask must have one entry per point ({n}), got {len(a)}")
+        a = np.flatnonzero(a)
+        if a.size == 0:
+            raise ValueError(f"{name} selects no point")
+    a = np.unique(a.astype(np.int64))
+    if a[0] < 0 or a[-1] >= n:
+        raise ValueError(f"{name} holds an index outside 0 .. {n - 1}")
+    return a
 
 
 def _lod(cls, d: dict, **extra):
@@ -241,13 +259,15 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
                 normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
                 recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
-                regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
+                regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                 progress: Progress = None) -> PoissonLod:
     """Geodesic Poisson-disk LOD: samples pairwise farther apart than the radius in the metric, every point
     within it of a sample. Give one of ``radius`` (absolute, in the metric), ``count`` (exactly that many
     samples: the radius is searched and the set trimmed in farthest-point order) or ``rate`` (a percentage
     of the points, as a count). ``tolerance`` (percent) accepts an untrimmed set that close to the count.
-    ``regions`` ('disk' or 'voronoi') fills ``region_of``. Ctrl-C stops the run (KeyboardInterrupt)."""
+    ``regions`` ('disk' or 'voronoi') fills ``region_of``. ``within``: indices of the only points that may
+    become samples, such as a finer level's (the geodesics still run over every point): nested Poisson
+    levels, as the Dask pipeline's ``levels`` makes. Ctrl-C stops the run (KeyboardInterrupt)."""
     p, n, f, has_faces = _inputs(points, normals, faces)
     param = _core.PoissonParam()
     param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
@@ -257,15 +277,23 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
         raise ValueError("give exactly one of radius, count or rate" +
                          (f" (got {' and '.join(given)})" if given else ""))
     n_points = p.shape[0]
+    pool = n_points
+    if within is not None:
+        chosen = _indices(within, n_points, "within")
+        param.within = chosen
+        pool = len(chosen)
     if radius is not None:
         param.radius = _real(radius, "radius", positive=True)
     elif count is not None:
-        param.sample_num = _integer(count, "count", 1, n_points, " (the number of points)")
+        param.sample_num = _integer(count, "count", 1, pool,
+                                    " (the number of points)" if within is None else " (the points in within)")
     else:
         r = _real(rate, "rate", positive=True)
         if r > 100:
             raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {r}")
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
+        if param.sample_num > pool:
+            raise ValueError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
     t = _real(tolerance, "tolerance", positive=False)
     if t >= 100:
         raise ValueError(f"tolerance is a percentage below 100, got {t}")

@@ -4,6 +4,7 @@
     geodesic-lod scan.ply -o lod.ply --radius 1%          (1% of the bounding box diagonal)
     geodesic-lod scan.laz -o lod.laz --levels 50%,10%,2%  (lod_50pct.laz, lod_10pct.laz, lod_2pct.laz)
     geodesic-lod tiles/*.laz -o lod/ --radius 0.5 --workers 4   (many files as one cloud, on Dask)
+    geodesic-lod tiles/ -o lod/ --levels 10%,2% --workers 4       (lod/level_10pct/, lod/level_2pct/)
 
 Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130. Output files
 appear only when complete.
@@ -99,7 +100,8 @@ def parser() -> argparse.ArgumentParser:
     dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
     dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
     dask.add_argument("--tolerance", type=float, help="with --count or --rate, a Poisson set within this percentage "
-                      "of the count, untrimmed (default: 1; on one machine the count is exact)")
+                      "of the count (of each level's with --levels), untrimmed (default: 1; on one machine the count "
+                      "is exact)")
     dask.add_argument("--tile-points", type=int, default=2_000_000, help="points per tile, about "
                       "(default: %(default)s)")
     dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
@@ -116,8 +118,13 @@ def _on_cluster(args) -> bool:
 def _run_on_cluster(args, request: dict) -> int:
     """Many files, or a cloud too large for one machine: tiles on Dask workers."""
     from . import distributed
-    if "levels" in request or args.fps:
-        raise ValueError("on a cluster give --radius, --count or --rate (levels and --fps run on one machine)")
+    if args.fps:
+        raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps runs on one machine)")
+    if "levels" in request:  # what can be checked before the cluster starts: levels of one kind get coarser
+        for kind in (str, int):
+            values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
+            if any(b >= a for a, b in zip(values, values[1:])):
+                raise ValueError(f"--levels must get strictly coarser, finest first: {args.levels}")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --workers (a cluster on this machine) or --scheduler (an existing one), not both")
     if args.workers is not None and args.workers < 1:
@@ -155,8 +162,10 @@ def _run_on_cluster(args, request: dict) -> int:
         if cluster is not None:
             cluster.close()
     if not args.quiet:
-        print(f"{PROG}: {args.output}: {index['samples']:,} of {index['points']:,} points in "
-              f"{len(index['tiles'])} tiles, radius {index['radius']:.6g}", file=sys.stderr)
+        for level in index.get("levels", [index]):
+            where = pathlib.Path(args.output) / level.get("level", "")
+            print(f"{PROG}: {where}: {level['samples']:,} of {index['points']:,} points in "
+                  f"{len(level['tiles'])} tiles, radius {level['radius']:.6g}", file=sys.stderr)
         print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
     return 0
 
@@ -184,8 +193,9 @@ def _request(args) -> dict:
     if args.fps and args.rate is None and args.count is None:
         raise ValueError("--fps takes --rate or --count" + (": --levels are nested already (coarser levels "
                          "are farthest-point prefixes)" if args.levels is not None else ""))
-    if args.tolerance is not None and (args.fps or (args.rate is None and args.count is None)):
-        raise ValueError("--tolerance goes with --count or --rate (Poisson-disk)")
+    counted = args.rate is not None or args.count is not None or (args.levels is not None and _on_cluster(args))
+    if args.tolerance is not None and (args.fps or not counted):
+        raise ValueError("--tolerance goes with --count or --rate (Poisson-disk), or with --levels on a cluster")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
         raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
     if args.levels is not None:

@@ -7,6 +7,11 @@ then every tile writes its samples' records, bit for bit, as a file of the input
 result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
 file order (for the same parameters and seed), whatever the tiling and the number of workers.
 
+With `levels`, each level is the Poisson set of its own radius among the finer level's samples (the
+same visiting order, the geodesics over every point): ``poisson_lod(..., within=finer)`` on one
+machine. Each level's samples are kept per tile in a work folder, where the next level's tiles read
+those of their region; each level is written into its own folder.
+
 Tasks are pure functions of their inputs: Dask reruns those of a worker that dies, and the output
 is the same. Files are written under a temporary name and renamed when complete; ``index.json``,
 written last, lists the tiles, their bounds and counts, the radius, the parameters and the seed.
@@ -18,6 +23,7 @@ import json
 import math
 import os
 import pathlib
+import shutil
 import time
 from dataclasses import dataclass, field
 from typing import Optional, Sequence
@@ -27,6 +33,7 @@ import numpy as np
 from . import arrays, point_files, tiles
 
 INDEX = "index.json"
+WORK = ".levels"   # each level's samples per tile, while the next level is made
 CHUNK = 1_000_000  # points read at a time from a LAS/LAZ file
 
 
@@ -195,6 +202,7 @@ class Job:
     domain: dict          #: DomainParam fields (plain values, so the job pickles)
     threads: Optional[int]
     halo: float
+    within: Optional[tuple] = None  #: (folder, boxes): the finer level's samples, one .npy of ids per tile
 
     def domain_param(self):
         d = arrays._core.DomainParam()
@@ -206,20 +214,51 @@ class Job:
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     """A Dask task: one tile's decision, reading a wider halo until the check passes."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
+    candidates = None
+    if job.within is not None:
+        candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
     return tiles.decide_widening(lambda halo: read_region(job.srcs, outer.lo - halo, outer.hi + halo), box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
-                                 seed=job.seed, threads=job.threads)
+                                 seed=job.seed, candidates=candidates, threads=job.threads)
+
+
+def _ids_file(folder, k: int) -> pathlib.Path:
+    return pathlib.Path(folder) / f"tile_{k:05d}.npy"
+
+
+def finer_samples(job: Job, lo: np.ndarray, hi: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """Which of `ids` (points read within [lo, hi]) are samples of the finer level: from the files of the
+    tiles whose points may lie in that region."""
+    folder, boxes = job.within
+    parts = []
+    for k, b in enumerate(boxes):
+        o = b.outer(job.cloud)
+        if np.all(o.hi >= lo) and np.all(o.lo <= hi):
+            f = _ids_file(folder, k)
+            if not f.exists():
+                raise RuntimeError(f"the finer level's samples of tile {k} are missing ({f})")
+            parts.append(np.load(f))
+    known = np.sort(np.concatenate(parts)) if parts else np.empty(0, np.uint64)
+    at = np.minimum(np.searchsorted(known, ids), max(len(known) - 1, 0))
+    return (known[at] == ids) if len(known) else np.zeros(len(ids), bool)
 
 
 def seams(d: Optional[tiles.Decision]):
     return None if d is None else d.seams()
 
 
-def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str) -> Optional[dict]:
-    """A Dask task: the tile's samples (its own and the settled open ones) written in visiting order."""
+def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str,
+               ids_path: Optional[str] = None) -> Optional[dict]:
+    """A Dask task: the tile's samples (its own and the settled open ones) written in visiting order, and
+    with `ids_path` their ids (sorted) for the next level."""
+    ids = np.empty(0, np.uint64) if d is None else \
+        tiles.in_visiting_order(np.concatenate([d.samples, settled]).astype(np.uint64), job.seed)
+    if ids_path is not None:
+        tmp = f"{ids_path}.partial-{os.getpid()}.npy"
+        np.save(tmp, np.sort(ids))
+        os.replace(tmp, ids_path)
     if d is None:
         return None
-    ids = tiles.in_visiting_order(np.concatenate([d.samples, settled]).astype(np.uint64), job.seed)
     if len(ids) == 0:
         return {"file": None, "count": 0}
     source = read_records(job.srcs, ids)
@@ -270,17 +309,20 @@ def local_cluster(workers: int, memory_limit="auto"):
 
 
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
-              rate: Optional[float] = None, tolerance: float = 1.0, max_runs: int = 12, seed: int = 0,
-              metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays._DOMAIN.adaptivity,
-              tile_points: int = 2_000_000, client=None, threads: Optional[int] = None, progress=None) -> dict:
+              rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
+              max_runs: int = 12, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
+              adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000, client=None,
+              threads: Optional[int] = None, progress=None) -> dict:
     """Samples the files as one cloud on a Dask client (its workers do the tiles; see local_cluster) and
     writes the LOD as tiles in `out_dir` with an index. Give `radius` (a length, or a string such as
     '1%' of the cloud's diagonal): the samples are exactly poisson_lod's at that radius. Or give `count`
     or `rate` (a percentage of the points): the radius is searched as poisson_lod's count search
     steps, with the counts summed over the tiles, until a Poisson set lies within `tolerance` percent
     of the count (or after `max_runs` runs, the nearest); there is no trim to the exact count, which
-    would need the whole set in one place. `threads`: per task (None: all the worker machine's
-    cores). Returns the index. `progress(done, total)` hears of finished tasks."""
+    would need the whole set in one place. Or give `levels` (counts or percentages of the points, finest
+    first, as lod_pyramid takes them): nested levels, each searched as a count among the finer level's
+    samples, each written into a folder of its own (level_50pct, ...). `threads`: per task (None: all
+    the worker machine's cores). Returns the index. `progress(done, total)` hears of finished tasks."""
     from dask.distributed import KilledWorker
 
     paths = expand_inputs(inputs)
@@ -289,10 +331,11 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         raise point_files.PointFileError(out, "exists and is not a folder")
     if not out.parent.resolve().is_dir():
         raise point_files.PointFileError(out, f"the folder {out.parent} does not exist")
-    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
+    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
+             if v is not None]
     if len(given) != 1:
-        raise ValueError("give exactly one of radius, count or rate" + (f" (got {' and '.join(given)})" if given
-                                                                          else ""))
+        raise ValueError("give exactly one of radius, count, rate or levels" +
+                         (f" (got {' and '.join(given)})" if given else ""))
     tolerance = arrays._real(tolerance, "tolerance", positive=True)
     max_runs = arrays._integer(max_runs, "max_runs", 1)
     seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
@@ -300,13 +343,18 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     if not isinstance(tile_points, int) or tile_points < 1000:
         raise ValueError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
     try:
-        return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, tolerance=tolerance,
+        return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs), seed, metric, adaptivity, domain, tile_points,
                           client, threads, progress)
     except KilledWorker as e:
         raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
+
+
+def level_folder(item) -> str:
+    """The folder of a level given as '50%' or 5000."""
+    return f"level_{item[:-1].strip()}pct" if isinstance(item, str) else f"level_{item}"
 
 
 @dataclass
@@ -353,10 +401,11 @@ def _poisson_run(client, job: Job, boxes, ticks: _Ticks) -> _Run:
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: _Ticks,
-                  spacing: float) -> tuple:
-    """poisson_lod's count search, each run over all tiles: (the accepted or nearest run, runs made)."""
+                  spacing: float, pool: int) -> tuple:
+    """poisson_lod's count search, each run over all tiles, among `pool` points that may be samples: (the
+    accepted or nearest run, runs made)."""
     lo, hi = target * (1 - tolerance / 100), target * (1 + tolerance / 100)
-    above_r, above_c, below_r, below_c = 0.0, float(sum(s.count for s in job.srcs)), 0.0, 0.0
+    above_r, above_c, below_r, below_c = 0.0, float(pool), 0.0, 0.0
     r = float(np.linalg.norm(job.cloud.hi - job.cloud.lo)) / math.sqrt(target)
     best, runs, spent = None, 0, {"tiles": 0.0, "seams": 0.0}
     for runs in range(1, max_runs + 1):
@@ -380,46 +429,81 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
 
 
 def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
-    from dask.distributed import as_completed
     surveys = client.gather(client.map(survey, paths, pure=False))
     srcs = sources(paths, surveys)
     cloud, boxes, shape = plan(srcs, tile_points)
     total = sum(s.count for s in srcs)
     spacing = tiles.spacing_of(cloud, total)
     ticks = _Ticks(progress)
-    search = {}
-    if size["radius"] is not None:
-        r = _radius(size["radius"], cloud)
-        job = Job(srcs, cloud, r, seed, domain, threads, tiles.first_halo(r, spacing))
-        run = _poisson_run(client, job, boxes, ticks)
+    if size["levels"] is not None:
+        items = list(size["levels"])
+        targets = [("count", c) for c in arrays.level_counts(items, total)]
+        folders = [level_folder(item) for item in items]
     else:
-        if size["count"] is not None:
-            target = arrays._integer(size["count"], "count", 1, total, " (the number of points)")
+        if size["radius"] is not None:
+            targets = [("radius", _radius(size["radius"], cloud))]
+        elif size["count"] is not None:
+            targets = [("count", arrays._integer(size["count"], "count", 1, total, " (the number of points)"))]
         else:
             pct = arrays._real(size["rate"], "rate", positive=True)
             if pct > 100:
                 raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {pct}")
-            target = int(max(1, arrays._core.percent_of(pct, total)))
-        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
-        run, runs = _count_search(client, job, boxes, target, size["tolerance"], size["max_runs"], ticks, spacing)
-        job = dataclasses.replace(job, radius=run.radius)
-        search = {"target": target, "tolerance_percent": size["tolerance"], "runs": runs}
-    parts, settled = run.parts, run.settled
-    owned = [np.empty(0, np.uint64) if p is None else
-             settled[np.isin(settled, p.open_ids)] for p in parts]
+            targets = [("count", int(max(1, arrays._core.percent_of(pct, total))))]
+        folders = [None]
     out.mkdir(exist_ok=True)
     (out / INDEX).unlink(missing_ok=True)  # a folder without an index is an unfinished one
-    ext = pathlib.Path(srcs[0].path).suffix.lower()
-    names = [str(out / f"tile_{k:05d}{ext}") for k in range(len(boxes))]
+    work = out / WORK
+    shutil.rmtree(work, ignore_errors=True)
+    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
+    pool, made = total, []
+    for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
+        search = {}
+        if kind == "radius":
+            job = dataclasses.replace(job, radius=value, halo=tiles.first_halo(value, spacing))
+            run = _poisson_run(client, job, boxes, ticks)
+        else:
+            run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
+                                      pool)
+            job = dataclasses.replace(job, radius=run.radius)
+            search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
+        ids_dir = work / str(k) if k + 1 < len(targets) else None
+        level = _write_level(client, job, run, boxes, out if folder is None else out / folder, ids_dir, ticks)
+        made.append({**({"level": folder} if folder else {}), **level, **search})
+        pool = level["samples"]
+        if ids_dir is not None:
+            job = dataclasses.replace(job, within=(str(ids_dir), boxes))
+    index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
+             "adaptivity": adaptivity, "tiles_per_axis": list(shape), **made[0]}
+    if size["levels"] is not None:
+        index["levels"] = made
+    tmp = out / f".{INDEX}.partial-{os.getpid()}"
+    tmp.write_text(json.dumps(index, indent=1))
+    os.replace(tmp, out / INDEX)
+    shutil.rmtree(work, ignore_errors=True)
+    return index
+
+
+def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: _Ticks) -> dict:
+    """Writes one level's tiles into `folder` (and its samples' ids per tile into `ids_dir`); its index
+    entry. Tiles of an earlier run into this folder that this one did not write, and files left
+    half-written by interrupted tasks, are removed."""
+    from dask.distributed import as_completed
+    parts, settled = run.parts, run.settled
+    owned = [np.empty(0, np.uint64) if p is None else settled[np.isin(settled, p.open_ids)] for p in parts]
+    folder.mkdir(exist_ok=True)
+    if ids_dir is not None:
+        ids_dir.mkdir(parents=True, exist_ok=True)
+    ext = pathlib.Path(job.srcs[0].path).suffix.lower()
+    names = [str(folder / f"tile_{k:05d}{ext}") for k in range(len(boxes))]
+    id_names = [None if ids_dir is None else str(_ids_file(ids_dir, k)) for k in range(len(boxes))]
     ticks.expect(len(boxes))
     start = time.perf_counter()
-    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, pure=False)
+    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, pure=False)
     for _ in as_completed(written):
         ticks()
     results = client.gather(written)
     writing = time.perf_counter() - start
-    index = {"inputs": [s.path for s in srcs], "points": total, "samples": 0, "radius": run.radius, "seed": seed,
-             "metric": metric, "adaptivity": adaptivity, **search, "tiles_per_axis": list(shape),
+    entry = {"samples": 0, "radius": run.radius,
              "open_points": int(sum(len(p.open_ids) for p in parts if p is not None)),
              "seams_bytes": int(sum(p.nbytes() for p in parts if p is not None)),
              "seconds": {"tiles": round(run.seconds["tiles"], 3), "seams": round(run.seconds["seams"], 3),
@@ -428,19 +512,14 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     for box, res in zip(boxes, results):
         if res is None or res["count"] == 0:
             continue
-        index["tiles"].append({"file": res["file"], "count": res["count"], "lo": box.lo.tolist(),
+        entry["tiles"].append({"file": res["file"], "count": res["count"], "lo": box.lo.tolist(),
                                "hi": box.hi.tolist(), "points_read": res["read"], "halo": res["halo"]})
-        index["samples"] += res["count"]
-    tmp = out / f".{INDEX}.partial-{os.getpid()}"
-    tmp.write_text(json.dumps(index, indent=1))
-    os.replace(tmp, out / INDEX)
-    # Tiles of an earlier run into this folder that this one did not write, and files left half-written
-    # by interrupted tasks.
-    kept = {t["file"] for t in index["tiles"]}
-    for f in out.iterdir():
+        entry["samples"] += res["count"]
+    kept = {t["file"] for t in entry["tiles"]}
+    for f in folder.iterdir():
         if (f.name.startswith("tile_") and f.name not in kept) or (f.name.startswith(".tile_") and ".partial-" in f.name):
             f.unlink(missing_ok=True)
-    return index
+    return entry
 
 
 def _radius(radius, cloud: tiles.Box) -> float:

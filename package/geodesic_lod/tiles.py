@@ -80,13 +80,16 @@ def first_halo(radius: float, spacing: float) -> float:
 
 
 def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, core: np.ndarray, *, radius: float,
-           box: Box, cloud: Box, halo: float, domain, seed: int = 0, threads: Optional[int] = None,
-           progress=None) -> tuple:
-    """One tile, from the points read with `halo` (in increasing id order). Returns (Decision, None) or,
-    when the halo is too narrow for the check, (None, a halo that will do)."""
+           box: Box, cloud: Box, halo: float, domain, seed: int = 0, candidate: Optional[np.ndarray] = None,
+           threads: Optional[int] = None, progress=None) -> tuple:
+    """One tile, from the points read with `halo` (in increasing id order); `candidate`: per point, whether
+    it may become a sample (None: all). Returns (Decision, None) or, when the halo is too narrow for the
+    check, (None, a halo that will do)."""
+    if candidate is not None:
+        candidate = np.ascontiguousarray(candidate, dtype=bool)
     r = _core.poisson_tile(points, normals, np.ascontiguousarray(ids, dtype=np.uint64),
                            np.ascontiguousarray(core, dtype=bool), domain, float(radius), int(seed), box.as_tuple(),
-                           float(halo), cloud.as_tuple(), threads, progress)
+                           float(halo), cloud.as_tuple(), candidate, threads, progress)
     if not r["certified"]:
         return None, max(r["needed_halo"] * 1.01, 1.5 * halo)
     status, offset = r["status"], r["cover_offset"]
@@ -100,9 +103,11 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
 
 
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
-                    seed: int = 0, threads: Optional[int] = None) -> Optional[Decision]:
+                    seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
+                    threads: Optional[int] = None) -> Optional[Decision]:
     """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
-    the box (points, normals or None, ids; in id order). None when the tile's core holds no point."""
+    the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
+    may become samples. None when the tile's core holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
     while True:
         points, normals, ids = read(halo)
@@ -112,8 +117,9 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
         if len(points) <= neighbours:
             raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
                              "the normals and the graph need: the cloud is too sparse for this radius")
+        may = None if candidates is None else candidates(ids, halo)
         d, halo = decide(points, normals, ids, core, radius=radius, box=box.outer(cloud), cloud=cloud, halo=halo,
-                         domain=domain, seed=seed, threads=threads)
+                         domain=domain, seed=seed, candidate=may, threads=threads)
         if d is not None:
             return d
 
@@ -166,11 +172,12 @@ def spacing_of(box: Box, n: int) -> float:
 
 def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
                       metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays._DOMAIN.adaptivity,
-                      halo: Optional[float] = None, threads: Optional[int] = None,
+                      halo: Optional[float] = None, within: Optional[np.ndarray] = None,
+                      threads: Optional[int] = None,
                       on_tile: Optional[Callable[[int, Decision], None]] = None) -> np.ndarray:
-    """poisson_lod(points, normals, radius=radius, seed=seed).indices, computed tile by tile in one process
-    (shape: tiles per axis). For tests and for seeing what the tiling costs; the Dask pipeline runs the
-    same steps on workers."""
+    """poisson_lod(points, normals, radius=radius, seed=seed, within=within).indices, computed tile by tile in
+    one process (shape: tiles per axis). For tests and for seeing what the tiling costs; the Dask pipeline
+    runs the same steps on workers."""
     p, n = arrays._points(points, normals)
     domain = arrays._domain(len(p), False, metric, "point-graph", arrays._DOMAIN.curvature_exponent, adaptivity,
                             arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors,
@@ -178,13 +185,18 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
     cloud = Box(p.min(axis=0), p.max(axis=0))
     ids = np.arange(len(p), dtype=np.uint64)
     width = halo if halo is not None else first_halo(radius, spacing_of(cloud, len(p)))
+    may = None
+    if within is not None:
+        chosen = np.zeros(len(p), bool)
+        chosen[np.asarray(within, dtype=np.int64)] = True
+        may = lambda ids, halo: chosen[ids.astype(np.int64)]
     decisions = []
     for t, box in enumerate(grid_tiles(cloud, shape)):
         def read(halo, box=box):
             m = box.read_mask(p, halo)
             return p[m], None if n is None else n[m], ids[m]
         d = decide_widening(read, box=box, cloud=cloud, halo=width, domain=domain, radius=radius, seed=seed,
-                            threads=threads)
+                            candidates=may, threads=threads)
         if d is None:
             continue
         if on_tile:

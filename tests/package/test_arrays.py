@@ -51,6 +51,29 @@ def test_poisson_exact_counts(cloud, ask):
     assert lod.covering_radius >= lod.radius or not lod.trimmed
 
 
+def test_within_a_finer_level_gives_nested_poisson_levels(cloud):
+    # Each level: the Poisson set of its radius among the finer level's samples, in the same visiting order.
+    fine = gl.poisson_lod(cloud, radius=0.06, metric="euclidean", seed=2).indices
+    coarse = gl.poisson_lod(cloud, radius=0.15, metric="euclidean", seed=2, within=fine).indices
+    assert np.isin(coarse, fine).all() and len(coarse) < len(fine)
+    s = cloud[coarse]
+    assert cKDTree(s).query(s, k=2)[0][:, 1].min() > 0.15        # separated at its own radius
+    assert cKDTree(s).query(cloud[fine])[0].max() <= 0.15         # covers the finer level
+    mask = np.zeros(len(cloud), bool)
+    mask[fine] = True
+    assert np.array_equal(gl.poisson_lod(cloud, radius=0.15, metric="euclidean", seed=2, within=mask).indices,
+                          coarse)
+    # Greedy in the visiting order: a finer sample is kept iff no kept one before it lies within the radius.
+    order = fine[np.lexsort((fine, gl._core.priorities(2, fine.astype(np.uint64))))]
+    kept = []
+    for i in order:
+        if not kept or np.linalg.norm(cloud[kept] - cloud[i], axis=1).min() > 0.15:
+            kept.append(i)
+    assert np.array_equal(np.sort(kept), np.sort(coarse))
+    counted = gl.poisson_lod(cloud, count=100, within=fine)
+    assert len(counted.indices) == 100 and np.isin(counted.indices, fine).all()
+
+
 def test_fps_order_prefixes_and_covering_radii(cloud):
     lod = gl.fps_lod(cloud, count=200, seed=5)
     small = gl.fps_lod(cloud, count=50, seed=5)

@@ -69,6 +69,14 @@ CASES = {
     "levels 0.01%": (gl.lod_pyramid, (P,), dict(levels=["0.01%"]), ValueError, "levels"),
     "levels growing": (gl.lod_pyramid, (P,), dict(levels=[10, 50]), ValueError, "coarser"),
     "levels above n": (gl.lod_pyramid, (P,), dict(levels=[501]), ValueError, "levels"),
+    "within negative": (gl.poisson_lod, (P,), dict(radius=0.1, within=[-1, 3]), ValueError, "within"),
+    "within above n": (gl.poisson_lod, (P,), dict(radius=0.1, within=[3, 500]), ValueError, "within"),
+    "within empty": (gl.poisson_lod, (P,), dict(radius=0.1, within=[]), ValueError, "within"),
+    "within floats": (gl.poisson_lod, (P,), dict(radius=0.1, within=[0.5, 2.0]), ValueError, "within"),
+    "within 2-D": (gl.poisson_lod, (P,), dict(radius=0.1, within=[[1, 2]]), ValueError, "within"),
+    "within mask length": (gl.poisson_lod, (P,), dict(radius=0.1, within=np.ones(10, bool)), ValueError, "within"),
+    "count above within": (gl.poisson_lod, (P,), dict(count=11, within=np.arange(10)), ValueError, "within"),
+    "rate above within": (gl.poisson_lod, (P,), dict(rate=50, within=np.arange(10)), ValueError, "within"),
     "variation neighbours": (gl.normal_variation, (P,), dict(normal_neighbors=0), ValueError, "normal_neighbors"),
 }
 

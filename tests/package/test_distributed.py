@@ -90,6 +90,33 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
     assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)
 
 
+def level_ids(out, level):
+    files = [out / level["level"] / t["file"] for t in level["tiles"]]
+    assert sorted(p.name for p in (out / level["level"]).iterdir()) == sorted(f.name for f in files)
+    return np.concatenate([laspy.read(str(f)).points.array for f in files])
+
+
+def test_levels_are_the_nested_poisson_sets_of_one_machine(cloud, client, tmp_path):
+    folder, points, records = cloud
+    index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["20%", "5%", 300], tolerance=2.0,
+                           tile_points=6000, seed=5, client=client, threads=1)
+    levels = index["levels"]
+    assert [lv["level"] for lv in levels] == ["level_20pct", "level_5pct", "level_300"]
+    assert sorted(p.name for p in (tmp_path / "lod").iterdir()) == sorted([dist.INDEX] + [lv["level"] for lv in levels])
+    assert index["samples"] == levels[0]["samples"] and index["radius"] == levels[0]["radius"]
+    finer = None
+    for lv, target in zip(levels, [4800, 1200, 300]):
+        got = level_ids(tmp_path / "lod", lv)
+        ids = got["gps_time"].astype(np.int64)
+        assert got.tobytes() == records[ids].tobytes()
+        assert lv["target"] == target and abs(len(ids) - target) <= 0.02 * target
+        # Exactly the Poisson set of the level's radius among the finer level's samples, on one machine.
+        whole = gl.poisson_lod(points, radius=lv["radius"], seed=5, within=finer).indices
+        assert sorted(ids) == sorted(whole)
+        assert finer is None or np.isin(ids, finer).all()
+        finer = ids
+
+
 def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
     folder, points, records = cloud
     scheduler_file = tmp_path / "scheduler.json"
@@ -145,6 +172,14 @@ def test_the_command_on_a_local_cluster(cloud, tmp_path):
                                   "2", "--tile-points", "8000", "-q"], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0 and r.stderr == "", r.stderr
     check_equal(tmp_path / "lod", points, records, 0)
+    r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "levels"), "--levels", "10%,2%", "--workers",
+                                  "2", "--tile-points", "8000", "--tolerance", "3"], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stderr
+    index = json.loads((tmp_path / "levels" / dist.INDEX).read_text())
+    fine, coarse = (level_ids(tmp_path / "levels", lv)["gps_time"] for lv in index["levels"])
+    assert len(coarse) < len(fine) and np.isin(coarse, fine).all()
+    assert f"level_2pct: {len(coarse):,} of 24,000 points" in r.stderr
 
 
 def test_files_that_cannot_go_together_are_named(client, tmp_path):
@@ -211,8 +246,9 @@ def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud
 
 
 @pytest.mark.parametrize("args, problem", [
-    (["--levels", "50%,10%", "--workers", "2"], "levels and --fps run on one machine"),
-    (["--count", "100", "--fps", "--workers", "2"], "levels and --fps run on one machine"),
+    (["--levels", "10%,50%", "--workers", "2"], "--levels must get strictly coarser"),
+    (["--levels", "50%,1e19", "--workers", "2"], "--levels"),
+    (["--count", "100", "--fps", "--workers", "2"], "--fps runs on one machine"),
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count or --rate"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
