@@ -21,6 +21,7 @@ import pymeshlab
 from scipy.spatial import cKDTree
 
 import quality_report
+import radius_search
 from host import PEER_TOOL, PLUGIN, load_plugin
 from quality_cache import ALL_POINTS, RunCache, run_context
 from quality_config import (ALL_RUNS, COUNT_TOLERANCE, DATA, MESHLAB_RADIUS_VARIANCE, METHODS, MODELS, OUT,
@@ -80,32 +81,19 @@ class Model:
         return lod
 
     def radius_search(self, target, apply_at):
-        """The LOD of apply_at(radius) nearest to the target count: secant steps on log(count)
-        against log(radius) (count ~ radius^-2 on a surface), kept inside the bracket found so
-        far. The time reported is that of the final run alone."""
-        lo, hi = (0.0, np.inf), (np.inf, 0.0)  # (radius, count) with count above / below target
-        r = self.diag * 0.6 / np.sqrt(target)
-        best, runs = None, 0
-        for runs in range(1, 16):
+        """The LOD of apply_at(radius) nearest to the target count, by radius_search.search. The time
+        reported is that of the final run alone."""
+        lods = {}  # the nearest so far, by radius
+
+        def count_at(r):
             lod = self._layer(lambda: apply_at(r))
-            n = len(lod["points"])
-            if best is None or abs(n - target) < abs(len(best["points"]) - target):
-                best, best_r = lod, r
-            if abs(n - target) <= COUNT_TOLERANCE * target:
-                break
-            if n > target:
-                lo = max(lo, (r, n))
-            else:
-                hi = min(hi, (r, n))
-            r_next = r * (n / target) ** 0.5
-            if np.isfinite(hi[0]) and lo[0] > 0:
-                # log-log interpolation between the bracket's ends
-                slope = np.log(hi[1] / lo[1]) / np.log(hi[0] / lo[0])
-                r_next = lo[0] * np.exp(np.log(target / lo[1]) / slope) if slope < 0 else np.sqrt(lo[0] * hi[0])
-                if not lo[0] < r_next < hi[0]:
-                    r_next = np.sqrt(lo[0] * hi[0])
-            r = r_next
-        best["parameter"] = f"radius {best_r:.4g} ({runs} runs)"
+            if not lods or abs(len(lod["points"]) - target) < abs(len(next(iter(lods.values()))["points"]) - target):
+                lods.clear()
+                lods[r] = lod
+            return len(lod["points"])
+        r, _, runs = radius_search.search(target, count_at, self.diag * 0.6 / np.sqrt(target), COUNT_TOLERANCE)
+        best = lods[r]
+        best["parameter"] = f"radius {r:.4g} ({runs} runs)"
         return best
 
     # --- MeshLab ------------------------------------------------------------------------

@@ -245,6 +245,17 @@ def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=Dying())
 
 
+def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(tmp_path):
+    """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up."""
+    folder = write_parts(tmp_path / "big", bumpy_sphere(600_000) * 10, parts=2)
+    with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
+        with pytest.raises(MemoryError, match="too small for tiles of 1000000 points; lower tile_points"):
+            dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=1_000_000, client=c, threads=1)
+        assert not (tmp_path / "lod" / dist.INDEX).exists()
+        index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=50_000, client=c, threads=1)
+    assert index["samples"] > 0 and len(index["tiles"]) >= 12
+
+
 @pytest.mark.parametrize("args, problem", [
     (["--levels", "10%,50%", "--workers", "2"], "--levels must get strictly coarser"),
     (["--levels", "50%,1e19", "--workers", "2"], "--levels"),
