@@ -166,8 +166,8 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                diag * 0.01, 0, diag});
   p.push_back({ParamKind::Int, "samplenum", "Number of samples",
                "Wanted number of samples (0: use the sample rate, or else the radius). The radius is searched for "
-               "(at most 24 Poisson runs) and a slightly denser Poisson set is trimmed in farthest-point order to "
-               "the exact count; the radius used is reported.", 0});
+               "(at most 24 Poisson runs) and a slightly denser Poisson set is thinned to the exact count, the "
+               "samples nearest to others first; the radius used is reported.", 0});
   p.push_back({ParamKind::Float, "samplerate", "Sample rate (%)",
                "Wanted number of samples as a percentage of the layer's vertices, instead of a count (0: unused).",
                0});
@@ -221,7 +221,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     if (p.sampleNum > 0)
       run.summary += QString("; %1 samples asked: radius found in %2 Poisson runs (%3 samples)%4")
                          .arg(p.sampleNum).arg(r.iterations).arg(r.poissonCount)
-                         .arg(r.trimmed ? ", trimmed in farthest-point order" : "");
+                         .arg(r.trimmed ? ", thinned to the count" : "");
     run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"radius", QVariant(double(r.radius))},
                   {"covering_radius", QVariant(r.coveringRadius)}, {"iterations", QVariant(r.iterations)}};
     return run;

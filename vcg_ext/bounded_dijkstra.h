@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
+#include "source_seeds.h"
 
 namespace vcg_ext {
 
@@ -51,6 +52,30 @@ class BoundedDijkstra {
     heap_.clear();
     dist[src] = 0;
     heap_.emplace_back(Scalar(0), src);
+    Propagate(dist, f, [](int, int) {});
+  }
+
+  /// The nearest of several sources for every point, in one pass: dist[i] its
+  /// distance and owner[i] its index in `sources` (infinity and -1 where none
+  /// is reachable). O(n log n), whatever the number of sources.
+  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) {
+    SeedSources(sources, g_.size(), dist, owner, heap_);
+    Propagate(dist, [](int, Scalar) {}, [&](int from, int to) { owner[to] = owner[from]; });
+  }
+
+  /// Graph distances from `src` to every point (infinity where unreachable).
+  std::vector<Scalar> Distances(int src) {
+    std::vector<Scalar> d(g_.size(), std::numeric_limits<Scalar>::infinity());
+    Visit(src, std::numeric_limits<Scalar>::max(), [&](int i, Scalar di) { d[i] = di; });
+    return d;
+  }
+
+ private:
+  typedef std::pair<Scalar, int> Entry;
+  // Dijkstra from the points in heap_ (their distances set) as far as `dist`
+  // drops: f(i, d) as each is settled, reached(from, to) as `from` lowers `to`.
+  template <class F, class Reached>
+  void Propagate(std::vector<Scalar>& dist, F&& f, const Reached& reached) {
     while (!heap_.empty()) {
       std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
       const Entry top = heap_.back();
@@ -63,22 +88,13 @@ class BoundedDijkstra {
         const int j = g_.adj[e];
         if (nd < dist[j]) {
           dist[j] = nd;
+          reached(i, j);
           heap_.emplace_back(nd, j);
           std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
         }
       }
     }
   }
-
-  /// Graph distances from `src` to every point (infinity where unreachable).
-  std::vector<Scalar> Distances(int src) {
-    std::vector<Scalar> d(g_.size(), std::numeric_limits<Scalar>::infinity());
-    Visit(src, std::numeric_limits<Scalar>::max(), [&](int i, Scalar di) { d[i] = di; });
-    return d;
-  }
-
- private:
-  typedef std::pair<Scalar, int> Entry;
   void NextStamp() {
     if (++stamp == 0) {  // wrapped after 2^32 searches: the one O(n) reset
       std::fill(stamp_.begin(), stamp_.end(), 0);

@@ -35,6 +35,26 @@ class EuclideanBall {
     }
   }
 
+  /// The nearest of several sources for every point (a kd-tree of the sources):
+  /// dist[i] its distance, owner[i] its index in `sources`. O(n log m).
+  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) const {
+    const size_t n = pos_.size();
+    dist.assign(n, std::numeric_limits<Scalar>::infinity());
+    owner.assign(n, -1);
+    if (sources.empty()) return;
+    std::vector<Coord> at(sources.size());
+    for (size_t k = 0; k < sources.size(); ++k) at[k] = pos_[size_t(sources[k])];
+    vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(at.data(), int(at.size())));
+#pragma omp parallel for schedule(static)
+    for (long long i = 0; i < (long long)n; ++i) {
+      unsigned int k = 0;
+      Scalar sq = 0;
+      tree.doQueryClosest(pos_[size_t(i)], k, sq);
+      owner[size_t(i)] = int(k);
+      dist[size_t(i)] = std::sqrt(sq);
+    }
+  }
+
   /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order; src
   /// itself always, at 0).
   template <class F>

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
+#include "source_seeds.h"
 
 namespace vcg_ext {
 
@@ -117,6 +118,21 @@ class FastMarching {
     Run(src, std::numeric_limits<Scalar>::max(), get, set, f);
   }
 
+  /// The nearest of several sources for every vertex, in one front: dist[i]
+  /// its distance and owner[i] its index in `sources` (a vertex takes the
+  /// owner of the vertex whose front reached it first; infinity and -1 where
+  /// none is reachable). O(n log n), whatever the number of sources.
+  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) {
+    NextStamp();
+    SeedSources(sources, size(), dist, owner, heap_);
+    auto get = [&](int i) { return dist[i]; };
+    auto set = [&](int i, Scalar d) { dist[i] = d; };
+    // A triangle update mixing two sources' fronts is no distance to either: each front
+    // crosses triangles whose other corner it reached itself, and meets others along edges.
+    March(std::numeric_limits<Scalar>::max(), get, set, [](int, Scalar) {},
+          [&](int from, int to) { owner[to] = owner[from]; }, [&](int a, int b) { return owner[a] == owner[b]; });
+  }
+
   /// Distances from `src` to every vertex (infinity where unreachable).
   std::vector<Scalar> Distances(int src) {
     std::vector<Scalar> d(size(), std::numeric_limits<Scalar>::infinity());
@@ -130,9 +146,19 @@ class FastMarching {
     heap_.clear();
     set(src, 0);
     heap_.emplace_back(Scalar(0), src);
+    March(bound, get, set, f, [](int, int) {}, [](int, int) { return true; });
+  }
+
+  // The front from the vertices in heap_ (their distances set): f(v, d) as
+  // each is finalized, reached(from, to) as `from` lowers `to`; a triangle
+  // update from v and a finalized corner u only where together(v, u).
+  template <class Get, class Set, class F, class Reached, class Together>
+  void March(Scalar bound, Get& get, Set& set, const F& f, const Reached& reached, const Together& together) {
+    int from = -1;
     auto offer = [&](int j, double d) {
       if (d <= double(bound) && Scalar(d) < get(j)) {
         set(j, Scalar(d));
+        reached(from, j);
         heap_.emplace_back(Scalar(d), j);
         std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
       }
@@ -145,6 +171,7 @@ class FastMarching {
       if (done_[v] == stamp || top.first != get(v)) continue;  // finalized, or stale
       done_[v] = stamp;
       f(v, top.first);
+      from = v;
       const double tv = top.first;
       const auto& g = m_.edges;
       for (int e = g.offset[v]; e < g.offset[v + 1]; ++e)
@@ -152,8 +179,8 @@ class FastMarching {
       for (int k = m_.fanOffset[v]; k < m_.fanOffset[v + 1]; ++k) {
         const typename Mesh::Fan& t = m_.fans[k];
         const bool da = done_[t.a] == stamp, db = done_[t.b] == stamp;
-        if (da && !db) offer(t.b, Mesh::TriangleUpdate(tv, get(t.a), t.va, t.vb, t.ab));
-        if (db && !da) offer(t.a, Mesh::TriangleUpdate(tv, get(t.b), t.vb, t.va, t.ab));
+        if (da && !db && together(v, t.a)) offer(t.b, Mesh::TriangleUpdate(tv, get(t.a), t.va, t.vb, t.ab));
+        if (db && !da && together(v, t.b)) offer(t.a, Mesh::TriangleUpdate(tv, get(t.b), t.vb, t.va, t.ab));
       }
     }
   }

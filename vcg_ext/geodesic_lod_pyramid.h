@@ -68,8 +68,8 @@ class GeodesicLodPyramid {
     r.radius = finest.radius;
     r.iterations = finest.iterations;
     r.counts = p.counts;
-    // A trimmed finest level is already in farthest-point order; an untrimmed one is ordered now.
-    const std::vector<int> order = (finest.trimmed || p.counts.size() == 1)
+    // A finest level trimmed from every point is in farthest-point order already; others are ordered now.
+    const std::vector<int> order = (finest.farthestOrder || p.counts.size() == 1)
                                        ? finest.samples
                                        : Nested(d, finest.samples, p.counts[1], p.seed, progress.Sub(80, 90));
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, order);

@@ -40,7 +40,7 @@ class GeodesicPoissonLod {
     double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
     size_t poissonCount = 0;  ///< samples of the Poisson set before trimming
     int iterations = 1;       ///< Poisson runs
-    bool trimmed = false;     ///< cut to sampleNum in farthest-point order
+    bool trimmed = false;     ///< thinned to sampleNum (PoissonTargetCount)
     double coveringRadius = 0;  ///< every point lies within it of a sample (exact when trimmed, else radius)
   };
 

@@ -3,9 +3,45 @@
 // Loops over independent rows on all OpenMP threads (one thread without OpenMP).
 #include <algorithm>
 #include <cstddef>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include "progress.h"
 
 namespace vcg_ext {
+
+/// The threads a parallel region gets, and the calling thread's number in it.
+inline int ThreadCount() {
+#ifdef _OPENMP
+  return std::max(1, omp_get_max_threads());
+#else
+  return 1;
+#endif
+}
+inline int ThreadIndex() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+/// One object per thread: the given one for thread 0, copies for the others
+/// (searches, each with its own scratch space).
+template <class T>
+class PerThread {
+ public:
+  explicit PerThread(T& first) : first_(first), copies_(size_t(ThreadCount() - 1), first) {}
+  T& Mine() {
+    const int t = ThreadIndex();
+    return t == 0 ? first_ : copies_[size_t(t - 1)];
+  }
+
+ private:
+  T& first_;
+  std::vector<T> copies_;
+};
 
 /// Calls f(begin, end) on consecutive chunks covering [0, n), on all threads.
 /// Each row's result must depend on that row only, so the output is the same

@@ -5,10 +5,8 @@
 #include <cstdint>
 #include <new>
 #include <vector>
+#include "parallel.h"
 #include "progress.h"
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace vcg_ext {
 
@@ -66,8 +64,8 @@ class PoissonDisk {
   template <class DiskSearch, class Wanted, class Take, class Done>
   static void InOrder(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
                       Take take, Done done, Progress progress) {
-    const int threads = Threads();
-    std::vector<DiskSearch> copies(size_t(threads - 1), disk);
+    const int threads = ThreadCount();
+    PerThread<DiskSearch> searches(disk);
     std::vector<int> cand;
     std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
     size_t o = 0, searched = 0, reached = 0;
@@ -86,7 +84,7 @@ class PoissonDisk {
       bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
 #pragma omp parallel for schedule(dynamic, 8) if (m > 1)
       for (long long c = 0; c < m; ++c) {
-        DiskSearch& search = ThreadIndex() == 0 ? disk : copies[size_t(ThreadIndex() - 1)];
+        DiskSearch& search = searches.Mine();
         std::vector<int>& list = members[size_t(c)];
         list.clear();
         try {
@@ -107,20 +105,6 @@ class PoissonDisk {
 
  private:
   static constexpr size_t kMaxBatch = 4096;
-  static int Threads() {
-#ifdef _OPENMP
-    return std::max(1, omp_get_max_threads());
-#else
-    return 1;
-#endif
-  }
-  static int ThreadIndex() {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-  }
 };
 
 }  // namespace vcg_ext

@@ -1,7 +1,7 @@
 #ifndef VCG_EXT_POISSON_TARGET_COUNT_H
 #define VCG_EXT_POISSON_TARGET_COUNT_H
 // Poisson-disk sampling with a wanted number of samples: the radius is searched
-// for, then a slightly denser Poisson set is trimmed in farthest-point order.
+// for, then a slightly denser Poisson set is thinned to the count.
 // The paper leaves the choice of r for a sample count open.
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,7 @@
 #include "input_error.h"
 #include "poisson_disk.h"
 #include "progress.h"
+#include "sample_elimination.h"
 
 namespace vcg_ext {
 
@@ -36,13 +37,14 @@ class PoissonTargetCount {
                                               ///< every point or only of those that may be samples
   };
   struct Result {
-    std::vector<int> samples;    ///< point indices; in farthest-point order when trimmed
+    std::vector<int> samples;    ///< point indices, in visiting order (farthest-point order when trimmed from all points)
     std::vector<int> diskOwner;  ///< per point: rank in samples of its disk's sample (Voronoi owner where trimmed)
     std::vector<int> voronoiOwner;  ///< per point: rank of the nearest sample (only when trimmed; else empty)
     double radius = 0;           ///< radius of the Poisson set the samples come from (0: all points)
     size_t poissonCount = 0;     ///< samples of that set before trimming
     int iterations = 0;          ///< Poisson runs made
     bool trimmed = false;
+    bool farthestOrder = false;  ///< samples in farthest-point order (trimmed from every point)
     /// Every point lies within this distance of a sample: the exact largest one
     /// when trimmed, else the Poisson set's radius (a bound).
     double coveringRadius = 0;
@@ -78,9 +80,11 @@ class PoissonTargetCount {
       throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
                                              std::to_string(100 * p.tolerance) + "%)");
     const double target = double(p.sampleNum);
-    // Exact counts trim a set at most ~1% larger; a tolerance accepts counts on both sides.
+    // Exact counts thin a set at most kThinning larger; a tolerance accepts counts on both sides.
     const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;
-    const double accHi = std::max(target * (1 + std::max(p.tolerance, 0.01)), target + 2);
+    const double accHi = std::max(target * (1 + std::max(p.tolerance, kThinning)), target + 2);
+    // An exact count aims at the middle of its window, so a run a little off still lands in it.
+    const double aim = p.tolerance > 0 ? target : std::min(0.5 * (target + accHi), double(candidates));
     Trial above, below;  // above: count >= target, largest radius; below: count < target, smallest radius
     above.count = candidates;  // radius 0: every point is a sample
     double r = p.initialRadius > 0 ? p.initialRadius : 1;
@@ -101,7 +105,7 @@ class PoissonTargetCount {
         below = std::move(t);
       }
       if (below.radius > 0 && below.radius <= above.radius * (1 + 1e-9)) break;  // the count jumps here
-      r = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, target);
+      r = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, aim);
     }
     const bool found = accepted.radius > 0;
     Trial& from = found ? accepted : above;
@@ -113,8 +117,21 @@ class PoissonTargetCount {
       out.coveringRadius = out.radius;
       return out;  // a Poisson set as it is
     }
-    // Trim to the exact count: the farthest-point order among the set's samples.
-    std::vector<int> pool = from.radius > 0 ? std::move(from.samples) : AllPoints(n, *p.order);
+    if (from.radius > 0) {
+      // Thin the Poisson set to the exact count; then every point's nearest kept sample.
+      std::vector<int> pool = std::move(from.samples);
+      out.samples = SampleElimination::Keep(n, search, pool, from.radius, p.sampleNum, progress.Sub(80, 95));
+      std::vector<Scalar> dist;
+      search.Nearest(out.samples, dist, out.voronoiOwner);
+      out.trimmed = out.samples.size() < from.count;
+      out.coveringRadius = 0;
+      for (Scalar d : dist)
+        if (std::isfinite(double(d))) out.coveringRadius = std::max(out.coveringRadius, double(d));
+      out.diskOwner = DiskOwners(from, pool, out.samples, out.voronoiOwner);
+      return out;
+    }
+    // No run had enough samples: the farthest-point order of every point the order visits.
+    std::vector<int> pool = AllPoints(n, *p.order);
     FarthestPoint::Param fp;
     fp.sampleNum = p.sampleNum;
     fp.seed = p.seed;
@@ -123,12 +140,14 @@ class PoissonTargetCount {
     out.trimmed = f.samples.size() < from.count;
     out.coveringRadius = f.dist.empty() ? 0.0 : *std::max_element(f.dist.begin(), f.dist.end());
     out.samples = std::move(f.samples);
+    out.farthestOrder = true;
     out.voronoiOwner = std::move(f.owner);
-    out.diskOwner = DiskOwners(from, pool, out.samples, out.voronoiOwner);
+    out.diskOwner = out.voronoiOwner;
     return out;
   }
 
  private:
+  static constexpr double kThinning = 0.03;  // an exact count thins a set up to 3% larger
   struct Trial {
     double radius = 0;
     size_t count = 0;

@@ -54,7 +54,7 @@ class PoissonLod(Lod):
     covering_radius: float = 0.0   #: every point lies within it of a sample
     iterations: int = 1            #: Poisson runs (more than one when a count was asked)
     poisson_count: int = 0         #: samples of the Poisson set before a trim
-    trimmed: bool = False          #: cut to the count in farthest-point order
+    trimmed: bool = False          #: thinned to the count (the samples nearest to others taken out first)
 
 
 @dataclass
@@ -263,8 +263,9 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 progress: Progress = None) -> PoissonLod:
     """Geodesic Poisson-disk LOD: samples pairwise farther apart than the radius in the metric, every point
     within it of a sample. Give one of ``radius`` (absolute, in the metric), ``count`` (exactly that many
-    samples: the radius is searched and the set trimmed in farthest-point order) or ``rate`` (a percentage
-    of the points, as a count). ``tolerance`` (percent) accepts an untrimmed set that close to the count.
+    samples: the radius is searched and a slightly denser set thinned, the samples nearest to others first) or
+    ``rate`` (a percentage of the points, as a count). ``tolerance`` (percent) accepts an untrimmed set that
+    close to the count.
     ``regions`` ('disk' or 'voronoi') fills ``region_of``. ``within``: indices of the only points that may
     become samples, such as a finer level's (the geodesics still run over every point): nested Poisson
     levels, as the Dask pipeline's ``levels`` makes. Ctrl-C stops the run (KeyboardInterrupt)."""

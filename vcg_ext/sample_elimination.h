@@ -1,0 +1,128 @@
+#ifndef VCG_EXT_SAMPLE_ELIMINATION_H
+#define VCG_EXT_SAMPLE_ELIMINATION_H
+// Thinning a Poisson-disk set to an exact count by taking out the samples
+// most crowded by their neighbours first (in the spirit of Yuksel's sample
+// elimination, Eurographics 2015). What is kept is a subset of the Poisson
+// set, so still pairwise farther apart than its radius.
+//
+// Cost: the disks of radius r of all samples (about one Poisson run, on all
+// threads) and a heap over the samples; far less than a farthest-point order
+// of the set, which floods the whole domain once per early sample.
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+#include "parallel.h"
+#include "progress.h"
+
+namespace vcg_ext {
+
+class SampleElimination {
+ public:
+  /// Keeps `keep` of `samples`, a Poisson set of radius r (every point within
+  /// r of a sample), and returns them in the given order. Repeatedly takes out
+  /// the sample nearest to another one still kept, ties going to the later
+  /// sample. Nearest distances are exact: two samples at most 2r apart both
+  /// reach their shortest path's midpoint within r, and a sample's nearest
+  /// neighbour lies no farther (every point beside its disk is covered).
+  /// Search: Visit(src, r, f(i, d)) (BoundedDijkstra, FastMarching, EuclideanBall).
+  template <class Search>
+  static std::vector<int> Keep(size_t n, Search& search, const std::vector<int>& samples, double r, size_t keep,
+                               Progress progress = Progress(nullptr)) {
+    const size_t m = samples.size();
+    if (keep >= m) return samples;
+    // Per point: the sample nearest so far and its distance. A sample reaching a
+    // point another holds notes the pair, at the sum of their distances.
+    std::vector<int> owner(n, -1);
+    std::vector<double> at(n, std::numeric_limits<double>::infinity());
+    std::vector<std::vector<std::pair<int, double>>> near(m);  // per sample: (sample, distance) pairs
+    auto note = [&](int a, int b, double d) {
+      for (int side = 0; side < 2; ++side, std::swap(a, b)) {
+        auto& list = near[size_t(a)];
+        auto it = std::find_if(list.begin(), list.end(), [&](const std::pair<int, double>& e) { return e.first == b; });
+        if (it == list.end()) list.emplace_back(b, d);
+        else it->second = std::min(it->second, d);
+      }
+    };
+    Disks(search, samples, r, [&](int k, const std::vector<std::pair<int, double>>& disk) {
+      for (const auto& e : disk) {
+        const size_t i = size_t(e.first);
+        if (owner[i] >= 0 && owner[i] != k) note(owner[i], k, at[i] + e.second);
+        if (e.second < at[i]) at[i] = e.second, owner[i] = k;
+      }
+    }, progress);
+
+    // Take out the most crowded, updating the neighbours that lose their nearest.
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<char> out(m, 0);
+    std::vector<double> nearest(m, inf);
+    auto nearestOf = [&](size_t a) {
+      double best = inf;
+      for (const auto& e : near[a])
+        if (!out[size_t(e.first)]) best = std::min(best, e.second);
+      return best;
+    };
+    typedef std::pair<double, int> Entry;  // (nearest distance, -sample): the later sample first on ties
+    std::vector<Entry> heap;
+    for (size_t a = 0; a < m; ++a) {
+      nearest[a] = nearestOf(a);
+      heap.emplace_back(nearest[a], -int(a));
+    }
+    std::make_heap(heap.begin(), heap.end(), std::greater<Entry>());
+    for (size_t taken = 0; taken < m - keep && !heap.empty();) {
+      std::pop_heap(heap.begin(), heap.end(), std::greater<Entry>());
+      const Entry top = heap.back();
+      heap.pop_back();
+      const size_t a = size_t(-top.second);
+      if (out[a] || top.first != nearest[a]) continue;  // gone, or stale
+      out[a] = 1, ++taken;
+      for (const auto& e : near[a]) {
+        const size_t b = size_t(e.first);
+        if (out[b] || e.second > nearest[b]) continue;  // a was not b's nearest
+        nearest[b] = nearestOf(b);
+        heap.emplace_back(nearest[b], -int(b));
+        std::push_heap(heap.begin(), heap.end(), std::greater<Entry>());
+      }
+    }
+    std::vector<int> kept;
+    kept.reserve(keep);
+    for (size_t a = 0; a < m; ++a)
+      if (!out[a]) kept.push_back(samples[a]);
+    if (kept.size() != keep) throw std::logic_error("sample elimination kept the wrong count");
+    return kept;
+  }
+
+ private:
+  // Calls take(k, disk of src[k]) in order of k, each disk a list of (point,
+  // distance) within r; the disks of a batch are searched on all threads.
+  template <class Search, class Take>
+  static void Disks(Search& search, const std::vector<int>& src, double r, Take take, Progress progress) {
+    PerThread<Search> searches(search);
+    std::vector<std::vector<std::pair<int, double>>> disks(kBatch);
+    for (size_t b = 0; b < src.size(); b += kBatch) {
+      const long long m = (long long)std::min(kBatch, src.size() - b);
+      bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
+#pragma omp parallel for schedule(dynamic, 16) if (m > 1)
+      for (long long c = 0; c < m; ++c) {
+        Search& s = searches.Mine();
+        auto& disk = disks[size_t(c)];
+        disk.clear();
+        try {
+          s.Visit(src[b + size_t(c)], r, [&](int i, double d) { disk.emplace_back(i, d); });
+        } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+          outOfMemory = true;
+        }
+      }
+      if (outOfMemory) throw std::bad_alloc();
+      for (long long c = 0; c < m; ++c) take(int(b + size_t(c)), disks[size_t(c)]);
+      progress(b + size_t(m), src.size(), "Thinning to the exact count");
+    }
+  }
+
+  static constexpr size_t kBatch = 4096;
+};
+
+}  // namespace vcg_ext
+#endif
