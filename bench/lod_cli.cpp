@@ -4,7 +4,7 @@
 // pipeline of vcg_ext on it, reporting the time of each stage and the peak
 // memory, without any host's overhead.
 //
-// usage: lod_cli IN.ply [--radius R | --radius-pct P | --fps N] [--metric eq3|density|geodesic|euclidean]
+// usage: lod_cli IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]
 //                [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt]
 #include <chrono>
 #include <cstdio>
@@ -119,12 +119,12 @@ bool Callback(const int, const char* what) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --fps N] [--metric eq3|density|geodesic|euclidean]\n"
+    std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]\n"
                          "       [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt]\n", argv[0]);
     return 2;
   }
   double radius = 0, radiusPct = 0.5;
-  size_t fps = 0;
+  size_t fps = 0, count = 0;
   uint64_t seed = 0;
   std::string metric, samplesOut;  // no --metric: the product default
   bool recompute = false;
@@ -134,6 +134,7 @@ int main(int argc, char** argv) {
     if (o == "--radius") radius = std::atof(next().c_str());
     else if (o == "--radius-pct") radiusPct = std::atof(next().c_str());
     else if (o == "--fps") fps = std::strtoull(next().c_str(), nullptr, 10);
+    else if (o == "--count") count = std::strtoull(next().c_str(), nullptr, 10);
     else if (o == "--metric") metric = next();
     else if (o == "--recompute-normals") recompute = true;
     else if (o == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
@@ -174,8 +175,11 @@ int main(int argc, char** argv) {
       vcg_ext::GeodesicPoissonLod<CMesh>::Param p;
       p.domain = dp;
       p.radius = radius;
+      p.sampleNum = count;
       p.seed = seed;
-      samples = vcg_ext::GeodesicPoissonLod<CMesh>::Compute(m, p, Callback).vertIndex;
+      const auto r = vcg_ext::GeodesicPoissonLod<CMesh>::Compute(m, p, Callback);
+      samples = r.vertIndex;
+      if (count) radius = r.radius;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -53,10 +53,11 @@ class PoissonTargetCount {
   /// The next radius to try after a run at `r` gave `count`: inside the bracket
   /// once there is one (above: the largest radius with count >= target, below:
   /// the smallest with count < target; radius 0 where none yet), by the local
-  /// slope of log N over log r (about -2 on a surface), clamped so each step
+  /// slope of log N over log r: measured from the run before (`prevRadius`,
+  /// `prevCount`; 0 for none), else -2 as on a surface; clamped so each step
   /// makes progress. Public for searches whose runs are made elsewhere (tiles).
   static double NextRadius(double aboveRadius, double aboveCount, double belowRadius, double belowCount,
-                           double count, double r, double target) {
+                           double count, double r, double target, double prevRadius = 0, double prevCount = 0) {
     if (aboveRadius > 0 && belowRadius > 0) {
       const double la = std::log(aboveRadius), lb = std::log(belowRadius);
       const double ca = std::log(aboveCount), cb = std::log(belowCount);
@@ -64,7 +65,12 @@ class PoissonTargetCount {
       f = std::min(0.9, std::max(0.1, f));
       return std::exp(la + f * (lb - la));
     }
-    const double step = std::sqrt(count / target);  // N ~ 1/r^2
+    double slope = 2;  // N ~ 1/r^2
+    if (prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r && prevCount != count) {
+      const double s = -std::log(count / prevCount) / std::log(r / prevRadius);
+      if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
+    }
+    const double step = std::pow(count / target, 1.0 / slope);
     return r * std::min(8.0, std::max(1.0 / 8, step));
   }
 
@@ -87,7 +93,7 @@ class PoissonTargetCount {
     const double aim = p.tolerance > 0 ? target : std::min(0.5 * (target + accHi), double(candidates));
     Trial above, below;  // above: count >= target, largest radius; below: count < target, smallest radius
     above.count = candidates;  // radius 0: every point is a sample
-    double r = p.initialRadius > 0 ? p.initialRadius : 1;
+    double r = p.initialRadius > 0 ? p.initialRadius : 1, prevRadius = 0, prevCount = 0;
     Result out;
     Trial accepted;
     const int phase = std::max(1, p.maxIterations);
@@ -105,7 +111,10 @@ class PoissonTargetCount {
         below = std::move(t);
       }
       if (below.radius > 0 && below.radius <= above.radius * (1 + 1e-9)) break;  // the count jumps here
-      r = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, aim);
+      const double next = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, aim,
+                                     prevRadius, prevCount);
+      prevRadius = r, prevCount = c;
+      r = next;
     }
     const bool found = accepted.radius > 0;
     Trial& from = found ? accepted : above;

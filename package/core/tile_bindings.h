@@ -106,7 +106,8 @@ inline void BindTiles(nb::module_& m) {
         "progress"_a.none());
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
   m.def("next_radius", &vcg_ext::PoissonTargetCount::NextRadius, "above_radius"_a, "above_count"_a,
-        "below_radius"_a, "below_count"_a, "count"_a, "radius"_a, "target"_a,
+        "below_radius"_a, "below_count"_a, "count"_a, "radius"_a, "target"_a, "prev_radius"_a = 0.0,
+        "prev_count"_a = 0.0,
         "the count search's next radius, as the single-machine search steps");
   m.attr("TILE_OUT") = int(Tile::Out);
   m.attr("TILE_IN") = int(Tile::In);

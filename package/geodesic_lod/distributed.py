@@ -407,7 +407,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     lo, hi = target * (1 - tolerance / 100), target * (1 + tolerance / 100)
     above_r, above_c, below_r, below_c = 0.0, float(pool), 0.0, 0.0
     r = float(np.linalg.norm(job.cloud.hi - job.cloud.lo)) / math.sqrt(target)
-    best, runs, spent = None, 0, {"tiles": 0.0, "seams": 0.0}
+    best, runs, spent, prev = None, 0, {"tiles": 0.0, "seams": 0.0}, (0.0, 0.0)
     for runs in range(1, max_runs + 1):
         run = _poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
                            ticks)
@@ -423,7 +423,8 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
             below_r, below_c = r, float(run.count)
         if below_r > 0 and below_r <= above_r * (1 + 1e-9):
             break  # the count jumps across the target here
-        r = arrays._core.next_radius(above_r, above_c, below_r, below_c, float(run.count), r, float(target))
+        r, prev = arrays._core.next_radius(above_r, above_c, below_r, below_c, float(run.count), r, float(target),
+                                           *prev), (r, float(run.count))
     best.seconds = spent  # every run's, not only the one kept
     return best, runs
 
