@@ -8,7 +8,6 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
-#include "source_seeds.h"
 
 namespace vcg_ext {
 
@@ -55,11 +54,18 @@ class BoundedDijkstra {
     Propagate(dist, f, [](int, int) {});
   }
 
-  /// The nearest of several sources for every point, in one pass: dist[i] its
-  /// distance and owner[i] its index in `sources` (infinity and -1 where none
-  /// is reachable). O(n log n), whatever the number of sources.
-  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) {
-    SeedSources(sources, g_.size(), dist, owner, heap_);
+  /// Completes a nearest-source field exact where owner[i] >= 0: the points with
+  /// owner -1 get their nearest source by fronts entering from their neighbours.
+  /// Costs in proportion to those points (`sources` is not needed here).
+  void Complete(const std::vector<int>& /*sources*/, std::vector<Scalar>& dist, std::vector<int>& owner) {
+    heap_.clear();
+    for (size_t i = 0; i < g_.size(); ++i) {
+      if (owner[i] >= 0) continue;
+      dist[i] = std::numeric_limits<Scalar>::infinity();
+      for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e)
+        if (owner[size_t(g_.adj[e])] >= 0) heap_.emplace_back(dist[size_t(g_.adj[e])], g_.adj[e]);
+    }
+    std::make_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
     Propagate(dist, [](int, Scalar) {}, [&](int from, int to) { owner[to] = owner[from]; });
   }
 

@@ -35,18 +35,16 @@ class EuclideanBall {
     }
   }
 
-  /// The nearest of several sources for every point (a kd-tree of the sources):
-  /// dist[i] its distance, owner[i] its index in `sources`. O(n log m).
-  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) const {
-    const size_t n = pos_.size();
-    dist.assign(n, std::numeric_limits<Scalar>::infinity());
-    owner.assign(n, -1);
-    if (sources.empty()) return;
+  /// Completes a nearest-source field exact where owner[i] >= 0: the points
+  /// with owner -1 are looked up in a kd-tree of the sources.
+  void Complete(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) const {
     std::vector<Coord> at(sources.size());
     for (size_t k = 0; k < sources.size(); ++k) at[k] = pos_[size_t(sources[k])];
+    if (at.empty()) return;
     vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(at.data(), int(at.size())));
-#pragma omp parallel for schedule(static)
-    for (long long i = 0; i < (long long)n; ++i) {
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (long long i = 0; i < (long long)pos_.size(); ++i) {
+      if (owner[size_t(i)] >= 0) continue;
       unsigned int k = 0;
       Scalar sq = 0;
       tree.doQueryClosest(pos_[size_t(i)], k, sq);

@@ -11,7 +11,6 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
-#include "source_seeds.h"
 
 namespace vcg_ext {
 
@@ -118,17 +117,23 @@ class FastMarching {
     Run(src, std::numeric_limits<Scalar>::max(), get, set, f);
   }
 
-  /// The nearest of several sources for every vertex, in one front: dist[i]
-  /// its distance and owner[i] its index in `sources` (a vertex takes the
-  /// owner of the vertex whose front reached it first; infinity and -1 where
-  /// none is reachable). O(n log n), whatever the number of sources.
-  void Nearest(const std::vector<int>& sources, std::vector<Scalar>& dist, std::vector<int>& owner) {
+  /// Completes a nearest-source field exact where owner[i] >= 0: the vertices
+  /// with owner -1 get theirs from fronts entering from their neighbours. A
+  /// triangle update mixing two sources' fronts is no distance to either: each
+  /// front crosses triangles whose other corner it reached itself.
+  void Complete(const std::vector<int>& /*sources*/, std::vector<Scalar>& dist, std::vector<int>& owner) {
     NextStamp();
-    SeedSources(sources, size(), dist, owner, heap_);
+    heap_.clear();
+    const auto& g = m_.edges;
+    for (size_t i = 0; i < size(); ++i) {
+      if (owner[i] >= 0) continue;
+      dist[i] = std::numeric_limits<Scalar>::infinity();
+      for (int e = g.offset[i]; e < g.offset[i + 1]; ++e)
+        if (owner[size_t(g.adj[e])] >= 0) heap_.emplace_back(dist[size_t(g.adj[e])], g.adj[e]);
+    }
+    std::make_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
     auto get = [&](int i) { return dist[i]; };
     auto set = [&](int i, Scalar d) { dist[i] = d; };
-    // A triangle update mixing two sources' fronts is no distance to either: each front
-    // crosses triangles whose other corner it reached itself, and meets others along edges.
     March(std::numeric_limits<Scalar>::max(), get, set, [](int, Scalar) {},
           [&](int from, int to) { owner[to] = owner[from]; }, [&](int a, int b) { return owner[a] == owner[b]; });
   }

@@ -129,9 +129,11 @@ class PoissonTargetCount {
     if (from.radius > 0) {
       // Thin the Poisson set to the exact count; then every point's nearest kept sample.
       std::vector<int> pool = std::move(from.samples);
-      out.samples = SampleElimination::Keep(n, search, pool, from.radius, p.sampleNum, progress.Sub(80, 95));
-      std::vector<Scalar> dist;
-      search.Nearest(out.samples, dist, out.voronoiOwner);
+      auto thinned = SampleElimination::Keep<Scalar>(n, search, pool, from.radius, p.sampleNum, progress.Sub(80, 95));
+      out.samples = std::move(thinned.samples);
+      std::vector<Scalar>& dist = thinned.dist;
+      out.voronoiOwner = std::move(thinned.owner);
+      search.Complete(out.samples, dist, out.voronoiOwner);
       out.trimmed = out.samples.size() < from.count;
       out.coveringRadius = 0;
       for (Scalar d : dist)

@@ -7,7 +7,9 @@
 //
 // Cost: the disks of radius r of all samples (about one Poisson run, on all
 // threads) and a heap over the samples; far less than a farthest-point order
-// of the set, which floods the whole domain once per early sample.
+// of the set, which floods the whole domain once per early sample. The
+// nearest kept sample of every point comes with it, but in the regions of the
+// samples taken out, which the search's Complete fills.
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -20,18 +22,28 @@ namespace vcg_ext {
 
 class SampleElimination {
  public:
+  template <class Scalar>
+  struct Result {
+    std::vector<int> samples;   ///< the kept ones, in the order given
+    /// Per point: its nearest kept sample (index in `samples`) and the distance,
+    /// where that sample is its nearest of all; -1 and infinity elsewhere (the
+    /// regions of the samples taken out: the search's Complete fills them).
+    std::vector<int> owner;
+    std::vector<Scalar> dist;
+  };
+
   /// Keeps `keep` of `samples`, a Poisson set of radius r (every point within
-  /// r of a sample), and returns them in the given order. Repeatedly takes out
+  /// r of a sample), in the given order. Repeatedly takes out
   /// the sample nearest to another one still kept, ties going to the later
   /// sample. Nearest distances are exact: two samples at most 2r apart both
   /// reach their shortest path's midpoint within r, and a sample's nearest
   /// neighbour lies no farther (every point beside its disk is covered).
   /// Search: Visit(src, r, f(i, d)) (BoundedDijkstra, FastMarching, EuclideanBall).
-  template <class Search>
-  static std::vector<int> Keep(size_t n, Search& search, const std::vector<int>& samples, double r, size_t keep,
-                               Progress progress = Progress(nullptr)) {
+  template <class Scalar, class Search>
+  static Result<Scalar> Keep(size_t n, Search& search, const std::vector<int>& samples, double r, size_t keep,
+                             Progress progress = Progress(nullptr)) {
     const size_t m = samples.size();
-    if (keep >= m) return samples;
+    keep = std::min(keep, m);
     // Per point: the sample nearest so far and its distance. A sample reaching a
     // point another holds notes the pair, at the sum of their distances.
     std::vector<int> owner(n, -1);
@@ -85,12 +97,17 @@ class SampleElimination {
         std::push_heap(heap.begin(), heap.end(), std::greater<Entry>());
       }
     }
-    std::vector<int> kept;
-    kept.reserve(keep);
+    Result<Scalar> res;
+    res.samples.reserve(keep);
+    std::vector<int> rank(m, -1);
     for (size_t a = 0; a < m; ++a)
-      if (!out[a]) kept.push_back(samples[a]);
-    if (kept.size() != keep) throw std::logic_error("sample elimination kept the wrong count");
-    return kept;
+      if (!out[a]) rank[a] = int(res.samples.size()), res.samples.push_back(samples[a]);
+    if (res.samples.size() != keep) throw std::logic_error("sample elimination kept the wrong count");
+    res.owner.assign(n, -1);
+    res.dist.assign(n, std::numeric_limits<Scalar>::infinity());
+    for (size_t i = 0; i < n; ++i)
+      if (owner[i] >= 0 && rank[size_t(owner[i])] >= 0) res.owner[i] = rank[size_t(owner[i])], res.dist[i] = Scalar(at[i]);
+    return res;
   }
 
  private:
