@@ -32,7 +32,7 @@ class PoissonTargetCount {
     double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance)
     int maxIterations = 24;      ///< Poisson runs at most
     double initialRadius = 0;    ///< first radius tried, > 0
-    uint64_t seed = 0;           ///< the trim's first sample
+    uint64_t seed = 0;           ///< the farthest-point fallback's first sample
     const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
                                               ///< every point or only of those that may be samples
   };
