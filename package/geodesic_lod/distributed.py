@@ -481,7 +481,19 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     tmp.write_text(json.dumps(index, indent=1))
     os.replace(tmp, out / INDEX)
     shutil.rmtree(work, ignore_errors=True)
+    _remove_other_levels(out, folders)
     return index
+
+
+def _remove_other_levels(out: pathlib.Path, folders: list) -> None:
+    """The tiles an earlier run into `out` wrote where this one wrote none: level folders it did not make,
+    or, after a run with levels, the tiles of a single level in `out` itself."""
+    stale = [f for f in out.iterdir() if f.is_dir() and f.name.startswith("level_") and f.name not in folders]
+    for folder in stale + ([out] if None not in folders else []):
+        for f in folder.glob("tile_*"):
+            f.unlink(missing_ok=True)
+        if folder != out and not any(folder.iterdir()):
+            folder.rmdir()
 
 
 def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: _Ticks) -> dict:

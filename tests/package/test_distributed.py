@@ -228,6 +228,14 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
         dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=tile_points, client=client,
                        threads=1)
         check_equal(tmp_path / "lod", points, records, 0)  # lists exactly the index's tiles
+    # Levels over a single level, then a single level over levels.
+    index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["10%", "2%"], tolerance=3.0, tile_points=6000,
+                           client=client, threads=1)
+    assert sorted(p.name for p in (tmp_path / "lod").iterdir()) == [dist.INDEX, "level_10pct", "level_2pct"]
+    for level in index["levels"]:
+        level_ids(tmp_path / "lod", level)  # lists exactly the level's tiles
+    dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=client, threads=1)
+    check_equal(tmp_path / "lod", points, records, 0)
 
 
 def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud, client, tmp_path):
