@@ -58,14 +58,7 @@ class BoundedDijkstra {
   /// owner -1 get their nearest source by fronts entering from their neighbours.
   /// Costs in proportion to those points (`sources` is not needed here).
   void Complete(const std::vector<int>& /*sources*/, std::vector<Scalar>& dist, std::vector<int>& owner) {
-    heap_.clear();
-    for (size_t i = 0; i < g_.size(); ++i) {
-      if (owner[i] >= 0) continue;
-      dist[i] = std::numeric_limits<Scalar>::infinity();
-      for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e)
-        if (owner[size_t(g_.adj[e])] >= 0) heap_.emplace_back(dist[size_t(g_.adj[e])], g_.adj[e]);
-    }
-    std::make_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+    SeedFromOwned(g_, owner, dist, heap_);
     Propagate(dist, [](int, Scalar) {}, [&](int from, int to) { owner[to] = owner[from]; });
   }
 

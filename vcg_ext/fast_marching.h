@@ -123,15 +123,7 @@ class FastMarching {
   /// front crosses triangles whose other corner it reached itself.
   void Complete(const std::vector<int>& /*sources*/, std::vector<Scalar>& dist, std::vector<int>& owner) {
     NextStamp();
-    heap_.clear();
-    const auto& g = m_.edges;
-    for (size_t i = 0; i < size(); ++i) {
-      if (owner[i] >= 0) continue;
-      dist[i] = std::numeric_limits<Scalar>::infinity();
-      for (int e = g.offset[i]; e < g.offset[i + 1]; ++e)
-        if (owner[size_t(g.adj[e])] >= 0) heap_.emplace_back(dist[size_t(g.adj[e])], g.adj[e]);
-    }
-    std::make_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+    SeedFromOwned(m_.edges, owner, dist, heap_);
     auto get = [&](int i) { return dist[i]; };
     auto set = [&](int i, Scalar d) { dist[i] = d; };
     March(std::numeric_limits<Scalar>::max(), get, set, [](int, Scalar) {},

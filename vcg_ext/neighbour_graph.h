@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <new>
 #include <numeric>
+#include <utility>
 #include <vector>
 #include "knn_table.h"
 #include "parallel.h"
@@ -171,6 +173,26 @@ class NeighbourGraph {
     return c;
   }
 };
+
+/// Where fronts start that complete a nearest-source field (BoundedDijkstra's
+/// and FastMarching's Complete): the points with owner -1 get an infinite
+/// distance, and each of their neighbours with an owner goes once on the
+/// min-heap, at its distance.
+template <class Scalar>
+void SeedFromOwned(const NeighbourGraph<Scalar>& g, const std::vector<int>& owner, std::vector<Scalar>& dist,
+                   std::vector<std::pair<Scalar, int>>& heap) {
+  heap.clear();
+  std::vector<char> seeded(g.size(), 0);
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (owner[i] >= 0) continue;
+    dist[i] = std::numeric_limits<Scalar>::infinity();
+    for (int e = g.offset[i]; e < g.offset[i + 1]; ++e) {
+      const size_t j = size_t(g.adj[e]);
+      if (owner[j] >= 0 && !seeded[j]) seeded[j] = 1, heap.emplace_back(dist[j], int(j));
+    }
+  }
+  std::make_heap(heap.begin(), heap.end(), std::greater<std::pair<Scalar, int>>());
+}
 
 }  // namespace vcg_ext
 #endif
