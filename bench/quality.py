@@ -26,7 +26,7 @@ from host import PEER_TOOL, PLUGIN, load_plugin
 from quality_cache import ALL_POINTS, RunCache, run_context
 from quality_config import (ALL_RUNS, COUNT_TOLERANCE, DATA, MESHLAB_RADIUS_VARIANCE, METHODS, MODELS, OUT,
                             PLANE_NEIGHBOURS, QUICK_MODELS, QUICK_RATES, RATES, RECONSTRUCTION, RUNS, SEED_MODELS,
-                            SEED_RUNS, TUNE_RATES, TUNING, WLOP_MAX_SAMPLES)
+                            SEED_RUNS, TUNE_RATES, TUNING_MODELS, TUNING_RUNS, WLOP_MAX_SAMPLES, source)
 
 
 class Model:
@@ -37,7 +37,7 @@ class Model:
         self.path = OUT / "inputs" / (key.replace(" ", "_") + ".ply")
         self.path.parent.mkdir(parents=True, exist_ok=True)
         if not self.path.is_file():
-            self._prepare(DATA / MODELS[key])
+            self._prepare(*source(key))
         self.ms = pymeshlab.MeshSet()
         self.ms.load_new_mesh(str(self.path))
         m = self.ms.current_mesh()
@@ -46,11 +46,13 @@ class Model:
         self.faces = m.face_number()
         self._tree = None
 
-    def _prepare(self, src):
+    def _prepare(self, name, crop):
         """Normals for every method: the triangles' for meshes (unreferenced vertices dropped:
         they have none), MeshLab's estimate from 10 neighbours for point clouds."""
         ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(src))
+        ms.load_new_mesh(str(DATA / name))
+        if crop is not None:
+            ms.add_mesh(grid_crop(ms.current_mesh(), *crop))
         if ms.current_mesh().face_number():
             ms.meshing_remove_unreferenced_vertices()
             ms.compute_normal_per_vertex()
@@ -70,6 +72,7 @@ class Model:
         return lod
 
     # --- ours ---------------------------------------------------------------------------
+    # The filters reach an exact or searched count in one call: their time is the time to the count.
     def ours_fps(self, target, **params):
         return self._layer(lambda: self.ms.apply_filter("generate_geodesic_fps_lod", samplenum=target, **params))
 
@@ -81,12 +84,14 @@ class Model:
         return lod
 
     def radius_search(self, target, apply_at):
-        """The LOD of apply_at(radius) nearest to the target count, by radius_search.search. The time
-        reported is that of the final run alone."""
+        """The LOD of apply_at(radius) nearest to the target count, by radius_search.search. 'seconds' is
+        the final run's time, 'search_seconds' that of every run the search made."""
         lods = {}  # the nearest so far, by radius
+        spent = []
 
         def count_at(r):
             lod = self._layer(lambda: apply_at(r))
+            spent.append(lod["seconds"])
             if not lods or abs(len(lod["points"]) - target) < abs(len(next(iter(lods.values()))["points"]) - target):
                 lods.clear()
                 lods[r] = lod
@@ -94,6 +99,7 @@ class Model:
         r, _, runs = radius_search.search(target, count_at, self.diag * 0.6 / np.sqrt(target), COUNT_TOLERANCE)
         best = lods[r]
         best["parameter"] = f"radius {r:.4g} ({runs} runs)"
+        best["search_seconds"] = sum(spent)
         return best
 
     # --- MeshLab ------------------------------------------------------------------------
@@ -132,7 +138,8 @@ class Model:
         points = m.vertex_matrix()
         normals = m.vertex_normal_matrix() if info["normals"] else self.nearest_normals(points)
         param = info["parameter"] + ("" if info["normals"] else "; normals of the nearest input points")
-        return dict(points=points, normals=normals, seconds=info["seconds"], parameter=param)
+        return dict(points=points, normals=normals, seconds=info["seconds"], search_seconds=info["search_seconds"],
+                    parameter=param)
 
     def random(self, target, seed=0):
         t = time.perf_counter()
@@ -144,6 +151,21 @@ class Model:
         if self._tree is None:
             self._tree = cKDTree(self.points)
         return self.normals[self._tree.query(points)[1]]
+
+
+def grid_crop(mesh, row, col, size):
+    """The size x size vertices of a grid mesh (vertices row by row) from (row, col), with two triangles
+    per cell, counter-clockwise as the grid's own."""
+    v = mesh.vertex_matrix()
+    f = mesh.face_matrix()
+    width = int(round(np.sqrt(len(v))))
+    rows, cols = np.meshgrid(np.arange(row, row + size), np.arange(col, col + size), indexing="ij")
+    vertices = v[(rows * width + cols).ravel()]
+    # The first cell's triangles in the source, translated to the crop's indices: the same winding.
+    first = f[:2] - (f[:2] // width) * width + (f[:2] // width) * size
+    base = (np.arange(size - 1)[:, None] * size + np.arange(size - 1)[None, :]).ravel()
+    faces = (first[None, :, :] + base[:, None, None]).reshape(-1, 3)
+    return pymeshlab.Mesh(vertex_matrix=vertices, face_matrix=faces)
 
 
 # --- error measures ---------------------------------------------------------------------
@@ -193,7 +215,9 @@ def evaluate(model, method, target):
         return dict(skipped=f"not run above {WLOP_MAX_SAMPLES} samples")
     plane = plane_fit_error(model.points, lod["points"]) / model.diag
     recon, recon_seconds = reconstruction_error(model, lod)
-    return dict(count=len(lod["points"]), target=target, seconds=lod["seconds"], parameter=lod.get("parameter", ""),
+    # search_seconds: the time to the count, every run of a radius or size search included.
+    return dict(count=len(lod["points"]), target=target, seconds=lod["seconds"],
+                search_seconds=lod.get("search_seconds", lod["seconds"]), parameter=lod.get("parameter", ""),
                 recon=recon, recon_seconds=recon_seconds, measure=measure_name(),
                 plane=dict(mean=float(plane.mean()), rms=float(np.sqrt((plane ** 2).mean())), max=float(plane.max())))
 
@@ -240,17 +264,18 @@ def main():
     if args.fresh:
         shutil.rmtree(RUNS, ignore_errors=True)
     models = QUICK_MODELS if args.quick else list(MODELS)
+    tuning_models = [] if args.no_tuning else list(TUNING_MODELS)[:1 if args.quick else None]
     rates = QUICK_RATES if args.quick else RATES
     start = time.perf_counter()
     log = lambda s: print(f"[{time.perf_counter() - start:6.0f} s] {s}", flush=True)
     if not args.report_only:
         run_all(cache, args.peer_tool, models, rates, list(METHODS), log)
         if not args.no_tuning:
-            run_all(cache, args.peer_tool, models, [r for r in TUNE_RATES if r in rates], list(TUNING), log)
+            run_all(cache, args.peer_tool, tuning_models, [r for r in TUNE_RATES if r in rates], TUNING_RUNS, log)
             run_all(cache, args.peer_tool, [m for m in models if m in SEED_MODELS],
                     [r for r in TUNE_RATES if r in rates], list(SEED_RUNS), log)
     runs, stale = cache.current()
-    quality_report.write(runs, models, rates, measure_name(), log, stale=len(stale))
+    quality_report.write(runs, models, rates, measure_name(), log, stale=len(stale), tuning_models=tuning_models)
 
 
 if __name__ == "__main__":

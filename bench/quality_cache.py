@@ -24,7 +24,8 @@ def run_context(plugin, peer_tool, measure, pymeshlab_version):
                 script={name: file_digest(BENCH / name) for name in ("quality.py", "quality_config.py")},
                 pymeshlab=pymeshlab_version, measure=measure, reconstruction=config.RECONSTRUCTION,
                 plane_neighbours=config.PLANE_NEIGHBOURS,
-                models={k: file_digest(config.DATA / f) for k, f in config.MODELS.items()})
+                models={k: file_digest(config.DATA / config.source(k)[0])
+                        for k in {**config.MODELS, **config.TUNING_MODELS}})
 
 
 class RunCache:

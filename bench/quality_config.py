@@ -17,10 +17,21 @@ MODELS = {
     "bunny scans": "bunny_scans_362k.ply",
     "terrain": "terrain_n44w072_crop301x301.ply",
 }
+# The sweeps that chose the defaults (a, c) run on other models than the headline tables: another
+# object's raw scans and another part of the terrain tile. A crop is (file, first row, first column,
+# size) of a grid mesh whose vertices are stored row by row.
+TUNING_MODELS = {
+    "dragon scans": "dragon_scans_469k.ply",
+    "terrain, NW crop": ("terrain_n44w072_1201x1201.ply", 100, 100, 301),
+}
 RATES = [0.5, 0.25, 0.10, 0.05, 0.02]
 QUICK_MODELS = ["bunny", "terrain"]
 QUICK_RATES = [0.10, 0.02]
 COUNT_TOLERANCE = 0.02  # searched counts land within 2% of the target
+# Errors closer than this (relative) are ties: counts differ by up to COUNT_TOLERANCE, and the seed
+# spread of one method is of the same order (the report shows it). A cell where every method is within
+# it of the reconstruction from all points is saturated, and left out of the summaries.
+TIE_MARGIN = 0.03
 
 # The same reconstruction for every method. threads=1: the machine is shared, and one
 # thread keeps its time steady.
@@ -33,7 +44,7 @@ EQ3 = "Weighted geodesic (eq. 3)"
 UNWEIGHTED = "Geodesic (unweighted)"
 DEFAULT_ADAPTIVITY, DEFAULT_EXPONENT = 3.0, 1.0  # the plugin's defaults
 
-# Tuning sweeps (ours, Poisson), at the rates where the weighting matters most.
+# Tuning sweeps (ours, Poisson) on TUNING_MODELS, at the rates where the weighting matters most.
 TUNE_ADAPTIVITY = [1.0, 3.0, 10.0, 30.0, 100.0]
 TUNE_EXPONENT = [0.5, 1.0, 2.0]
 TUNE_RATES = [0.10, 0.05, 0.02]
@@ -87,3 +98,19 @@ SEED_RUNS = {
     **{f"seed{s}_random": Method(f"uniform random, seed {s}", "random", dict(seed=s)) for s in SEEDS},
 }
 ALL_RUNS = {**METHODS, **TUNING, **SEED_RUNS}
+# On the tuning models: the sweeps, their base (unweighted) and the defaults they are compared with.
+TUNING_RUNS = ["ours_unweighted", "ours_density", "ours_eq3", *TUNING]
+
+
+def source(model):
+    """The model's file in the shared data, and its crop (None: the whole file)."""
+    spec = {**MODELS, **TUNING_MODELS}[model]
+    return (spec, None) if isinstance(spec, str) else (spec[0], spec[1:])
+
+
+def source_text(model):
+    name, crop = source(model)
+    if crop is None:
+        return f"`{name}`"
+    row, col, size = crop
+    return f"`{name}`, rows {row}-{row + size - 1}, columns {col}-{col + size - 1}"

@@ -34,13 +34,29 @@ def speed_section(docs):
 
 def value(runs, model, method, rate, what):
     """what: 'recon', 'plane' (mean error per diagonal), 'miss' (the reconstruction measure's miss
-    fraction), 'seconds' or 'count'; NaN if absent."""
+    fraction), 'search_seconds' (the time to the count), 'seconds' or 'count'; NaN if absent."""
     row = runs.get((model, method, rate))
     if row is None or "skipped" in row:
         return np.nan
     if what == "miss":
         return row["recon"].get("miss", np.nan)
-    return row[what]["mean"] if what in ("recon", "plane") else row[what]
+    return row[what]["mean"] if what in ("recon", "plane") else row.get(what, np.nan)
+
+
+def saturated(runs, model, rate, what="recon"):
+    """Whether every method's error in this cell is within TIE_MARGIN of the reconstruction from all
+    points (or below it): the cell cannot tell the methods apart."""
+    full = runs.get((model, "all_points", 1.0))
+    if full is None or what != "recon":
+        return False
+    vals = [value(runs, model, m, rate, what) for m in config.METHODS]
+    vals = [v for v in vals if np.isfinite(v)]
+    return bool(vals) and max(vals) <= full["recon"]["mean"] * (1 + config.TIE_MARGIN)
+
+
+def open_cells(runs, models, rates, what="recon"):
+    """The (model, rate) cells that are not saturated."""
+    return [(m, r) for m in models for r in rates if not saturated(runs, m, r, what)]
 
 
 def label(method):
@@ -76,19 +92,30 @@ def rate_header(rates):
     return " | ".join(f"{r:.0%}" for r in rates)
 
 
-def table(runs, models, rates, methods, what, fmt, best=min):
-    """Methods x rates for each model; the best of each column in bold."""
+def table(runs, models, rates, methods, what, fmt, best=min, ties=False):
+    """Methods x rates for each model; the best of each column in bold. ties: also every value within
+    TIE_MARGIN of the best, and none in a saturated cell (its header row says so)."""
     lines = [f"| model | method | {rate_header(rates)} |", "|---|---|" + "---:|" * len(rates)]
     for model in models:
         cols = {r: [value(runs, model, m, r, what) for m in methods] for r in rates}
+        if ties and any(saturated(runs, model, r, what) for r in rates):
+            marks = ["saturated" if saturated(runs, model, r, what) else "" for r in rates]
+            lines.append(f"| {model} | *cells where every method is within {config.TIE_MARGIN:.0%} of all points* | "
+                         + " | ".join(marks) + " |")
         for i, m in enumerate(methods):
             cells = []
             for r in rates:
                 v = cols[r][i]
                 finite = [x for x in cols[r] if np.isfinite(x)]
                 cell = "–" if not np.isfinite(v) else fmt(v)
-                if best and np.isfinite(v) and v == best(finite):
-                    cell = f"**{cell}**"
+                if best and np.isfinite(v):
+                    top = best(finite)
+                    if ties:
+                        bold = not saturated(runs, model, r, what) and v <= top * (1 + config.TIE_MARGIN)
+                    else:
+                        bold = v == top
+                    if bold:
+                        cell = f"**{cell}**"
                 cells.append(cell)
             lines.append(f"| {model if i == 0 else ''} | {label(m)} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
@@ -102,18 +129,20 @@ def section(runs, models, rates, title, what, ylabel, images, image, fmt):
                   f"the axis stops at {RELATIVE_TOP:g}, the tables have every value):", "",
                   plot(runs, models, rates, methods, what, "error / uniform random's", images, image + "_relative.png",
                        relative=True), ""]
-    return lines + [table(runs, models, rates, methods, what, fmt), ""]
+    return lines + [table(runs, models, rates, methods, what, fmt, ties=what in ("recon", "plane")), ""]
 
 
 def summary_table(runs, models, rates):
     """Per method and model, the geometric mean over the rates of its error divided by uniform
-    random's, for both measures: one number per cell, below 1 is better than random."""
+    random's, for both measures: one number per cell, below 1 is better than random. Saturated cells
+    are left out."""
     head = " | ".join(f"{m}" for m in models)
+    cells_open = open_cells(runs, models, rates)
     lines = [f"| method | {head} | all (reconstruction) | all (plane fit) |", "|---|" + "---:|" * (len(models) + 2)]
     for meth in config.METHODS:
         ratio = lambda model, r, what: value(runs, model, meth, r, what) / value(runs, model, "random", r, what)
-        cells = [geomean([ratio(model, r, "recon") for r in rates]) for model in models]
-        every = [geomean([ratio(model, r, what) for model in models for r in rates]) for what in ("recon", "plane")]
+        cells = [geomean([ratio(model, r, "recon") for r in rates if (model, r) in cells_open]) for model in models]
+        every = [geomean([ratio(model, r, what) for model, r in cells_open]) for what in ("recon", "plane")]
         lines.append(f"| {label(meth)} | " + " | ".join(f"{x:.3f}" if np.isfinite(x) else "–" for x in cells + every) + " |")
     return "\n".join(lines)
 
@@ -126,8 +155,8 @@ def total_text(runs):
     return f"The final sampling runs and the reconstructions of the {len(rows)} runs took {busy / 60:.0f} min together."
 
 
-def missing_lines(runs, models, rates, stale):
-    gone = missing_runs(runs, models, rates)
+def missing_lines(runs, models, rates, stale, tuning_models=()):
+    gone = missing_runs(runs, models, rates, tuning_models)
     stale = [f"{stale} cached runs made by another build, script, measure or model file were left out.", ""] \
         if stale else []
     if not gone:
@@ -137,10 +166,10 @@ def missing_lines(runs, models, rates, stale):
             f"(their cells show –): {listed}.", ""] + stale
 
 
-def missing_runs(runs, models, rates):
+def missing_runs(runs, models, rates, tuning_models=()):
     """The runs this report expects that are not in the cache (an interrupted run)."""
     expect = [(m, k, r) for m in models for k in config.METHODS for r in rates] + \
-             [(m, k, r) for m in models for k in config.TUNING for r in config.TUNE_RATES if r in rates]
+             [(m, k, r) for m in tuning_models for k in config.TUNING_RUNS for r in config.TUNE_RATES if r in rates]
     return [e for e in expect if e not in runs]
 
 
@@ -296,66 +325,77 @@ def tuning_plot(runs, models, rates, configs, values, param, images, name):
 def losses(runs, models, rates, what):
     """Cells where some peer beats every one of our methods: (model, rate, peer, ratio)."""
     out = []
-    for model in models:
-        for r in rates:
-            ours = np.nanmin([value(runs, model, m, r, what) for m in OURS] + [np.inf])
-            peers = {m: value(runs, model, m, r, what) for m in PEERS}
-            peers = {m: v for m, v in peers.items() if np.isfinite(v)}
-            if not peers or not np.isfinite(ours):
-                continue
-            winner = min(peers, key=peers.get)
-            if peers[winner] < ours:
-                out.append((model, r, winner, ours / peers[winner]))
+    for model, r in open_cells(runs, models, rates, what):
+        ours = np.nanmin([value(runs, model, m, r, what) for m in OURS] + [np.inf])
+        peers = {m: value(runs, model, m, r, what) for m in PEERS}
+        peers = {m: v for m, v in peers.items() if np.isfinite(v)}
+        if not peers or not np.isfinite(ours):
+            continue
+        winner = min(peers, key=peers.get)
+        if peers[winner] * (1 + config.TIE_MARGIN) < ours:
+            out.append((model, r, winner, ours / peers[winner]))
     return out
 
 
 def loss_lines(lost, measure):
     if not lost:
-        return [f"{measure}: in no cell does a peer beat all four of our LODs."]
-    return [f"{measure}: cells where a peer beats all four of our LODs (our best error / the peer's):", ""] + \
+        return [f"{measure}: in no cell does a peer beat all four of our LODs by more than {config.TIE_MARGIN:.0%}."]
+    return [f"{measure}: cells where a peer beats all four of our LODs by more than {config.TIE_MARGIN:.0%} "
+            "(our best error / the peer's):", ""] + \
         [f"- {m}, {r:.0%}: {label(w)}, ours {x:.2f}x its error" for m, r, w, x in lost]
 
 
 def wins_line(runs, models, rates):
-    cells = wins = 0
-    for model in models:
-        for r in rates:
-            vals = {m: value(runs, model, m, r, "recon") for m in config.METHODS}
-            vals = {m: v for m, v in vals.items() if np.isfinite(v)}
-            if vals:
-                cells += 1
-                wins += min(vals, key=vals.get) in OURS
-    return f"One of our LODs has the lowest reconstruction error in {wins} of {cells} cells (model x rate)."
+    cells = wins = ties = 0
+    for model, r in open_cells(runs, models, rates):
+        vals = {m: value(runs, model, m, r, "recon") for m in config.METHODS}
+        vals = {m: v for m, v in vals.items() if np.isfinite(v)}
+        if vals:
+            cells += 1
+            best = min(vals.values())
+            ours = min(v for m, v in vals.items() if m in OURS) if any(m in OURS for m in vals) else np.inf
+            peers = min([v for m, v in vals.items() if m not in OURS] + [np.inf])
+            wins += ours == best and peers > ours * (1 + config.TIE_MARGIN)
+            ties += ours <= best * (1 + config.TIE_MARGIN) and not (ours == best and peers > ours * (1 + config.TIE_MARGIN))
+    left = len(models) * len(rates) - len(open_cells(runs, models, rates))
+    return (f"One of our LODs has the lowest reconstruction error by more than {config.TIE_MARGIN:.0%} in {wins} of "
+            f"{cells} cells (model x rate), and is within {config.TIE_MARGIN:.0%} of the lowest in {ties} more; "
+            f"{left} saturated cells are left out.")
 
 
 def time_line(runs, models, rates):
-    """Which methods sample faster than ours (the curvature-density Poisson LOD) in every cell."""
-    faster, cells = [], [(m, r) for m in models for r in rates
-                         if np.isfinite(value(runs, m, "ours_density", r, "seconds"))]
+    """Which methods reach the count faster than ours (the curvature-density Poisson LOD) in every cell,
+    and which slower in every cell: searches included for all."""
+    what = "search_seconds"
+    cells = [(m, r) for m in models for r in rates if np.isfinite(value(runs, m, "ours_density", r, what))]
+    faster, slower = [], []
     for peer in PEERS:
-        ratios = [value(runs, m, "ours_density", r, "seconds") / value(runs, m, peer, r, "seconds") for m, r in cells]
+        ratios = [value(runs, m, "ours_density", r, what) / value(runs, m, peer, r, what) for m, r in cells]
         ratios = [x for x in ratios if np.isfinite(x)]
         if ratios and min(ratios) > 1:
-            faster.append(f"{label(peer)} ({np.median(ratios):.0f}x, median)")
-    return ("Time: our curvature-density Poisson LOD (one run, with its curvature) is slower in every cell than "
-            + (", ".join(faster) if faster else "none of the peers") + ".")
+            faster.append(f"{label(peer)} ({np.median(ratios):.1f}x, median)")
+        elif ratios and max(ratios) < 1:
+            slower.append(f"{label(peer)} ({1 / np.median(ratios):.1f}x, median)")
+    return ("Time to the count (searches included for every method): our curvature-density Poisson LOD is "
+            "slower in every cell than " + (", ".join(faster) if faster else "none of the peers")
+            + "; faster in every cell than " + (", ".join(slower) if slower else "none of them") + ".")
 
 
 def mean_rank(runs, models, rates, what):
     ranks = {m: [] for m in config.METHODS}
-    for model in models:
-        for r in rates:
-            vals = {m: value(runs, model, m, r, what) for m in config.METHODS}
-            ordered = sorted((v, m) for m, v in vals.items() if np.isfinite(v))
-            for i, (_, m) in enumerate(ordered):
-                ranks[m].append(i + 1)
+    for model, r in open_cells(runs, models, rates, what):
+        vals = {m: value(runs, model, m, r, what) for m in config.METHODS}
+        ordered = sorted((v, m) for m, v in vals.items() if np.isfinite(v))
+        for i, (_, m) in enumerate(ordered):
+            ranks[m].append(i + 1)
     return {m: (np.mean(v) if v else np.nan, len(v)) for m, v in ranks.items()}
 
 
-def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
+def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_models=()):
     """Writes doc_path and its plots (in images/ beside it). runs: {(model, method, rate): row} as
     bench/quality.py caches them, (model, "all_points", 1.0) for the reconstruction from every point;
-    stale: how many cached rows were left out as stale."""
+    stale: how many cached rows were left out as stale; tuning_models: where the sweeps of a and c ran."""
+    tuning_models = list(tuning_models)
     doc_path = pathlib.Path(doc_path)
     images = doc_path.parent / "images"
     methods = list(config.METHODS)
@@ -365,10 +405,10 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
     a_keys = [("ours_unweighted", 0.0)] + [
         ("ours_density" if a == config.DEFAULT_ADAPTIVITY else f"tune_a{a:g}", a) for a in config.TUNE_ADAPTIVITY]
     c_keys = [("ours_eq3" if c == config.DEFAULT_EXPONENT else f"tune_c{c:g}", c) for c in config.TUNE_EXPONENT]
-    a_text, a_best, a_ratios = sweep_section(runs, models, tune_rates, "Adaptivity a (curvature-density geodesic)",
+    a_text, a_best, a_ratios = sweep_section(runs, tuning_models, tune_rates, "Adaptivity a (curvature-density geodesic)",
                                              [k for k, _ in a_keys[1:]], "ours_unweighted", "a",
                                              [v for _, v in a_keys[1:]])
-    c_text, c_best, c_ratios = sweep_section(runs, models, tune_rates, "Curvature exponent c (eq. 3)",
+    c_text, c_best, c_ratios = sweep_section(runs, tuning_models, tune_rates, "Curvature exponent c (eq. 3)",
                                              [k for k, _ in c_keys], "ours_unweighted", "c", [v for _, v in c_keys])
     lost_recon = losses(runs, models, rates, "recon")
     lost_plane = losses(runs, models, rates, "plane")
@@ -386,13 +426,16 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
         "Models (from `../shared/data`; normals computed once and given to every method: the "
         "triangles' for meshes, MeshLab's 10-neighbour estimate for the raw scans):",
         "",
-        "| model | file | points | faces | reconstruction error from all points (‰ of diagonal) |",
-        "|---|---|---:|---:|---:|",
+        "| model | used for | file | points | faces | reconstruction error from all points (‰ of diagonal) |",
+        "|---|---|---|---:|---:|---:|",
     ]
-    for model in models:
+    for model in models + tuning_models:
         full = runs.get((model, "all_points", 1.0))
-        doc.append(f"| {model} | `{config.MODELS[model]}` | {full['input_count'] if full else '?'} | "
+        use = "tables" if model in models else "tuning a and c"
+        doc.append(f"| {model} | {use} | {config.source_text(model)} | {full['input_count'] if full else '?'} | "
                    f"{full['faces'] if full else '?'} | {pm(full['recon']['mean']) if full else '–'} |")
+    doc += ["", "The defaults a and c were tuned on other models than the tables and summaries report: another "
+            "object's raw scans and another part of the terrain tile (section *Tuning the weighting*)."]
     doc += [
         "",
         f"Sampling rates: {', '.join(f'{r:.0%}' for r in rates)} of the input points; each method is "
@@ -435,19 +478,29 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
         f"- plane-fit error (no reconstruction): the distance from each input point to the "
         f"least-squares plane through its {config.PLANE_NEIGHBOURS} nearest LOD points.",
         "",
-        "Times: ours, the whole filter call (Poisson with its radius search for the count), on all threads (OpenMP); "
-        "the others, one run at the parameter their count search found (the search not counted), as their tools run it "
-        "(MeshLab's and CGAL's on one thread), on a machine with "
-        f"{os.cpu_count()} cores shared with other work ({platform.machine()}; {load_text(runs)}). "
+        "Ties: errors within "
+        f"{config.TIE_MARGIN:.0%} of each other are ties (counts differ by up to {config.COUNT_TOLERANCE:.0%}, "
+        "and one method's spread over seeds is of that order: *Spread over seeds*). A cell where every method is "
+        f"within {config.TIE_MARGIN:.0%} of the reconstruction from all points is *saturated*: it cannot tell the "
+        "methods apart, is marked in the tables, and is left out of the summary, the ranks, the wins and the losses.",
+        "",
+        "Times are the time to the count, as a user waits for it: every run of a method's radius or size search "
+        "is counted (ours search inside the filter call; MeshLab's samplers by the same radius search, each "
+        "run counted; CGAL's and Open3D's searches in the peer tool, each run counted; FPS methods take the "
+        "count in one run). Ours run on all threads (OpenMP), the others as their tools run them (MeshLab's and "
+        f"CGAL's on one thread), on a machine with {os.cpu_count()} cores shared with other work "
+        f"({platform.machine()}; {load_text(runs)}). "
         "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
         "",
-        *missing_lines(runs, models, rates, stale),
+        *missing_lines(runs, models, rates, stale, tuning_models),
         "## Summary",
         "",
         "Error divided by that of uniform random sampling at the same rate, geometric mean over the "
         "rates (per model: reconstruction error; last two columns: over all models and rates). Below 1 "
         "is better than random. CGAL WLOP's means are over the rates it ran at (not above "
-        f"{config.WLOP_MAX_SAMPLES} samples).",
+        f"{config.WLOP_MAX_SAMPLES} samples). Saturated cells are left out: "
+        + (", ".join(f"{m} {r:.0%}" for m in models for r in rates if (m, r) not in open_cells(runs, models, rates))
+           or "there are none") + ".",
         "",
         summary_table(runs, models, rates),
         "",
@@ -456,7 +509,8 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
                    "reconstruction error (‰ of diagonal)", images, "bench_reconstruction_error", pm)
     doc += section(runs, models, rates, "Plane-fit error (‰ of the diagonal, lower is better)", "plane",
                    "plane-fit error (‰ of diagonal)", images, "bench_plane_fit_error", pm)
-    doc += section(runs, models, rates, "Sampling time (s)", "seconds", "sampling time (s)", images, "bench_time", secs)
+    doc += section(runs, models, rates, "Time to the count (s), searches included", "search_seconds",
+                   "time to the count (s)", images, "bench_time", secs)
     doc += ["## Misses of the reconstruction measure", "",
             "The share of the input's normal lines that meet the reconstructed surface nowhere within half the "
             "diagonal. The error above is the mean over the lines that do meet it, so a surface with holes "
@@ -479,22 +533,23 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC):
         "",
         "## Tuning the weighting",
         "",
-        f"Poisson LODs on the same models at {', '.join(f'{r:.0%}' for r in tune_rates)}.",
+        f"Poisson LODs on the tuning models ({', '.join(tuning_models) or 'not run'}) at "
+        f"{', '.join(f'{r:.0%}' for r in tune_rates)}.",
         "",
     ]
     if a_text:
         doc += [a_text, "",
-                tuning_plot(runs, models, tune_rates, [k for k, _ in a_keys], [max(v, 0.3) for _, v in a_keys],
+                tuning_plot(runs, tuning_models, tune_rates, [k for k, _ in a_keys], [max(v, 0.3) for _, v in a_keys],
                             "adaptivity a", images, "bench_tuning_adaptivity.png"),
                 "", "(a = 0 is drawn at 0.3 on the log axis.)", ""]
     if c_text:
         doc += [c_text, "",
-                tuning_plot(runs, models, tune_rates, [k for k, _ in c_keys], [v for _, v in c_keys],
+                tuning_plot(runs, tuning_models, tune_rates, [k for k, _ in c_keys], [v for _, v in c_keys],
                             "exponent c", images, "bench_tuning_exponent.png"), ""]
     doc += ["### Recommendation", ""]
     if a_best is not None:
         doc.append(f"- adaptivity: a = {a_best:g} has the smallest geometric mean of the error ratio over the "
-                   f"models and rates above (current default {config.DEFAULT_ADAPTIVITY:g}).")
+                   f"tuning models and rates above (current default {config.DEFAULT_ADAPTIVITY:g}).")
         doc += [f"  - at {r:.0%} alone the best is a = {v:g} (geometric mean {g:.3f} over the models)"
                 for r, v, g in best_per_rate(a_ratios, dict(a_keys), tune_rates)]
     if c_best is not None:
