@@ -5,6 +5,7 @@
 #include <new>
 #include <stdexcept>
 #include "filter_info.h"
+#include "python_names.h"
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
@@ -313,7 +314,7 @@ std::vector<ParamSpec> PyramidParams(const CMeshO&) {
                    "Sample counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
                    "(50%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
                    "finer ones."};
-  levels.text = "50%,25%,10%,5%,2%";
+  levels.text = geodesic_lod::kDefaultLevels;
   p.push_back(levels);
   AddDomainParams(p);
   return p;

@@ -154,6 +154,14 @@ class GeodesicDomain {
 
   size_t size() const { return points.size(); }
 
+  /// The bytes its arrays hold: what keeping a domain for several LODs costs.
+  size_t MemoryBytes() const {
+    const auto& g = meshGeodesics ? fmMesh.edges : graph;
+    return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) +
+           Bytes(g.offset) + Bytes(g.adj) + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
+           Bytes(triangles) + Bytes(reach);
+  }
+
   /// The point number of each mesh vertex (index in m.vert, below
   /// `vertexCount`), -1 for vertices the domain left out. O(vertexCount).
   std::vector<int> PointOfVertex(size_t vertexCount) const {
@@ -192,6 +200,8 @@ class GeodesicDomain {
     for (auto& t : tri)
       for (int& c : t) c = newIndex[c];
   }
+  template <class T>
+  static size_t Bytes(const std::vector<T>& v) { return v.capacity() * sizeof(T); }
   template <class T>
   static void Permute(const std::vector<int>& order, std::vector<T>& v) {
     std::vector<T> out(order.size());

@@ -54,7 +54,13 @@ class GeodesicFpsLod {
                         Progress progress) {
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
     const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 50));
-    const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(50, 100));
+    return ComputeOn(d, hasFaces, vertCount, p, progress.Sub(50, 100));
+  }
+
+  /// The same on a domain built before (p.domain is not read).
+  static Result ComputeOn(const Domain& d, bool hasFaces, size_t vertCount, const Param& p, Progress progress) {
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+    const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress);
     Result r;
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
         d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, vertCount);

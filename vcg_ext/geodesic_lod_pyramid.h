@@ -59,11 +59,18 @@ class GeodesicLodPyramid {
     CheckCounts(p.counts);
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
     const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 40));
+    return ComputeOn(d, hasFaces, p, progress.Sub(40, 100));
+  }
+
+  /// The same on a domain built before (p.domain is not read).
+  static Result ComputeOn(const Domain& d, bool hasFaces, const Param& p, Progress progress) {
+    CheckCounts(p.counts);
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
     typename GeodesicPoissonLod<MeshType>::Param pp;
     pp.sampleNum = p.counts[0];
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;
-    PoissonTargetCount::Result finest = GeodesicPoissonLod<MeshType>::SampleCount(d, pp, progress.Sub(40, 80));
+    PoissonTargetCount::Result finest = GeodesicPoissonLod<MeshType>::SampleCount(d, pp, progress.Sub(0, 67));
     Result r;
     r.radius = finest.radius;
     r.iterations = finest.iterations;
@@ -71,7 +78,7 @@ class GeodesicLodPyramid {
     // A finest level trimmed from every point is in farthest-point order already; others are ordered now.
     const std::vector<int> order = (finest.farthestOrder || p.counts.size() == 1)
                                        ? finest.samples
-                                       : Nested(d, finest.samples, p.counts[1], p.seed, progress.Sub(80, 90));
+                                       : Nested(d, finest.samples, p.counts[1], p.seed, progress.Sub(67, 83));
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, order);
     r.coarsest.assign(order.size(), 0);
     for (size_t k = 1; k < p.counts.size(); ++k)
@@ -81,7 +88,7 @@ class GeodesicLodPyramid {
         const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
         r.levelFaces.push_back(
             GeodesicDelaunay<Scalar>::Compute(d.triangles, GeodesicDelaunay<Scalar>::VoronoiOwners(d, level)));
-        progress(90 + 10 * (k + 1) / p.counts.size(), 100, "Triangulating the levels");
+        progress(83 + 17 * (k + 1) / p.counts.size(), 100, "Triangulating the levels");
       }
     return r;
   }

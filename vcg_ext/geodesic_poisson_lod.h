@@ -137,7 +137,14 @@ class GeodesicPoissonLod {
     }
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
     const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 60));
-    const Progress sampling = progress.Sub(60, p.meshOutput ? 90 : 100);
+    return ComputeOn(d, hasFaces, vertCount, p, progress.Sub(60, 100));
+  }
+
+  /// The same on a domain built before (p.domain is not read): several LODs
+  /// of one input share its normals, eq. 1 and search structure.
+  static Result ComputeOn(const Domain& d, bool hasFaces, size_t vertCount, const Param& p, Progress progress) {
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+    const Progress sampling = progress.Sub(0, p.meshOutput ? 75 : 100);
     Result r;
     std::vector<int> samples, disk, voronoi;
     if (p.sampleNum > 0) {

@@ -78,6 +78,33 @@ nb::dict Common(const LodResult& r) {
   return d;
 }
 
+nb::dict PoissonDict(const Poisson::Result& r) {
+  nb::dict d = Common(r);
+  d["radius"] = r.radius;
+  d["covering_radius"] = r.coveringRadius;
+  d["iterations"] = r.iterations;
+  d["poisson_count"] = r.poissonCount;
+  d["trimmed"] = r.trimmed;
+  return d;
+}
+
+nb::dict FpsDict(const Fps::Result& r) {
+  nb::dict d = Common(r);
+  d["covering_radii"] = ToNumpy(std::vector<double>(r.coveringRadius), {r.coveringRadius.size()});
+  return d;
+}
+
+nb::dict PyramidDict(const Pyramid::Result& r) {
+  nb::dict d = Common(r);
+  d["counts"] = r.counts;
+  nb::list levelFaces;
+  for (const auto& f : r.levelFaces) levelFaces.append(Faces(f));
+  d["level_faces"] = levelFaces;
+  d["radius"] = r.radius;
+  d["iterations"] = r.iterations;
+  return d;
+}
+
 struct Input {
   vcg_ext::PointSet<double> points;
   vcg_ext::MeshTriangles triangles;
@@ -100,48 +127,70 @@ nb::dict PoissonLod(const Array2& points, std::optional<Array2> normals, std::op
                     const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  Poisson::Result r = pp.Run([&](vcg_ext::Progress pr) {
+  return PoissonDict(pp.Run([&](vcg_ext::Progress pr) {
     Input in = Read(points, normals, faces);
     return Poisson::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
-  });
-  nb::dict d = Common(r);
-  d["radius"] = r.radius;
-  d["covering_radius"] = r.coveringRadius;
-  d["iterations"] = r.iterations;
-  d["poisson_count"] = r.poissonCount;
-  d["trimmed"] = r.trimmed;
-  return d;
+  }));
 }
 
 nb::dict FpsLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                 const Fps::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  Fps::Result r = pp.Run([&](vcg_ext::Progress pr) {
+  return FpsDict(pp.Run([&](vcg_ext::Progress pr) {
     Input in = Read(points, normals, faces);
     return Fps::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
-  });
-  nb::dict d = Common(r);
-  d["covering_radii"] = ToNumpy(std::vector<double>(r.coveringRadius), {r.coveringRadius.size()});
-  return d;
+  }));
 }
 
 nb::dict LodPyramid(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                     const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  Pyramid::Result r = pp.Run([&](vcg_ext::Progress pr) {
+  return PyramidDict(pp.Run([&](vcg_ext::Progress pr) {
     Input in = Read(points, normals, faces);
     return Pyramid::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, p, pr);
+  }));
+}
+
+// One input's normals, eq. 1 and geodesic search structure, built once for
+// several LODs (the Python Domain holds it; it owns copies of the arrays).
+struct BuiltDomain {
+  Domain d;
+  bool hasFaces = false;
+  size_t n = 0;  ///< input points
+};
+
+BuiltDomain BuildDomain(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                        const Domain::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return pp.Run([&](vcg_ext::Progress pr) {
+    Input in = Read(points, normals, faces);
+    BuiltDomain b;
+    b.hasFaces = in.hasFaces;
+    b.n = in.n;
+    b.d = Domain::Build(std::move(in.points), std::move(in.triangles), p, pr);
+    return b;
   });
-  nb::dict d = Common(r);
-  d["counts"] = r.counts;
-  nb::list levelFaces;
-  for (const auto& f : r.levelFaces) levelFaces.append(Faces(f));
-  d["level_faces"] = levelFaces;
-  d["radius"] = r.radius;
-  d["iterations"] = r.iterations;
-  return d;
+}
+
+nb::dict PoissonOn(const BuiltDomain& b, const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return PoissonDict(pp.Run([&](vcg_ext::Progress pr) { return Poisson::ComputeOn(b.d, b.hasFaces, b.n, p, pr); }));
+}
+
+nb::dict FpsOn(const BuiltDomain& b, const Fps::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return FpsDict(pp.Run([&](vcg_ext::Progress pr) { return Fps::ComputeOn(b.d, b.hasFaces, b.n, p, pr); }));
+}
+
+nb::dict PyramidOn(const BuiltDomain& b, const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return PyramidDict(pp.Run([&](vcg_ext::Progress pr) { return Pyramid::ComputeOn(b.d, b.hasFaces, p, pr); }));
 }
 
 // Eq. 1 and the normals of every point, in the input's order.
@@ -249,6 +298,7 @@ NB_MODULE(_core, m) {
   for (const char* name : geodesic_lod::kPythonNames) filters.append(name);
   m.attr("PYMESHLAB_FILTERS") = nb::tuple(filters);
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
+  m.attr("DEFAULT_LEVELS") = geodesic_lod::kDefaultLevels;
 
   m.def("percent_of", &vcg_ext::PercentOf, "percent"_a, "n"_a,
         "percent of n points, rounded as the MeshLab filters round it");
@@ -258,6 +308,19 @@ NB_MODULE(_core, m) {
         "progress"_a.none());
   m.def("lod_pyramid", &LodPyramid, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());
+  nb::class_<BuiltDomain>(m, "Domain")
+      .def_prop_ro("point_count", [](const BuiltDomain& b) { return b.n; })
+      .def_prop_ro("has_faces", [](const BuiltDomain& b) { return b.hasFaces; })
+      .def_prop_ro("mesh_geodesics", [](const BuiltDomain& b) { return b.d.meshGeodesics; })
+      .def_prop_ro("components", [](const BuiltDomain& b) { return b.d.components; })
+      .def_prop_ro("estimated_normals", [](const BuiltDomain& b) { return b.d.estimatedNormals; })
+      .def_prop_ro("left_out", [](const BuiltDomain& b) { return b.d.leftOut; })
+      .def_prop_ro("nbytes", [](const BuiltDomain& b) { return b.d.MemoryBytes(); });
+  m.def("build_domain", &BuildDomain, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
+        "threads"_a.none(), "progress"_a.none());
+  m.def("poisson_on", &PoissonOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
+  m.def("fps_on", &FpsOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
+  m.def("pyramid_on", &PyramidOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
   BindTiles(m);
   m.def("normal_variation", &NormalVariation, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
         "progress"_a.none());

@@ -125,9 +125,10 @@ def _faces(faces):
         raise TypeError(f"faces must hold integer vertex indices, not {f.dtype}")
     if f.ndim != 2 or f.shape[1] != 3:
         raise ValueError(f"faces must be an (m, 3) array of vertex indices, got shape {f.shape}")
-    if f.dtype.itemsize < 4:  # the core reads 32- and 64-bit indices
+    if f.dtype.itemsize < 4 or not f.dtype.isnative:  # the core reads native 32- and 64-bit indices
         f = f.astype(np.int64)
-    return f
+    # The core reads the rows in place: a strided view (such as a field of a PLY file's face records) is copied.
+    return np.ascontiguousarray(f)
 
 
 def _integer(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "") -> int:
@@ -270,14 +271,22 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
     become samples, such as a finer level's (the geodesics still run over every point): nested Poisson
     levels, as the Dask pipeline's ``levels`` makes. Ctrl-C stops the run (KeyboardInterrupt)."""
     p, n, f, has_faces = _inputs(points, normals, faces)
+    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                     normal_neighbors, graph_neighbors, recompute_normals)
+    param, threads = _poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
+                                    seed, within, threads, progress)
+    param.domain = domain
+    return _lod(PoissonLod, _run(_core.poisson_lod, p, n, f, param, threads, progress))
+
+
+def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
+                   progress):
+    """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
     param = _core.PoissonParam()
-    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                           normal_neighbors, graph_neighbors, recompute_normals)
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of radius, count or rate" +
                          (f" (got {' and '.join(given)})" if given else ""))
-    n_points = p.shape[0]
     pool = n_points
     if within is not None:
         chosen = _indices(within, n_points, "within")
@@ -302,7 +311,7 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.regions = _choice(regions, REGIONS, "regions")
-    return _lod(PoissonLod, _run(_core.poisson_lod, p, n, f, param, threads, progress))
+    return param, threads
 
 
 def fps_lod(points, normals=None, *, count: int, faces=None,
@@ -316,16 +325,23 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
     (the first drawn from the seed), so ``indices[:k]`` is the k-sample LOD. ``covering_radii[k]`` is the
     covering radius of the first k+1 samples. ``regions`` may be 'voronoi'."""
     p, n, f, has_faces = _inputs(points, normals, faces)
+    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                     normal_neighbors, graph_neighbors, recompute_normals)
+    param, threads = _fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
+    param.domain = domain
+    return _lod(FpsLod, _run(_core.fps_lod, p, n, f, param, threads, progress))
+
+
+def _fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, progress):
+    """fps_lod's sampling arguments checked, as an FpsParam without its domain; and the threads."""
     param = _core.FpsParam()
-    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                           normal_neighbors, graph_neighbors, recompute_normals)
-    param.sample_num = _integer(count, "count", 1, p.shape[0], " (the number of points)")
+    param.sample_num = _integer(count, "count", 1, n_points, " (the number of points)")
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     if regions == "disk":
         raise ValueError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
     param.regions = _choice(regions, REGIONS, "regions")
-    return _lod(FpsLod, _run(_core.fps_lod, p, n, f, param, threads, progress))
+    return param, threads
 
 
 def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
@@ -357,7 +373,10 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
     return counts
 
 
-def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = ("50%", "25%", "10%", "5%", "2%"),
+DEFAULT_LEVELS = tuple(_core.DEFAULT_LEVELS.split(","))  # the pyramid filter's
+
+
+def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                 faces=None, metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
                 adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
                 normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
@@ -366,13 +385,21 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = ("5
     """Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser level a
     farthest-point prefix of it. ``levels`` of the result lists their index arrays, finest first."""
     p, n, f, has_faces = _inputs(points, normals, faces)
+    counts = level_counts(levels, p.shape[0])
+    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
+                     normal_neighbors, graph_neighbors, recompute_normals)
+    param, threads = _pyramid_param(counts, has_faces, mesh_output, seed, threads, progress)
+    param.domain = domain
+    return _lod(LodPyramid, _run(_core.lod_pyramid, p, n, f, param, threads, progress))
+
+
+def _pyramid_param(counts, has_faces, mesh_output, seed, threads, progress):
+    """lod_pyramid's sampling arguments checked, as a PyramidParam without its domain; and the threads."""
     param = _core.PyramidParam()
-    param.counts = level_counts(levels, p.shape[0])
-    param.domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                           normal_neighbors, graph_neighbors, recompute_normals)
+    param.counts = counts
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
-    return _lod(LodPyramid, _run(_core.lod_pyramid, p, n, f, param, threads, progress))
+    return param, threads
 
 
 def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.normal_neighbors,

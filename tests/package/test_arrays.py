@@ -128,6 +128,16 @@ def test_any_float_layout_gives_the_same_lod(cloud):
                                   gl.poisson_lod(f32.astype(np.float64), count=300).indices)
 
 
+def test_any_face_layout_gives_the_same_lod():
+    pts, faces = grid_mesh(30)
+    ref = gl.fps_lod(pts, faces=faces, count=60).indices
+    # A PLY file's face records (a count byte, then three indices) read as one array: an unaligned, strided view.
+    records = np.zeros(len(faces), dtype=np.dtype([("n", "u1"), ("v", "<i4", 3)]))
+    records["n"], records["v"] = 3, faces
+    for f in (records["v"], faces.astype(">i4"), faces.astype(np.uint16), np.asfortranarray(faces)):
+        np.testing.assert_array_equal(gl.fps_lod(pts, faces=f, count=60).indices, ref)
+
+
 def test_input_never_modified(cloud):
     pts, faces = grid_mesh(30)
     normals = np.tile([0.0, 0.0, 1.0], (len(pts), 1))
