@@ -1,5 +1,6 @@
-"""docs/benchmarks.md and its plots from the runs of bench/quality.py, given as arguments (write):
-this module runs nothing and reads no cache."""
+"""docs/benchmarks.md, its plots and docs/benchmarks.json (the runs behind every figure) from the runs of
+bench/quality.py, given as arguments (write): this module runs nothing and reads no cache."""
+import json
 import os
 import pathlib
 import platform
@@ -575,5 +576,8 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_model
                     doc.append(f"| {model} | {label(m)} | {r:.0%} | {row['parameter']} |")
     doc += speed_section(doc_path.parent)
     doc_path.write_text("\n".join(doc) + "\n")
+    # Every figure above from these rows: the runs as the cache held them, beside the page.
+    rows = [dict(row, model=m, method=k, rate=r) for (m, k, r), row in sorted(runs.items(), key=lambda kv: str(kv[0]))]
+    doc_path.with_suffix(".json").write_text(json.dumps(rows, indent=1) + "\n")
     shown = doc_path.relative_to(ROOT) if doc_path.is_relative_to(ROOT) else doc_path
     log(f"wrote {shown} ({time.strftime('%Y-%m-%d %H:%M')})")

@@ -4,6 +4,8 @@ count, on synthetic scans (bench/make_scan.py) of 1M to 14M points.
 
 Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of that process):
   ours, normals estimated   pymeshlab, the scan without normals
+  ours, 10% asked           the same, asked for 10% of the points (samplerate=10: an exact count, the
+                            radius searched), what a user asking for a share waits for
   ours, normals given       pymeshlab, the same scan with its exact normals
   MeshLab                   pymeshlab, the scan without normals, at the count ours produced
   lod_cli                   the standalone C++ driver (bench/lod_cli.cpp), normals estimated:
@@ -12,6 +14,10 @@ Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of 
                             down-sampling (bench/peers/peer_simplify, when built: bench/run_quality
                             builds it), at ours' count; a method that does not finish in
                             --peer-timeout is not run on larger scans
+  references                what the machine gives the largest stages (bench/speed.py --floor): the same
+                            20-nearest-neighbour queries by scipy's cKDTree on both cores, and the
+                            memory traffic floor, one write and one read of the memory lod_cli's pipeline
+                            holds at the machine's measured copy bandwidth
 The disk radius r = 0.00283 sqrt(1e6 / n) gives about 10% of the points on these scans.
 
 usage: bench/speed.py [--sizes 1e6 5e6 14e6] [--scans DIR] [--timeout S] [--peer-timeout S] > run.jsonl
@@ -37,6 +43,10 @@ PEER_TOLERANCE = 0.1  # the grid-like peers search a cell size for the count: wi
 sys.path.insert(0, str(ROOT / "bench"))
 
 
+ASKED_RATE = 10.0  # percent, for "ours, 10% asked"
+FLOOR_K = 20  # the neighbours of the normals' fit and of eq. 1
+
+
 def radius_for(n):
     return 0.00283 * (1e6 / n) ** 0.5
 
@@ -52,9 +62,10 @@ def run_one(kind, ply, n, count):
     ms.load_new_mesh(ply)
     loaded = peak_rss_mb()
     t = time.perf_counter()
-    if kind == "ours":
+    if kind in ("ours", "ours_rate"):
         load_plugin()
-        res = ms.apply_filter("generate_geodesic_poisson_lod", radius=pymeshlab.PureValue(radius_for(n)))
+        kw = dict(radius=pymeshlab.PureValue(radius_for(n))) if kind == "ours" else dict(samplerate=ASKED_RATE)
+        res = ms.apply_filter("generate_geodesic_poisson_lod", **kw)
         samples = res["sample_num"]
     else:
         ms.generate_simplified_point_cloud(samplenum=count, exactnumflag=False)
@@ -93,6 +104,31 @@ def measure_cli(ply, n, timeout):
             kv[parts[0]] = parts[1]
     return {"time": float(kv["lod_s"]), "samples": int(kv["samples"]), "loaded_mb": float(kv["rss_loaded_mb"]),
             "peak_mb": float(kv["peak_rss_mb"]), "load": load, "stages": stages, "wall": time.perf_counter() - t}
+
+
+def run_floor(n):
+    """In a fresh process: scipy's kNN of every point of the scan and the copy bandwidth; prints a JSON line."""
+    import numpy as np
+    from scipy.spatial import cKDTree
+    from make_scan import make_scan
+    pos = make_scan(n, seed=0)[0].astype(np.float64)
+    t = time.perf_counter()
+    cKDTree(pos).query(pos, k=FLOOR_K, workers=-1)
+    knn = time.perf_counter() - t
+    a = np.ones(1 << 27)  # 1 GiB
+    b = np.empty_like(a)
+    copies = []
+    for _ in range(3):
+        t = time.perf_counter()
+        np.copyto(b, a)
+        copies.append(time.perf_counter() - t)
+    print(json.dumps({"knn_s": knn, "copy_gb_s": 2 * a.nbytes / min(copies) / 1e9}))
+
+
+def traffic_seconds(floor, cli):
+    """The memory traffic floor: one write and one read of what lod_cli held above the scan."""
+    held = (cli["peak_mb"] - cli["loaded_mb"]) * 2**20
+    return 2 * held / (floor["copy_gb_s"] * 1e9)
 
 
 def measure_peer(method, ply, count, out, timeout):
@@ -134,6 +170,7 @@ def fmt(r, key, f):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--one", nargs=4, metavar=("KIND", "PLY", "N", "COUNT"), help=argparse.SUPPRESS)
+    ap.add_argument("--floor", type=int, metavar="N", help=argparse.SUPPRESS)
     ap.add_argument("--sizes", type=float, nargs="+", default=[1e6, 5e6, 14e6])
     ap.add_argument("--scans", default="/tmp/geodesic-lod-scans")
     ap.add_argument("--timeout", type=float, default=900)
@@ -144,6 +181,9 @@ def main():
         rows = [json.loads(line) for line in open(args.replot) if line.startswith("{")]
         write_table(rows)
         plot(rows)
+        return
+    if args.floor:
+        run_floor(args.floor)
         return
     if args.one:
         kind, ply, n, count = args.one
@@ -157,6 +197,7 @@ def main():
     for n in map(int, args.sizes):
         bare, withn = scan_file(scans, n, False), scan_file(scans, n, True)
         est = measure(me + ["ours", bare, str(n), "0"], args.timeout)
+        asked = measure(me + ["ours_rate", bare, str(n), "0"], args.timeout)
         given = measure(me + ["ours", withn, str(n), "0"], args.timeout)
         count = est["samples"] if est else int(0.1 * n)
         ml = measure(me + ["meshlab", bare, str(n), str(count)], args.timeout)
@@ -166,8 +207,9 @@ def main():
             if any(method in r["peers"] and r["peers"][method] is None for r in rows):
                 continue  # did not finish on a smaller scan
             peers[method] = measure_peer(method, withn, count, str(scans / "peer_out.ply"), args.peer_timeout)
-        rows.append({"n": n, "est": est, "given": given, "meshlab": ml, "cli": cli, "peers": peers,
-                     "peer_timeout": args.peer_timeout})
+        floor = measure([sys.executable, __file__, "--floor", str(n)], args.timeout)
+        rows.append({"n": n, "est": est, "asked": asked, "given": given, "meshlab": ml, "cli": cli, "peers": peers,
+                     "floor": floor, "peer_timeout": args.peer_timeout})
         print(json.dumps(rows[-1]), flush=True)
 
     write_table(rows)
@@ -182,18 +224,21 @@ def write_table(rows):
              "resident memory (VmHWM), bytes/point is (peak - after loading) / points. Load is the 1-minute load",
              "average when the run started (2 cores: above 2, other work was competing). MeshLab is asked",
              "for ours' sample count (`exactnumflag=False`, its faster mode) and returns about 20% more.", "",
-             "| points | samples (ours / MeshLab) | ours, normals estimated | ours, normals given | MeshLab simplification | "
+             f"Ours, {ASKED_RATE:g}% asked, is the filter given `samplerate={ASKED_RATE:g}`: an exact count, its "
+             "radius searched; the other columns of ours are one run at a given radius.", "",
+             f"| points | samples (ours / MeshLab) | ours, normals estimated | ours, {ASKED_RATE:g}% asked | "
+             "ours, normals given | MeshLab simplification | "
              "ours / MeshLab (given) | ours peak (estimated) | bytes/point | lod_cli time | lod_cli peak | "
              "lod_cli bytes/point | load |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        est, given, ml, cli = r["est"], r["given"], r["meshlab"], r["cli"]
+        est, given, ml, cli, asked = r["est"], r["given"], r["meshlab"], r["cli"], r.get("asked")
         ratio = "" if not (given and ml) else f"{given['time'] / ml['time']:.2f}"
         bpp = "" if not est else f"{(est['peak_mb'] - est['loaded_mb']) * 2**20 / r['n']:.0f}"
         cbpp = "" if not cli else f"{(cli['peak_mb'] - cli['loaded_mb']) * 2**20 / r['n']:.0f}"
         loads = "/".join(f"{x['load']:.1f}" for x in (est, given, ml, cli) if x)
         lines.append(f"| {r['n'] / 1e6:g}M | {fmt(est, 'samples', '{:d}')} / {fmt(ml, 'samples', '{:d}')} | "
-                     f"{fmt(est, 'time', '{:.1f} s')} | "
+                     f"{fmt(est, 'time', '{:.1f} s')} | {fmt(asked, 'time', '{:.1f} s')} | "
                      f"{fmt(given, 'time', '{:.1f} s')} | {fmt(ml, 'time', '{:.1f} s')} | {ratio} | "
                      f"{fmt(est, 'peak_mb', '{:.0f} MB')} | {bpp} | {fmt(cli, 'time', '{:.1f} s')} | "
                      f"{fmt(cli, 'peak_mb', '{:.0f} MB')} | {cbpp} | {loads} |")
@@ -218,6 +263,19 @@ def write_table(rows):
         lines += ["", f"Where the time goes (lod_cli, {rows[-1]['n'] / 1e6:g}M points, normals estimated):", "",
                   "| stage | s |", "|---|---|"]
         lines += [f"| {name} | {s:.1f} |" for name, s in last["stages"]]
+    floors = [r for r in rows if r.get("floor") and r["cli"]]
+    if floors:
+        lines += ["", "Against what this machine gives: the same queries (each point's "
+                  f"{FLOOR_K} nearest) by scipy's `cKDTree` on both cores, tree built and every point queried; and "
+                  "the memory traffic floor, one write and one read of the memory lod_cli holds above the scan at "
+                  "the measured copy bandwidth (`np.copyto` of 1 GiB, read and write counted):", "",
+                  "| points | lod_cli | its nearest neighbours | scipy's nearest neighbours | copy bandwidth | "
+                  "memory traffic floor |", "|---|---|---|---|---|---|"]
+        for r in floors:
+            f, cli = r["floor"], r["cli"]
+            knn = sum(s for name, s in cli["stages"] if "nearest" in name.lower())
+            lines.append(f"| {r['n'] / 1e6:g}M | {cli['time']:.1f} s | {knn:.1f} s | {f['knn_s']:.1f} s | "
+                         f"{f['copy_gb_s']:.1f} GB/s | {traffic_seconds(f, cli):.2f} s |")
     lines += ["", "![time against size](images/speed_vs_size.png)", ""]
     (ROOT / "docs" / "benchmarks-speed.md").write_text("\n".join(lines))
 

@@ -1,7 +1,7 @@
 """Poisson at 1% and FPS with 10k samples on the full SRTM tile (1.44M vertices), in both
 geodesic modes: time and peak memory of each run in a fresh process.
 
-usage: bench/terrain_modes.py [--plugin PATH] [--data PATH]
+usage: bench/terrain_modes.py [--plugin PATH] [--data PATH]   (writes docs/terrain_modes.json)
 """
 import argparse
 import json
@@ -10,6 +10,7 @@ import subprocess
 import sys
 
 from host import SHARED_DATA, add_plugin_option
+from results import publish
 
 DATA = SHARED_DATA / "terrain_n44w072_1201x1201.ply"
 
@@ -37,16 +38,18 @@ def main():
     args = ap.parse_args()
     if not pathlib.Path(args.data).is_file():
         sys.exit(f"needs {args.data} (the shared SRTM tile)")
-    print(f"{'run':48} {'samples':>8} {'time s':>8} {'peak MB':>8} {'of which loaded':>16}")
+    rows = []
     for flt, arg, what in [("generate_geodesic_poisson_lod", "1", "Poisson r = 1%"),
                            ("generate_geodesic_fps_lod", "10000", "FPS 10k")]:
         for mode in ["Mesh (fast marching)", "Point graph (Dijkstra)"]:
             out = subprocess.run([sys.executable, "-c", ONE_RUN, args.plugin, args.data, flt, mode, arg,
                                   str(pathlib.Path(__file__).resolve().parent)],
                                  check=True, capture_output=True, text=True).stdout
-            r = json.loads(out.strip().splitlines()[-1])
-            print(f"{what + ', ' + mode:48} {r['samples']:8d} {r['time']:8.1f} {r['peak_mb']:8.0f} {r['loaded_mb']:16.0f}")
-
+            rows.append(dict(run=what, mode=mode, **json.loads(out.strip().splitlines()[-1])))
+    publish("terrain_modes", rows, [("run", lambda r: r["run"]), ("geodesics", lambda r: r["mode"]),
+                                    ("samples", lambda r: str(r["samples"])), ("time", lambda r: f"{r['time']:.1f} s"),
+                                    ("peak", lambda r: f"{r['peak_mb']:.0f} MB"),
+                                    ("of which the loaded mesh", lambda r: f"{r['loaded_mb']:.0f} MB")])
 
 if __name__ == "__main__":
     main()

@@ -1,5 +1,6 @@
 """The quality report is written from the runs it is given: it imports neither the benchmark
 (bench/quality.py) nor pymeshlab, and what it writes follows from its data."""
+import json
 import pathlib
 import subprocess
 import sys
@@ -68,6 +69,8 @@ def test_the_report_follows_its_data(tmp_path):
     assert "0 saturated cells are left out" in text and "Saturated cells are left out: there are none" in text
     assert f"tuning models ({TUNING_MODEL})" in text and "tuning a and c" in text
     assert "Not measured yet" in text  # no speed page beside this one
+    rows = json.loads(doc.with_suffix(".json").read_text())  # the runs behind the page, beside it
+    assert len(rows) == len(runs) and {(r["model"], r["method"], r["rate"]) for r in rows} == set(runs)
     images = [line.split("](")[1].rstrip(")") for line in text.splitlines() if line.startswith("![")]
     assert images and all((doc.parent / image).is_file() for image in images)
 
