@@ -356,8 +356,9 @@ def wins_line(runs, models, rates):
             best = min(vals.values())
             ours = min(v for m, v in vals.items() if m in OURS) if any(m in OURS for m in vals) else np.inf
             peers = min([v for m, v in vals.items() if m not in OURS] + [np.inf])
-            wins += ours == best and peers > ours * (1 + config.TIE_MARGIN)
-            ties += ours <= best * (1 + config.TIE_MARGIN) and not (ours == best and peers > ours * (1 + config.TIE_MARGIN))
+            won = ours == best and peers > ours * (1 + config.TIE_MARGIN)
+            wins += won
+            ties += not won and ours <= best * (1 + config.TIE_MARGIN)
     left = len(models) * len(rates) - len(open_cells(runs, models, rates))
     return (f"One of our LODs has the lowest reconstruction error by more than {config.TIE_MARGIN:.0%} in {wins} of "
             f"{cells} cells (model x rate), and is within {config.TIE_MARGIN:.0%} of the lowest in {ties} more; "
@@ -500,8 +501,8 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_model
         "rates (per model: reconstruction error; last two columns: over all models and rates). Below 1 "
         "is better than random. CGAL WLOP's means are over the rates it ran at (not above "
         f"{config.WLOP_MAX_SAMPLES} samples). Saturated cells are left out: "
-        + (", ".join(f"{m} {r:.0%}" for m in models for r in rates if (m, r) not in open_cells(runs, models, rates))
-           or "there are none") + ".",
+        + (", ".join(f"{m} {r:.0%}" for m in models for r in rates if saturated(runs, m, r)) or "there are none")
+        + ".",
         "",
         summary_table(runs, models, rates),
         "",

@@ -4,8 +4,9 @@ every call; a Domain's LODs are the same as theirs for the same arguments."""
 from typing import Optional, Sequence, Union
 
 from . import _core
-from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress, _DOMAIN, _common,
-                     _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run, level_counts)
+from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress,
+                     _DOMAIN, _common, _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run,
+                     level_counts)
 
 
 class Domain:
