@@ -3,6 +3,7 @@ the same target counts), on one model, in one process.
 
 usage: bench/pyramid_cost.py [MODEL.ply] [--levels 50%,25%,10%,5%,2%] [--plugin PATH]
 Without a model it uses ../shared/data/bunny_scans_362k.ply, else a generated 300k-point cloud.
+Writes docs/pyramid_cost.json and prints the table.
 """
 import argparse
 import pathlib
@@ -12,6 +13,7 @@ import numpy as np
 import pymeshlab
 
 from host import SHARED_DATA, add_plugin_option, load_plugin
+from results import publish
 
 DEFAULT = SHARED_DATA / "bunny_scans_362k.ply"
 
@@ -51,14 +53,12 @@ def main():
         single.append(time.perf_counter() - t)
         assert ms.current_mesh().vertex_number() == c
 
-    print(f"{name}: {n} points, levels {a.levels} = {counts}")
-    print("| run | time (s) |\n|---|---|")
-    for c, s in zip(counts, single):
-        print(f"| Poisson-disk LOD, {c} samples | {s:.2f} |")
-    print(f"| levels one by one, total | {sum(single):.2f} |")
-    print(f"| Geodesic LOD pyramid, all levels | {pyramid:.2f} |")
-    print(f"ratio (one by one / pyramid): {sum(single) / pyramid:.1f}x")
-
+    rows = [dict(model=name, points=n, run=f"Poisson-disk LOD, {c} samples", seconds=round(t, 2))
+            for c, t in zip(counts, single)]
+    rows += [dict(model=name, points=n, run="levels one by one, total", seconds=round(sum(single), 2)),
+             dict(model=name, points=n, run=f"Geodesic LOD pyramid, levels {a.levels}", seconds=round(pyramid, 2))]
+    publish("pyramid_cost", rows, [("model", lambda r: f"{r['model']} ({r['points']} points)"),
+                                   ("run", lambda r: r["run"]), ("time", lambda r: f"{r['seconds']:.2f} s")])
 
 if __name__ == "__main__":
     main()
