@@ -99,8 +99,9 @@ def table(runs, models, rates, methods, what, fmt, best=min, ties=False):
     lines = [f"| model | method | {rate_header(rates)} |", "|---|---|" + "---:|" * len(rates)]
     for model in models:
         cols = {r: [value(runs, model, m, r, what) for m in methods] for r in rates}
-        if ties and any(saturated(runs, model, r, what) for r in rates):
-            marks = ["saturated" if saturated(runs, model, r, what) else "" for r in rates]
+        sat = {r: ties and saturated(runs, model, r, what) for r in rates}
+        if any(sat.values()):
+            marks = ["saturated" if sat[r] else "" for r in rates]
             lines.append(f"| {model} | *cells where every method is within {config.TIE_MARGIN:.0%} of all points* | "
                          + " | ".join(marks) + " |")
         for i, m in enumerate(methods):
@@ -112,7 +113,7 @@ def table(runs, models, rates, methods, what, fmt, best=min, ties=False):
                 if best and np.isfinite(v):
                     top = best(finite)
                     if ties:
-                        bold = not saturated(runs, model, r, what) and v <= top * (1 + config.TIE_MARGIN)
+                        bold = not sat[r] and v <= top * (1 + config.TIE_MARGIN)
                     else:
                         bold = v == top
                     if bold:
