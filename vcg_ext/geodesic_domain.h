@@ -205,7 +205,9 @@ class GeodesicDomain {
   template <class T>
   static void Permute(const std::vector<int>& order, std::vector<T>& v) {
     std::vector<T> out(order.size());
-    for (size_t i = 0; i < order.size(); ++i) out[i] = v[order[i]];
+    ParallelChunks(order.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) out[i] = v[size_t(order[i])];
+    });
     v.swap(out);
   }
   static bool UsesPointGraph(bool hasTriangles, const Param& p) {

@@ -52,7 +52,9 @@ class NeighbourGraph {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c) {
           const int* back = knn.Row(knn.Row(i)[c]);
-          oneWay[i * k + c] = std::find(back, back + k, int(i)) == back + k;
+          int found = 0;  // branch-free: the whole short row is compared at once
+          for (int d = 0; d < k; ++d) found |= back[d] == int(i);
+          oneWay[i * k + c] = !found;
         }
     });
     // Rows get their one-way arcs from other rows: counted and placed with
@@ -153,23 +155,24 @@ class NeighbourGraph {
     return w[std::lower_bound(b, e, j) - adj.begin()];
   }
 
-  /// Number of connected components.
+  /// Number of connected components. By union-find over the edges in row
+  /// order: near points have near numbers, so its reads stay local. About
+  /// O(edges), one thread.
   int ComponentCount() const {
     const size_t n = size();
-    std::vector<int> label(n, -1), stack;
-    int c = 0;
-    for (size_t s = 0; s < n; ++s) {
-      if (label[s] >= 0) continue;
-      label[s] = c;
-      stack.assign(1, int(s));
-      while (!stack.empty()) {
-        const int i = stack.back();
-        stack.pop_back();
-        for (int e = offset[i]; e < offset[i + 1]; ++e)
-          if (label[adj[e]] < 0) { label[adj[e]] = c; stack.push_back(adj[e]); }
+    std::vector<int> parent(n);
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];  // path halving
+      return x;
+    };
+    int c = int(n);
+    for (size_t i = 0; i < n; ++i)
+      for (int e = offset[i]; e < offset[i + 1]; ++e) {
+        if (adj[e] >= int(i)) continue;  // each edge once
+        const int a = root(int(i)), b = root(adj[e]);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b), --c;
       }
-      ++c;
-    }
     return c;
   }
 };

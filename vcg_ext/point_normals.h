@@ -4,7 +4,9 @@
 // PointCloudNormal does (plane fit to the k nearest points, orientation
 // propagated over neighbours), from a kNN table shared with the rest of the
 // pipeline instead of a kd-tree and queries of its own.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 #include <Eigen/Eigenvalues>
 #include "knn_table.h"
@@ -108,24 +110,39 @@ class PointNormals {
   // (|n_s . n_t|, arcs below 0.3 dropped), flipping each reached normal to
   // agree with the one it was reached from. A bucket queue of 64 levels of
   // |n_s . n_t| replaces the binary heap: O(1) per arc instead of O(log n).
+  // The arcs' levels do not depend on the signs: they are found first, on all
+  // threads, leaving the walk itself (one thread) only the queue.
   static void Orient(const KnnTable<Scalar>& knn, int c, std::vector<Coord>& normal) {
     const size_t n = normal.size();
     c = std::min(c, knn.k);
     if (c <= 0) return;
     constexpr int kLevels = 64;
+    constexpr uint8_t kDropped = 255;
+    std::vector<uint8_t> arcLevel(n * size_t(c));
+    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      for (size_t s = b; s < e; ++s) {
+        const int* row = knn.Row(s);
+        for (int j = 0; j < c; ++j) {
+          const double w = std::abs(double(normal[s].dot(normal[row[j]])));
+          arcLevel[s * c + j] = w < 0.3 ? kDropped : uint8_t(std::min(kLevels - 1, int((1.0 - w) / 0.7 * kLevels)));
+        }
+      }
+    });
     std::vector<std::vector<std::pair<int, int>>> bucket(kLevels);  // (source, target), level 0 most parallel
     std::vector<char> visited(n, 0);
     int top = kLevels;  // lowest level that may be non-empty
     auto addArcs = [&](int s) {
       const int* row = knn.Row(s);
+      const uint8_t* level = &arcLevel[size_t(s) * c];
       for (int j = 0; j < c; ++j) {
         const int t = row[j];
-        if (visited[t]) continue;
-        const double w = std::abs(double(normal[s].dot(normal[t])));
-        if (w < 0.3) continue;
-        const int level = std::min(kLevels - 1, int((1.0 - w) / 0.7 * kLevels));
-        bucket[level].emplace_back(s, t);
-        top = std::min(top, level);
+        if (visited[t] || level[j] == kDropped) continue;
+        // The walk jumps between rows: start fetching what popping t will read.
+        __builtin_prefetch(knn.Row(size_t(t)));
+        __builtin_prefetch(&arcLevel[size_t(t) * c]);
+        __builtin_prefetch(&normal[size_t(t)]);
+        bucket[level[j]].emplace_back(s, t);
+        top = std::min(top, int(level[j]));
       }
     };
     for (size_t seed = 0; seed < n; ++seed) {

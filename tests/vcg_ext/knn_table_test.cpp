@@ -3,6 +3,7 @@
 // grid (duplicates, ties on a lattice, far outliers, a thin line).
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <utility>
@@ -59,6 +60,23 @@ TEST(KnnTable, EqualsBruteForceWithDuplicatesLatticeTiesAndOutliers) {
   for (int o = 0; o < 6; ++o) pos.emplace_back(5.f + o, -3.f * o, 2.f);        // far, lonely outliers
   for (int l = 0; l < 300; ++l) pos.emplace_back(-1.f, 0.f, l * 1e-3f);        // a thin line
   for (int k : {1, 20, 30}) ExpectExact(pos, k);
+}
+
+// Points on a circle about a centre lie at distances that differ in double
+// precision but round to the same float: ranked by their exact distances all
+// the same (the table ranks in float only when that order is certain).
+TEST(KnnTable, DistancesEqualOnlyInFloatAreRankedExactly) {
+  std::vector<P> pos = {P(0, 0, 0)};
+  for (int m = 0; m < 48; ++m) pos.emplace_back(std::cos(m * 0.1309f), std::sin(m * 0.1309f), 0.f);
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j) pos.emplace_back(i * 0.61f + 0.013f * j, j * 0.59f, 0.3f);
+  std::vector<double> d2;
+  for (int m = 1; m <= 48; ++m) d2.push_back(double(pos[m][0]) * pos[m][0] + double(pos[m][1]) * pos[m][1]);
+  bool floatTie = false;  // the case under test is present
+  for (size_t a = 0; a < d2.size(); ++a)
+    for (size_t b = 0; b < a; ++b) floatTie |= d2[a] != d2[b] && float(d2[a]) == float(d2[b]);
+  ASSERT_TRUE(floatTie);
+  for (int k : {5, 20, 40}) ExpectExact(pos, k);
 }
 
 // A single stray point far away (a bird, a multipath return) must not make the
