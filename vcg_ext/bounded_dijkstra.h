@@ -88,8 +88,7 @@ class BoundedDijkstra {
         if (nd < dist[j]) {
           dist[j] = nd;
           reached(i, j);
-          heap_.emplace_back(nd, j);
-          std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+          Push(j, nd);
         }
       }
     }
@@ -103,6 +102,13 @@ class BoundedDijkstra {
   void Reach(int j, Scalar d) {
     stamp_[j] = stamp;
     dist_[j] = d;
+    Push(j, d);
+  }
+  void Push(int j, Scalar d) {
+    // Searches start anywhere in the graph, so j's row is rarely cached:
+    // start fetching it, for its pop, while the heap works.
+    __builtin_prefetch(g_.adj.data() + g_.offset[j]);
+    __builtin_prefetch(g_.w.data() + g_.offset[j]);
     heap_.emplace_back(d, j);
     std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
   }

@@ -156,6 +156,11 @@ class FastMarching {
       if (d <= double(bound) && Scalar(d) < get(j)) {
         set(j, Scalar(d));
         reached(from, j);
+        // j's edges and fans are read when it is finalized: start fetching
+        // them now (a front's new vertices are rarely cached).
+        __builtin_prefetch(m_.edges.adj.data() + m_.edges.offset[j]);
+        __builtin_prefetch(m_.edges.w.data() + m_.edges.offset[j]);
+        __builtin_prefetch(m_.fans.data() + m_.fanOffset[j]);
         heap_.emplace_back(Scalar(d), j);
         std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
       }

@@ -138,9 +138,9 @@ class PointNormals {
         const int t = row[j];
         if (visited[t] || level[j] == kDropped) continue;
         // The walk jumps between rows: start fetching what popping t will read.
-        __builtin_prefetch(knn.Row(size_t(t)));
-        __builtin_prefetch(&arcLevel[size_t(t) * c]);
-        __builtin_prefetch(&normal[size_t(t)]);
+        __builtin_prefetch(knn.idx.data() + size_t(t) * size_t(knn.k));
+        __builtin_prefetch(arcLevel.data() + size_t(t) * size_t(c));
+        __builtin_prefetch(normal.data() + t);
         bucket[level[j]].emplace_back(s, t);
         top = std::min(top, int(level[j]));
       }
