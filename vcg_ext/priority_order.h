@@ -1,7 +1,7 @@
 #ifndef VCG_EXT_PRIORITY_ORDER_H
 #define VCG_EXT_PRIORITY_ORDER_H
 // The order Poisson-disk sampling visits points in: by a hash of the seed and
-// each point's id (its input index), ties by id. A point's rank depends only on
+// each point's id (its input index). A point's rank depends only on
 // its own id, never on which other points are present or how they are
 // numbered, so a tile of a larger cloud visits its points in the order the
 // whole cloud would: the basis of the same samples tile by tile.
@@ -27,7 +27,9 @@ inline uint64_t Mix64(uint64_t x) {
 inline uint64_t Priority(uint64_t seed, uint64_t id) { return Mix64(Mix64(seed) ^ id); }
 
 /// order[k] = the point (index into `id`) visited k-th. O(n log n), the sort
-/// on all threads; the same order for any thread count.
+/// on all threads; the same order for any thread count. Priority is a
+/// bijection of the id for a given seed, so only equal ids share a hash, and
+/// those keep their numbering's order.
 template <class Id>
 std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
   std::vector<std::pair<uint64_t, int>> key(id.size());
@@ -37,14 +39,6 @@ std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
 #else
   std::sort(key.begin(), key.end());
 #endif
-  // Equal hashes (about 3 pairs among 10^10 ids) ranked by id, not by numbering.
-  for (size_t b = 0, e; b < key.size(); b = e) {
-    for (e = b + 1; e < key.size() && key[e].first == key[b].first; ++e) {}
-    if (e - b > 1)
-      std::sort(key.begin() + b, key.begin() + e, [&](const auto& x, const auto& y) {
-        return uint64_t(id[x.second]) < uint64_t(id[y.second]);
-      });
-  }
   std::vector<int> order(id.size());
   for (size_t k = 0; k < key.size(); ++k) order[k] = key[k].second;
   return order;

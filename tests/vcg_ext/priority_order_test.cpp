@@ -1,6 +1,6 @@
 // The Poisson visiting order: a point's place among others depends only on the
 // seed and the ids, so any subset is visited in the order the whole set visits
-// it; seeds give different orders; equal hashes fall back to the ids.
+// it; seeds give different orders; distinct ids never share a hash.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cstdint>
@@ -32,12 +32,21 @@ TEST(PriorityOrder, IsAPermutationThatTheSeedChanges) {
   EXPECT_EQ(a, ids);
 }
 
-TEST(PriorityOrder, EqualIdsAndEqualHashesAreRankedById) {
-  // The same id twice has the same hash: the tie must still give one order.
+TEST(PriorityOrder, DistinctIdsNeverTieAndEqualIdsKeepTheirNumbering) {
+  // The hash is a bijection of the id: no two of a million ids (consecutive,
+  // and spread over 64 bits) share one, so no tie rule is needed.
+  std::vector<uint64_t> hashes;
+  for (uint64_t i = 0; i < 500000; ++i) {
+    hashes.push_back(vcg_ext::Priority(7, i));
+    hashes.push_back(vcg_ext::Priority(7, vcg_ext::Mix64(i) | (uint64_t(1) << 63)));
+  }
+  std::sort(hashes.begin(), hashes.end());
+  EXPECT_EQ(std::adjacent_find(hashes.begin(), hashes.end()), hashes.end());
+  // The same id twice has the same hash: the copies follow their numbering.
   const std::vector<uint64_t> ids = {42, 9, 42, 9, 5};
   const std::vector<int> o = vcg_ext::PriorityOrder(ids, 0);
   for (size_t k = 1; k < o.size(); ++k) {
     const uint64_t p0 = vcg_ext::Priority(0, ids[size_t(o[k - 1])]), p1 = vcg_ext::Priority(0, ids[size_t(o[k])]);
-    EXPECT_TRUE(p0 < p1 || (p0 == p1 && ids[size_t(o[k - 1])] <= ids[size_t(o[k])]));
+    EXPECT_TRUE(p0 < p1 || (p0 == p1 && o[k - 1] < o[k]));
   }
 }
