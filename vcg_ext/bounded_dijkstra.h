@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
+#include "prefetch.h"
 
 namespace vcg_ext {
 
@@ -107,8 +108,8 @@ class BoundedDijkstra {
   void Push(int j, Scalar d) {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
-    __builtin_prefetch(g_.adj.data() + g_.offset[j]);
-    __builtin_prefetch(g_.w.data() + g_.offset[j]);
+    Prefetch(g_.adj.data() + g_.offset[j]);
+    Prefetch(g_.w.data() + g_.offset[j]);
     heap_.emplace_back(d, j);
     std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
   }

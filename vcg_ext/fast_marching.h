@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
+#include "prefetch.h"
 
 namespace vcg_ext {
 
@@ -158,9 +159,9 @@ class FastMarching {
         reached(from, j);
         // j's edges and fans are read when it is finalized: start fetching
         // them now (a front's new vertices are rarely cached).
-        __builtin_prefetch(m_.edges.adj.data() + m_.edges.offset[j]);
-        __builtin_prefetch(m_.edges.w.data() + m_.edges.offset[j]);
-        __builtin_prefetch(m_.fans.data() + m_.fanOffset[j]);
+        Prefetch(m_.edges.adj.data() + m_.edges.offset[j]);
+        Prefetch(m_.edges.w.data() + m_.edges.offset[j]);
+        Prefetch(m_.fans.data() + m_.fanOffset[j]);
         heap_.emplace_back(Scalar(d), j);
         std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
       }

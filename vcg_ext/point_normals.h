@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include "knn_table.h"
 #include "parallel.h"
+#include "prefetch.h"
 #include "progress.h"
 
 namespace vcg_ext {
@@ -138,9 +139,9 @@ class PointNormals {
         const int t = row[j];
         if (visited[t] || level[j] == kDropped) continue;
         // The walk jumps between rows: start fetching what popping t will read.
-        __builtin_prefetch(knn.idx.data() + size_t(t) * size_t(knn.k));
-        __builtin_prefetch(arcLevel.data() + size_t(t) * size_t(c));
-        __builtin_prefetch(normal.data() + t);
+        Prefetch(knn.idx.data() + size_t(t) * size_t(knn.k));
+        Prefetch(arcLevel.data() + size_t(t) * size_t(c));
+        Prefetch(normal.data() + t);
         bucket[level[j]].emplace_back(s, t);
         top = std::min(top, int(level[j]));
       }
