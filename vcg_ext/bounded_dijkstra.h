@@ -18,8 +18,13 @@ namespace vcg_ext {
 template <class Scalar>
 class BoundedDijkstra {
  public:
+  /// On the graph's stored weights.
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g)
-      : g_(g), dist_(g.size()), stamp_(g.size(), 0) {}
+      : g_(g), stored_(true), dist_(g.size()), stamp_(g.size(), 0) {}
+  /// On a graph without weights: `len` gives them as an edge is relaxed (the
+  /// same values SetWeights would store).
+  BoundedDijkstra(const NeighbourGraph<Scalar>& g, const EdgeLength<Scalar>& len)
+      : g_(g), len_(len), stored_(false), dist_(g.size()), stamp_(g.size(), 0) {}
 
   /// Calls f(i, d) once for every point i at graph distance d <= r from
   /// `src`, in order of increasing d (src first, with d = 0).
@@ -36,9 +41,11 @@ class BoundedDijkstra {
       if (top.first != dist_[i]) continue;  // stale: a shorter path came later
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-        const Scalar nd = top.first + g_.w[e];
         const int j = g_.adj[e];
-        if (nd <= r && (stamp_[j] != stamp || nd < dist_[j])) Reach(j, nd);
+        const bool seen = stamp_[j] == stamp;
+        if (seen && dist_[j] <= top.first) continue;  // no edge can lower it: its length is not needed
+        const Scalar nd = top.first + Length(i, e);
+        if (nd <= r && (!seen || nd < dist_[j])) Reach(j, nd);
       }
     }
   }
@@ -84,8 +91,9 @@ class BoundedDijkstra {
       if (top.first != dist[i]) continue;  // stale
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-        const Scalar nd = top.first + g_.w[e];
         const int j = g_.adj[e];
+        if (dist[j] <= top.first) continue;  // no edge can lower it: its length is not needed
+        const Scalar nd = top.first + Length(i, e);
         if (nd < dist[j]) {
           dist[j] = nd;
           reached(i, j);
@@ -94,6 +102,7 @@ class BoundedDijkstra {
       }
     }
   }
+  float Length(int i, int e) const { return stored_ ? g_.w[size_t(e)] : len_(i, g_.adj[size_t(e)]); }
   void NextStamp() {
     if (++stamp == 0) {  // wrapped after 2^32 searches: the one O(n) reset
       std::fill(stamp_.begin(), stamp_.end(), 0);
@@ -109,12 +118,14 @@ class BoundedDijkstra {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
     Prefetch(g_.adj.data() + g_.offset[j]);
-    Prefetch(g_.w.data() + g_.offset[j]);
+    if (stored_) Prefetch(g_.w.data() + g_.offset[j]);
     heap_.emplace_back(d, j);
     std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
   }
 
   const NeighbourGraph<Scalar>& g_;
+  EdgeLength<Scalar> len_;
+  bool stored_;
   std::vector<Scalar> dist_;
   std::vector<uint32_t> stamp_;
   uint32_t stamp = 0;

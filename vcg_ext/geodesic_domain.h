@@ -53,8 +53,10 @@ class GeodesicDomain {
   size_t estimatedNormals = 0;
   std::vector<Scalar> curvature;    ///< v_i, eq. 1
   Metric metric = Param().metric;
+  double curvatureExponent = Param().curvatureExponent;
+  double adaptivity = Param().adaptivity;
   bool meshGeodesics = false;       ///< fast marching (else point graph or Euclidean)
-  NeighbourGraph<Scalar> graph;     ///< point-graph geodesics
+  NeighbourGraph<Scalar> graph;     ///< point-graph geodesics, weights by Lengths()
   FastMarchingMesh<Scalar> fmMesh;  ///< mesh geodesics
   std::vector<std::array<int, 3>> triangles;  ///< the layer's usable triangles, point indices
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
@@ -98,6 +100,8 @@ class GeodesicDomain {
     Check(ps, !tris.tri.empty(), p);
     GeodesicDomain d;
     d.metric = p.metric;
+    d.curvatureExponent = p.curvatureExponent;
+    d.adaptivity = p.adaptivity;
     d.meshGeodesics = p.metric != Metric::Euclidean && !UsesPointGraph(!tris.tri.empty(), p);
     if (d.meshGeodesics) {
       d.skippedFaces = tris.skipped;
@@ -106,6 +110,9 @@ class GeodesicDomain {
     }
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
+    // Input normals that will not be kept need no copy through the build (a
+    // scan's are often all zero): a third of the positions' memory, freed early.
+    if (!p.useInputNormals || !AnyValid(d.points.normal)) d.points.normal = std::vector<Coord>();
     const bool graph = p.metric != Metric::Euclidean && !d.meshGeodesics;
     typename PointNormals<Scalar>::Param np;
     np.k = p.normalNeighbours;
@@ -129,23 +136,15 @@ class GeodesicDomain {
       d.estimatedNormals = nr.estimated;
       d.points.normal = std::vector<Coord>();  // d.normal holds them now
       d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
-      if (graph) {
-        knn.KeepColumns(p.graphNeighbours);  // the graph's columns only: a lower peak while it is built
-        d.graph = NeighbourGraph<Scalar>::FromKnn(knn, p.graphNeighbours, progress.Sub(55, 75));
-      }
-    }  // the table is freed before the weights are stored
-    EdgeWeight<Scalar> wf;
-    wf.metric = p.metric;
-    wf.exponent = p.curvatureExponent;
-    wf.adaptivity = p.adaptivity;
-    wf.curvature = &d.curvature;
-    progress(75, 100, "Building the geodesic domain");
+      if (graph) d.graph = NeighbourGraph<Scalar>::FromKnn(std::move(knn), p.graphNeighbours, progress.Sub(55, 95));
+    }
+    progress(95, 100, "Building the geodesic domain");
     if (graph) {
-      d.graph.SetWeights(d.points.pos, wf, progress.Sub(75, 95));
-      d.components = d.graph.ComponentCount();
+      d.components = d.graph.ComponentCount();  // its weights come from Lengths(), as the searches need them
     } else if (d.meshGeodesics) {
       // Vertices a mesh repeats (seams, split normals) are joined at no cost.
-      d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, wf, CoincidentPairs(d.points.pos));
+      d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, d.Lengths().weight,
+                                                 CoincidentPairs(d.points.pos));
       d.components = d.fmMesh.edges.ComponentCount();
     }
     progress(100, 100, "Geodesic domain ready");
@@ -153,6 +152,18 @@ class GeodesicDomain {
   }
 
   size_t size() const { return points.size(); }
+
+  /// The edge lengths g_ij of this domain's metric (eq. 2-3), from its
+  /// positions and curvature: valid while the domain is neither moved nor changed.
+  EdgeLength<Scalar> Lengths() const {
+    EdgeLength<Scalar> len;
+    len.pos = &points.pos;
+    len.weight.metric = metric;
+    len.weight.exponent = curvatureExponent;
+    len.weight.adaptivity = adaptivity;
+    len.weight.curvature = &curvature;
+    return len;
+  }
 
   /// The bytes its arrays hold: what keeping a domain for several LODs costs.
   size_t MemoryBytes() const {
@@ -182,7 +193,7 @@ class GeodesicDomain {
       FastMarching<Scalar> s(fmMesh);
       f(s);
     } else {
-      BoundedDijkstra<Scalar> s(graph);
+      BoundedDijkstra<Scalar> s(graph, Lengths());
       f(s);
     }
   }
@@ -200,10 +211,14 @@ class GeodesicDomain {
     for (auto& t : tri)
       for (int& c : t) c = newIndex[c];
   }
-  template <class T>
-  static size_t Bytes(const std::vector<T>& v) { return v.capacity() * sizeof(T); }
+  template <class Array>
+  static size_t Bytes(const Array& v) { return v.capacity() * sizeof(typename Array::value_type); }
+  static bool AnyValid(const std::vector<Coord>& normal) {
+    return std::any_of(normal.begin(), normal.end(), [](const Coord& n) { return PointNormals<Scalar>::IsValid(n); });
+  }
   template <class T>
   static void Permute(const std::vector<int>& order, std::vector<T>& v) {
+    if (v.empty()) return;  // an array the build does not need
     std::vector<T> out(order.size());
     ParallelChunks(order.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) out[i] = v[size_t(order[i])];

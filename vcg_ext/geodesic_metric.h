@@ -3,7 +3,10 @@
 // Edge lengths of the curvature-weighted geodesic metric, paper eq. 2-3,
 // and the curvature-density weighting offered beside it.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
+#include <vcg/space/point3.h>
 
 namespace vcg_ext {
 
@@ -35,6 +38,31 @@ struct EdgeWeight {
       default:
         return len;
     }
+  }
+};
+
+/// x rounded up to a float: searches add edge lengths in float, half the
+/// bytes of a stored double, and rounding up keeps g_ij >= |p_i - p_j| exactly.
+inline float FloatAtLeast(double x) {
+  float f = float(x);
+  // The next float up, as std::nextafter(f, inf) but without its call: the
+  // searches round an edge this way at every step.
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof f);
+  bits += double(f) < x ? (f < 0 ? uint32_t(-1) : 1u) : 0u;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+/// g_ij of the edge (i, j), as FloatAtLeast, from the positions and eq. 1
+/// when a search reaches it: a point graph stores no weights, which would
+/// cost 4 bytes an edge (about 50 bytes a point). Symmetric, as EdgeWeight.
+template <class Scalar>
+struct EdgeLength {
+  const std::vector<vcg::Point3<Scalar>>* pos = nullptr;
+  EdgeWeight<Scalar> weight;
+  float operator()(int i, int j) const {
+    return FloatAtLeast(double(weight(i, j, vcg::Distance((*pos)[size_t(i)], (*pos)[size_t(j)]))));
   }
 };
 

@@ -4,6 +4,7 @@
 // kd-tree for the few points the grid cannot answer).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -12,6 +13,7 @@
 #include "cell_grid.h"
 #include "parallel.h"
 #include "progress.h"
+#include "realloc_array.h"
 
 namespace vcg_ext {
 
@@ -23,16 +25,17 @@ class KnnTable {
   typedef vcg::Point3<Scalar> Coord;
 
   int k = 0;
-  std::vector<int> idx;       ///< n*k neighbour indices, by increasing distance per row
+  ReallocArray<int> idx;      ///< n*k neighbour indices, by increasing distance per row
 
   size_t size() const { return k ? idx.size() / k : 0; }
 
-  /// Keeps the first `c` columns (the c nearest) and frees the rest.
+  /// Keeps the first `c` columns (the c nearest), in place: the table shrinks
+  /// without a second copy. O(n c), one thread (rows move towards the front).
   void KeepColumns(int c) {
     if (c >= k) return;
-    std::vector<int> kept(size() * c);
-    for (size_t i = 0; i < size(); ++i) std::copy(Row(i), Row(i) + c, kept.begin() + i * c);
-    idx.swap(kept);
+    const size_t n = size();
+    for (size_t i = 1; i < n; ++i) std::memmove(&idx[i * c], &idx[i * k], size_t(c) * sizeof(int));
+    idx.resize(n * c);
     k = c;
   }
   const int* Row(size_t i) const { return &idx[i * k]; }

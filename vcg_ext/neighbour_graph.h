@@ -4,14 +4,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <new>
 #include <numeric>
 #include <utility>
 #include <vector>
+#include "geodesic_metric.h"
 #include "knn_table.h"
 #include "parallel.h"
+#include "realloc_array.h"
 
 namespace vcg_ext {
 
@@ -19,10 +22,9 @@ template <class Scalar>
 class NeighbourGraph {
  public:
   std::vector<int> offset;   ///< n+1 row starts
-  std::vector<int> adj;      ///< neighbour indices, ascending per row
-  /// Edge weights g_ij, w[e] for adj[e]. Stored as float, rounded up, to halve
-  /// the graph's largest array: distances are still summed in Scalar, and
-  /// rounding up keeps every g_ij >= |p_i - p_j| exactly.
+  ReallocArray<int> adj;     ///< neighbour indices, ascending per row
+  /// Edge weights g_ij, w[e] for adj[e], as FloatAtLeast (distances are still
+  /// summed in Scalar). Empty where the searches compute them (EdgeLength).
   std::vector<float> w;
 
   size_t size() const { return offset.empty() ? 0 : offset.size() - 1; }
@@ -34,15 +36,18 @@ class NeighbourGraph {
   template <class WeightFn>
   static NeighbourGraph Compute(const std::vector<vcg::Point3<Scalar>>& pos, const KnnTable<Scalar>& knn, int k,
                                 const WeightFn& weight, Progress progress = Progress(nullptr)) {
-    NeighbourGraph g = FromKnn(knn, k, progress.Sub(0, 50));
+    NeighbourGraph g = FromKnn(KnnTable<Scalar>(knn), k, progress.Sub(0, 50));
     g.SetWeights(pos, weight, progress.Sub(50, 100));
     return g;
   }
 
-  /// The edges of Compute, without weights (the table may be freed before
-  /// SetWeights). Each row is kNN(i) plus the points having i among their k
-  /// nearest but not among i's: no duplicates to sort out, no pair list.
-  static NeighbourGraph FromKnn(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
+  /// The edges of Compute, without weights, in the memory of the table it
+  /// takes: its first k columns are kept, then grown in place into the rows,
+  /// so the build holds the table and the graph at once only where they are
+  /// the same bytes. Each row is kNN(i) plus the points having i among their
+  /// k nearest but not among i's: no duplicates to sort out, no pair list.
+  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, Progress progress = Progress(nullptr)) {
+    knn.KeepColumns(k);
     const size_t n = knn.size();
     // oneWay[i k + c]: the arc i -> knn(i)[c] has no reverse arc in the table.
     // One bit each; chunks start at multiples of 1024 rows, so no two threads
@@ -77,23 +82,26 @@ class NeighbourGraph {
       if (total > std::numeric_limits<int>::max()) throw std::bad_alloc();  // offsets are int
       g.offset[i + 1] = int(total);
     }
+    // Each row moves to its start, from the last back: a row's start is at or
+    // after its place in the table, so no row is overwritten before it moves.
+    g.adj.swap(knn.idx);
+    knn.k = 0;
     g.adj.resize(size_t(total));
+    for (size_t i = n; i-- > 1;)
+      std::memmove(&g.adj[size_t(g.offset[i])], &g.adj[i * k], size_t(k) * sizeof(int));
     std::vector<int> fill(n);
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) {
-        std::copy(knn.Row(i), knn.Row(i) + k, g.adj.begin() + g.offset[i]);
-        fill[i] = g.offset[i] + k;
-      }
+      for (size_t i = b; i < e; ++i) fill[i] = g.offset[i] + k;
     });
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c)
           if (oneWay[i * k + c]) {
-            int& next = fill[knn.Row(i)[c]];
+            int& next = fill[g.adj[size_t(g.offset[i] + c)]];  // the arc's end, in its row's first k
             int slot;
 #pragma omp atomic capture
             slot = next++;
-            g.adj[slot] = int(i);
+            g.adj[size_t(slot)] = int(i);
           }
     });
     oneWay = std::vector<bool>();
@@ -127,12 +135,11 @@ class NeighbourGraph {
     }
     g.offset[n] = out;
     g.adj.resize(out);
-    g.adj.shrink_to_fit();
     g.SetWeights(pos, weight);
     return g;
   }
 
-  /// w[e] = weight(i, adj[e], |p_i - p_adj[e]|), rounded up to float. On all
+  /// w[e] = weight(i, adj[e], |p_i - p_adj[e]|), as FloatAtLeast. On all
   /// threads; w_ij == w_ji when the weight is symmetric.
   template <class WeightFn>
   void SetWeights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
@@ -140,12 +147,8 @@ class NeighbourGraph {
     w.resize(adj.size());
     ParallelChunks(size(), progress, "Weighting the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
-        for (int a = offset[i]; a < offset[i + 1]; ++a) {
-          const double x = double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]])));
-          float f = float(x);
-          if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-          w[a] = f;
-        }
+        for (int a = offset[i]; a < offset[i + 1]; ++a)
+          w[a] = FloatAtLeast(double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]]))));
     });
   }
 

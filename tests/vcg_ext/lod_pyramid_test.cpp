@@ -23,7 +23,7 @@ Pyramid::Param Levels(std::vector<size_t> counts) {
 std::pair<double, double> CoverAndSeparation(const Domain& d, const std::vector<int>& level) {
   std::vector<float> nearest(d.size(), std::numeric_limits<float>::infinity());
   double separation = std::numeric_limits<double>::infinity();
-  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
   for (int a : level) {
     const auto dist = search.Distances(a);
     for (int b : level)

@@ -40,9 +40,13 @@ TEST(NeighbourGraph, WeightsAreNeverShorterThanTheEdge) {
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
   for (auto metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity, vcg_ext::Metric::Geodesic}) {
     const Domain d = Build(m, metric);
+    const auto len = d.Lengths();
     for (size_t i = 0; i < d.graph.size(); ++i)
-      for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e)
-        EXPECT_GE(d.graph.w[e], vcg::Distance(d.points.pos[i], d.points.pos[d.graph.adj[e]]));
+      for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e) {
+        const int j = d.graph.adj[e];
+        EXPECT_GE(len(int(i), j), vcg::Distance(d.points.pos[i], d.points.pos[j]));
+        EXPECT_EQ(len(int(i), j), len(j, int(i)));  // graph distances are symmetric
+      }
   }
 }
 
@@ -58,7 +62,7 @@ TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
   const Domain d = Build(m, vcg_ext::Metric::WeightedEq3);
-  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
   for (int src : {0, 333, 801, 1599}) {
     const std::vector<float> full = search.Distances(src);
     for (float r : {0.02f, 0.1f, 0.3f}) {
@@ -80,7 +84,7 @@ TEST(BoundedDijkstra, GraphDistanceBoundsTheStraightLine) {
   test::TMesh m;
   test::Plane(m, 30);
   const Domain d = Build(m, vcg_ext::Metric::Geodesic);
-  vcg_ext::BoundedDijkstra<float> search(d.graph);
+  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
   const auto dist = search.Distances(0);
   for (size_t i = 0; i < dist.size(); ++i) {
     const float e = vcg::Distance(d.points.pos[0], d.points.pos[i]);
@@ -111,7 +115,7 @@ TEST(EdgeWeight, Eq3AndCurvatureDensityGiveTheirFormulas) {
   EXPECT_NEAR(w(0, 1, 2.f), 2.0, 1e-6);
 }
 
-// Every arc of the built graph carries its metric's weight of that edge, from the
+// Every arc of the built graph has its metric's length of that edge, from the
 // domain's own curvatures (rounded up to float, never down).
 TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
   test::TMesh m;
@@ -121,15 +125,17 @@ TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
     double maxV = 0;
     for (float v : d.curvature) maxV = std::max(maxV, double(v));
     ASSERT_GT(maxV, 0.01) << "a surface without curvature tests nothing";
+    const auto len = d.Lengths();
     for (size_t i = 0; i < d.graph.size(); ++i)
       for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e) {
         const int j = d.graph.adj[e];
+        const double got = len(int(i), j);
         const double vi = d.curvature[i], vj = d.curvature[j];
         const double len = vcg::Distance(vcg::Point3d::Construct(d.points.pos[i]), vcg::Point3d::Construct(d.points.pos[j]));
         const double want = metric == vcg_ext::Metric::WeightedEq3 ? std::exp(std::abs(vi - vj)) * len
                                                                     : (1 + 3 * 0.5 * (vi + vj)) * len;
-        ASSERT_GE(double(d.graph.w[e]), want * (1 - 1e-6)) << i << "-" << j;
-        ASSERT_LE(double(d.graph.w[e]), want * (1 + 1e-5)) << i << "-" << j;
+        ASSERT_GE(got, want * (1 - 1e-6)) << i << "-" << j;
+        ASSERT_LE(got, want * (1 + 1e-5)) << i << "-" << j;
       }
   }
 }

@@ -49,7 +49,7 @@ TEST(PoissonDisk, SamplesAreSeparatedAndCoverEveryPoint) {
   Bumpy(m, 50);
   for (Metric metric : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic}) {
     const Domain d = Build(m, metric);
-    vcg_ext::BoundedDijkstra<float> search(d.graph);
+    vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
     const float r = 0.08f;
     const auto s = LOD::Sample(d, r, 7).samples;
     ASSERT_GT(s.size(), 5u);
@@ -129,7 +129,7 @@ TEST(PoissonDisk, Eq3NeverShortensDistancesAndKeepsTheBumpyShare) {
   test::TMesh m;
   Bumpy(m, 60);
   const Domain geo = Build(m, Metric::Geodesic), eq3 = Build(m, Metric::WeightedEq3);
-  vcg_ext::BoundedDijkstra<float> sg(geo.graph), se(eq3.graph);
+  vcg_ext::BoundedDijkstra<float> sg(geo.graph, geo.Lengths()), se(eq3.graph, eq3.Lengths());
   for (int src : {0, 1234, 3599}) {
     const auto dg = sg.Distances(src), de = se.Distances(src);
     for (size_t i = 0; i < dg.size(); ++i) EXPECT_GE(de[i], dg[i]);

@@ -19,7 +19,7 @@ TEST(Terrain, MeshFastMarchingAndPointGraphAgree) {
   ASSERT_TRUE(mesh.meshGeodesics);
   ASSERT_FALSE(graph.meshGeodesics);
   vcg_ext::FastMarching<float> fm(mesh.fmMesh);
-  vcg_ext::BoundedDijkstra<float> dj(graph.graph);
+  vcg_ext::BoundedDijkstra<float> dj(graph.graph, graph.Lengths());
   // Both domains number the grid's vertices their own way: compare by mesh vertex.
   const std::vector<int> inMesh = mesh.PointOfVertex(m.vert.size()), inGraph = graph.PointOfVertex(m.vert.size());
   for (int src : {150 * 301 + 150, 20 * 301 + 280}) {
