@@ -14,23 +14,23 @@ namespace vcg_ext {
 
 /// Build once per graph, then run many searches. A search costs in proportion
 /// to the points it reaches and their edges, never to the graph's size: the
-/// per-point distances are validated by a search stamp instead of being reset.
+/// next search resets only the distances the last one set.
 template <class Scalar>
 class BoundedDijkstra {
  public:
   /// On the graph's stored weights.
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g)
-      : g_(g), stored_(true), dist_(g.size()), stamp_(g.size(), 0) {}
+      : g_(g), stored_(true), dist_(g.size(), kInf) {}
   /// On a graph without weights: `len` gives them as an edge is relaxed (the
   /// same values SetWeights would store).
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const EdgeLength<Scalar>& len)
-      : g_(g), len_(len), stored_(false), dist_(g.size()), stamp_(g.size(), 0) {}
+      : g_(g), len_(len), stored_(false), dist_(g.size(), kInf) {}
 
   /// Calls f(i, d) once for every point i at graph distance d <= r from
   /// `src`, in order of increasing d (src first, with d = 0).
   template <class F>
   void Visit(int src, Scalar r, F&& f) {
-    NextStamp();
+    Reset();
     heap_.clear();
     Reach(src, 0);
     while (!heap_.empty()) {
@@ -42,10 +42,9 @@ class BoundedDijkstra {
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
         const int j = g_.adj[e];
-        const bool seen = stamp_[j] == stamp;
-        if (seen && dist_[j] <= top.first) continue;  // no edge can lower it: its length is not needed
+        if (dist_[j] <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, e);
-        if (nd <= r && (!seen || nd < dist_[j])) Reach(j, nd);
+        if (nd <= r && nd < dist_[j]) Reach(j, nd);
       }
     }
   }
@@ -103,14 +102,13 @@ class BoundedDijkstra {
     }
   }
   float Length(int i, int e) const { return stored_ ? g_.w[size_t(e)] : len_(i, g_.adj[size_t(e)]); }
-  void NextStamp() {
-    if (++stamp == 0) {  // wrapped after 2^32 searches: the one O(n) reset
-      std::fill(stamp_.begin(), stamp_.end(), 0);
-      stamp = 1;
-    }
+  // Before a search rather than after: one left by an exception is cleared too.
+  void Reset() {
+    for (int j : touched_) dist_[size_t(j)] = kInf;
+    touched_.clear();
   }
   void Reach(int j, Scalar d) {
-    stamp_[j] = stamp;
+    if (dist_[j] == kInf) touched_.push_back(j);
     dist_[j] = d;
     Push(j, d);
   }
@@ -126,9 +124,9 @@ class BoundedDijkstra {
   const NeighbourGraph<Scalar>& g_;
   EdgeLength<Scalar> len_;
   bool stored_;
-  std::vector<Scalar> dist_;
-  std::vector<uint32_t> stamp_;
-  uint32_t stamp = 0;
+  static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
+  std::vector<Scalar> dist_;  ///< infinity but where the last Visit reached
+  std::vector<int> touched_;  ///< where the last Visit set dist_
   std::vector<Entry> heap_;
 };
 
