@@ -3,12 +3,12 @@
 // Dijkstra on a NeighbourGraph, stopped at a radius: the geodesic disk search.
 #include <algorithm>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
 #include "prefetch.h"
+#include "radix_heap.h"
 
 namespace vcg_ext {
 
@@ -19,12 +19,15 @@ template <class Scalar>
 class BoundedDijkstra {
  public:
   /// On the graph's stored weights.
-  explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g)
-      : g_(g), stored_(true), dist_(g.size(), kInf) {}
+  explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g) : BoundedDijkstra(g, g.w) {}
+  /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for adj[e].
+  BoundedDijkstra(const NeighbourGraph<Scalar>& g, const std::vector<float>& w)
+      : g_(g), w_(w.data()), dist_(g.size(), kInf) {}
   /// On a graph without weights: `len` gives them as an edge is relaxed (the
-  /// same values SetWeights would store).
+  /// same values SetWeights would store; slower where every point is reached
+  /// many times, as in farthest point sampling).
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const EdgeLength<Scalar>& len)
-      : g_(g), len_(len), stored_(false), dist_(g.size(), kInf) {}
+      : g_(g), len_(len), dist_(g.size(), kInf) {}
 
   /// Calls f(i, d) once for every point i at graph distance d <= r from
   /// `src`, in order of increasing d (src first, with d = 0).
@@ -34,9 +37,7 @@ class BoundedDijkstra {
     heap_.clear();
     Reach(src, 0);
     while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-      const Entry top = heap_.back();
-      heap_.pop_back();
+      const Entry top = heap_.pop();
       const int i = top.second;
       if (top.first != dist_[i]) continue;  // stale: a shorter path came later
       f(i, top.first);
@@ -57,7 +58,7 @@ class BoundedDijkstra {
   void Lower(int src, std::vector<Scalar>& dist, F&& f) {
     heap_.clear();
     dist[src] = 0;
-    heap_.emplace_back(Scalar(0), src);
+    heap_.push(Scalar(0), src);
     Propagate(dist, f, [](int, int) {});
   }
 
@@ -83,9 +84,7 @@ class BoundedDijkstra {
   template <class F, class Reached>
   void Propagate(std::vector<Scalar>& dist, F&& f, const Reached& reached) {
     while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-      const Entry top = heap_.back();
-      heap_.pop_back();
+      const Entry top = heap_.pop();
       const int i = top.second;
       if (top.first != dist[i]) continue;  // stale
       f(i, top.first);
@@ -101,7 +100,7 @@ class BoundedDijkstra {
       }
     }
   }
-  float Length(int i, int e) const { return stored_ ? g_.w[size_t(e)] : len_(i, g_.adj[size_t(e)]); }
+  float Length(int i, int e) const { return w_ ? w_[e] : len_(i, g_.adj[size_t(e)]); }
   // Before a search rather than after: one left by an exception is cleared too.
   void Reset() {
     for (int j : touched_) dist_[size_t(j)] = kInf;
@@ -116,18 +115,17 @@ class BoundedDijkstra {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
     Prefetch(g_.adj.data() + g_.offset[j]);
-    if (stored_) Prefetch(g_.w.data() + g_.offset[j]);
-    heap_.emplace_back(d, j);
-    std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+    if (w_) Prefetch(w_ + g_.offset[j]);
+    heap_.push(d, j);
   }
 
   const NeighbourGraph<Scalar>& g_;
+  const float* w_ = nullptr;  ///< the weights, or null: len_ computes them
   EdgeLength<Scalar> len_;
-  bool stored_;
   static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
   std::vector<Scalar> dist_;  ///< infinity but where the last Visit reached
   std::vector<int> touched_;  ///< where the last Visit set dist_
-  std::vector<Entry> heap_;
+  RadixHeap<Scalar> heap_;
 };
 
 }  // namespace vcg_ext

@@ -6,12 +6,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
 #include "prefetch.h"
+#include "radix_heap.h"
 
 namespace vcg_ext {
 
@@ -143,7 +143,7 @@ class FastMarching {
   void Run(int src, Scalar bound, Get& get, Set& set, F& f) {
     heap_.clear();
     set(src, 0);
-    heap_.emplace_back(Scalar(0), src);
+    heap_.push(Scalar(0), src);
     March(bound, get, set, f, [](int, int) {}, [](int, int) { return true; });
   }
 
@@ -161,15 +161,12 @@ class FastMarching {
         // them now (a front's new vertices are rarely cached).
         Prefetch(m_.edges.adj.data() + m_.edges.offset[j]);
         Prefetch(m_.edges.w.data() + m_.edges.offset[j]);
-        Prefetch(m_.fans.data() + m_.fanOffset[j]);
-        heap_.emplace_back(Scalar(d), j);
-        std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+        PrefetchRange(m_.fans.data() + m_.fanOffset[j], m_.fans.data() + m_.fanOffset[j + 1]);  // about 3 lines
+        heap_.push(Scalar(d), j);
       }
     };
     while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-      const Entry top = heap_.back();
-      heap_.pop_back();
+      const Entry top = heap_.pop();
       const int v = top.second;
       if (done_[v] == stamp || top.first != get(v)) continue;  // finalized, or stale
       done_[v] = stamp;
@@ -200,7 +197,7 @@ class FastMarching {
   std::vector<Scalar> dist_;
   std::vector<uint32_t> stamp_, done_;
   uint32_t stamp = 0;
-  std::vector<Entry> heap_;
+  RadixHeap<Scalar> heap_;  // fronts only grow: offers are never below the vertex finalized
 };
 
 }  // namespace vcg_ext

@@ -23,7 +23,7 @@ class GeodesicDelaunay {
     d.WithSearch([&](auto& search) {
       for (size_t k = 0; k < samples.size(); ++k)
         search.Lower(samples[k], dist, [&](int i, Scalar) { owner[i] = int(k); });
-    });
+    }, true);
     return owner;
   }
 

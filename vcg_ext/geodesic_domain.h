@@ -183,14 +183,21 @@ class GeodesicDomain {
 
   /// Calls f(search) with the distance search of this domain's metric and
   /// geodesics: BoundedDijkstra, FastMarching or EuclideanBall, each with
-  /// Visit(src, r, f) and Lower(src, dist, f).
+  /// Visit(src, r, f) and Lower(src, dist, f). `reachesAll`: the searches
+  /// will reach every point many times (farthest points, Voronoi regions), so
+  /// the point graph's weights are stored while they run (4 bytes an edge)
+  /// rather than computed at every step; the same distances either way.
   template <class F>
-  void WithSearch(F&& f) const {
+  void WithSearch(F&& f, bool reachesAll = false) const {
     if (metric == Metric::Euclidean) {
       EuclideanBall<Scalar> s(points.pos);
       f(s);
     } else if (meshGeodesics) {
       FastMarching<Scalar> s(fmMesh);
+      f(s);
+    } else if (reachesAll) {
+      const std::vector<float> w = graph.Weights(points.pos, Lengths().weight);
+      BoundedDijkstra<Scalar> s(graph, w);
       f(s);
     } else {
       BoundedDijkstra<Scalar> s(graph, Lengths());

@@ -37,7 +37,7 @@ class GeodesicFpsLod {
     fp.seed = seed;
     fp.candidates = candidates;
     FarthestPoint::Result r;
-    d.WithSearch([&](auto& search) { r = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); });
+    d.WithSearch([&](auto& search) { r = FarthestPoint::Compute<Scalar>(d.size(), search, fp, progress); }, true);
     return r;
   }
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <functional>
 #include <limits>
 #include <new>
 #include <numeric>
@@ -14,6 +13,7 @@
 #include "geodesic_metric.h"
 #include "knn_table.h"
 #include "parallel.h"
+#include "radix_heap.h"
 #include "realloc_array.h"
 
 namespace vcg_ext {
@@ -144,12 +144,20 @@ class NeighbourGraph {
   template <class WeightFn>
   void SetWeights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
                   Progress progress = Progress(nullptr)) {
-    w.resize(adj.size());
+    w = Weights(pos, weight, progress);
+  }
+
+  /// The weights SetWeights stores, for a search to keep while it runs.
+  template <class WeightFn>
+  std::vector<float> Weights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
+                             Progress progress = Progress(nullptr)) const {
+    std::vector<float> out(adj.size());
     ParallelChunks(size(), progress, "Weighting the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
         for (int a = offset[i]; a < offset[i + 1]; ++a)
-          w[a] = FloatAtLeast(double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]]))));
+          out[a] = FloatAtLeast(double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]]))));
     });
+    return out;
   }
 
   /// g_ij of the edge (i, j), which must exist. Cost O(log degree).
@@ -183,10 +191,10 @@ class NeighbourGraph {
 /// Where fronts start that complete a nearest-source field (BoundedDijkstra's
 /// and FastMarching's Complete): the points with owner -1 get an infinite
 /// distance, and each of their neighbours with an owner goes once on the
-/// min-heap, at its distance.
+/// heap (emptied first), at its distance.
 template <class Scalar>
 void SeedFromOwned(const NeighbourGraph<Scalar>& g, const std::vector<int>& owner, std::vector<Scalar>& dist,
-                   std::vector<std::pair<Scalar, int>>& heap) {
+                   RadixHeap<Scalar>& heap) {
   heap.clear();
   std::vector<char> seeded(g.size(), 0);
   for (size_t i = 0; i < g.size(); ++i) {
@@ -194,10 +202,9 @@ void SeedFromOwned(const NeighbourGraph<Scalar>& g, const std::vector<int>& owne
     dist[i] = std::numeric_limits<Scalar>::infinity();
     for (int e = g.offset[i]; e < g.offset[i + 1]; ++e) {
       const size_t j = size_t(g.adj[e]);
-      if (owner[j] >= 0 && !seeded[j]) seeded[j] = 1, heap.emplace_back(dist[j], int(j));
+      if (owner[j] >= 0 && !seeded[j]) seeded[j] = 1, heap.push(dist[j], int(j));
     }
   }
-  std::make_heap(heap.begin(), heap.end(), std::greater<std::pair<Scalar, int>>());
 }
 
 }  // namespace vcg_ext

@@ -15,5 +15,10 @@ inline void Prefetch(const void* p) {
 #endif
 }
 
+/// The same for every cache line of [begin, end): rows longer than one line.
+inline void PrefetchRange(const void* begin, const void* end) {
+  for (const char* p = static_cast<const char*>(begin); p < static_cast<const char*>(end); p += 64) Prefetch(p);
+}
+
 }  // namespace vcg_ext
 #endif
