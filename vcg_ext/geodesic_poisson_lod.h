@@ -96,7 +96,8 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = CoreDiagonal(d.points.pos) / std::sqrt(double(p.sampleNum));
     PoissonTargetCount::Result r;
-    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
+    // Several Poisson runs and a thinning reach every point many times: the weights are kept meanwhile.
+    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); }, true);
     return r;
   }
 
