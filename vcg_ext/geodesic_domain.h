@@ -197,7 +197,7 @@ class GeodesicDomain {
       FastMarching<Scalar> s(fmMesh);
       f(s);
     } else if (reachesAll) {
-      const std::vector<float> w = graph.Weights(points.pos, Lengths().weight);
+      const std::vector<float> w = graph.Weights(Lengths());
       BoundedDijkstra<Scalar> s(graph, w);
       f(s);
     } else {

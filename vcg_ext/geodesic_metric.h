@@ -57,10 +57,11 @@ inline float FloatAtLeast(double x) {
 /// g_ij of the edge (i, j), as FloatAtLeast, from the positions and eq. 1
 /// when a search reaches it: a point graph stores no weights, which would
 /// cost 4 bytes an edge (about 50 bytes a point). Symmetric, as EdgeWeight.
-template <class Scalar>
+/// The one rounding of every stored weight too (NeighbourGraph::Weights).
+template <class Scalar, class WeightFn = EdgeWeight<Scalar>>
 struct EdgeLength {
   const std::vector<vcg::Point3<Scalar>>* pos = nullptr;
-  EdgeWeight<Scalar> weight;
+  WeightFn weight;
   float operator()(int i, int j) const {
     return FloatAtLeast(double(weight(i, j, vcg::Distance((*pos)[size_t(i)], (*pos)[size_t(j)]))));
   }

@@ -144,18 +144,17 @@ class NeighbourGraph {
   template <class WeightFn>
   void SetWeights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
                   Progress progress = Progress(nullptr)) {
-    w = Weights(pos, weight, progress);
+    w = Weights(EdgeLength<Scalar, WeightFn>{&pos, weight}, progress);
   }
 
-  /// The weights SetWeights stores, for a search to keep while it runs.
-  template <class WeightFn>
-  std::vector<float> Weights(const std::vector<vcg::Point3<Scalar>>& pos, const WeightFn& weight,
-                             Progress progress = Progress(nullptr)) const {
+  /// out[e] = len(i, adj[e]) (an EdgeLength): the weights SetWeights stores,
+  /// or a search keeps while it runs. On all threads.
+  template <class Length>
+  std::vector<float> Weights(const Length& len, Progress progress = Progress(nullptr)) const {
     std::vector<float> out(adj.size());
     ParallelChunks(size(), progress, "Weighting the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
-        for (int a = offset[i]; a < offset[i + 1]; ++a)
-          out[a] = FloatAtLeast(double(weight(int(i), adj[a], vcg::Distance(pos[i], pos[adj[a]]))));
+        for (int a = offset[i]; a < offset[i + 1]; ++a) out[a] = len(int(i), adj[a]);
     });
     return out;
   }
