@@ -49,9 +49,9 @@ class GeodesicDomain {
   /// (`points.vertIndex` maps back to the mesh); in Mesh mode the vertices of
   /// usable triangles only. `points.normal` is emptied: `normal` replaces it.
   PointSet<Scalar> points;
-  std::vector<Coord> normal;        ///< n_i, unit
+  std::vector<vcg::Point3f> normal; ///< n_i, unit (in float: PointNormals)
   size_t estimatedNormals = 0;
-  std::vector<Scalar> curvature;    ///< v_i, eq. 1
+  std::vector<float> curvature;     ///< v_i, eq. 1 (in float: NormalVariation)
   Metric metric = Param().metric;
   double curvatureExponent = Param().curvatureExponent;
   double adaptivity = Param().adaptivity;
@@ -131,11 +131,16 @@ class GeodesicDomain {
         d.reach.resize(d.size());
         for (size_t i = 0; i < d.size(); ++i) d.reach[i] = vcg::Distance(d.points.pos[i], d.points.pos[knn.Row(i)[k - 1]]);
       }
-      auto nr = PointNormals<Scalar>::Compute(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
+      auto nr = PointNormals<Scalar>::Estimate(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
+      d.points.normal = std::vector<Coord>();  // nr holds them now
+      d.curvature = NormalVariation<Scalar>::Compute(nr.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
+      // Eq. 1 is blind to the normals' signs: they are made consistent after
+      // it, when the table has shrunk to what the graph and the walk read (at
+      // the peak, the walk's queue and levels would add about 20 bytes a point).
+      if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
+      PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr);
       d.normal = std::move(nr.normal);
       d.estimatedNormals = nr.estimated;
-      d.points.normal = std::vector<Coord>();  // d.normal holds them now
-      d.curvature = NormalVariation<Scalar>::Compute(d.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
       if (graph) d.graph = NeighbourGraph<Scalar>::FromKnn(std::move(knn), p.graphNeighbours, progress.Sub(55, 95));
     }
     progress(95, 100, "Building the geodesic domain");

@@ -25,7 +25,7 @@ struct EdgeWeight {
   Metric metric = Metric::WeightedEq3;
   double exponent = 1.0;              ///< c of eq. 3, > 0
   double adaptivity = 0.0;            ///< a of the density weighting, >= 0
-  const std::vector<Scalar>* curvature = nullptr;  ///< v_i of eq. 1
+  const std::vector<float>* curvature = nullptr;  ///< v_i of eq. 1
 
   Scalar operator()(int i, int j, Scalar len) const {
     switch (metric) {

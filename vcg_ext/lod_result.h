@@ -57,7 +57,7 @@ struct LodResult {
     r.meshGeodesics = d.meshGeodesics;
     for (int i : samples) {
       r.vertIndex.push_back(d.points.vertIndex[i]);
-      r.normal.push_back(d.normal[i]);
+      r.normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[i]));
       r.curvature.push_back(d.curvature[i]);
     }
     return r;

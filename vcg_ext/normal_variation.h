@@ -13,18 +13,21 @@ class NormalVariation {
  public:
   /// Eq. 1: v_i = sum_{j in kNN(i)} (1 - |n_i . n_j|) / k, over the k nearest
   /// other points (the first k columns of the table, k <= knn.k; all by
-  /// default). 0 on a plane, at most 1; unit normals expected. O(n k), on
-  /// all threads.
-  static std::vector<Scalar> Compute(const std::vector<vcg::Point3<Scalar>>& normal,
-                                     const KnnTable<Scalar>& knn, int k = 0, Progress progress = Progress(nullptr)) {
+  /// default). 0 on a plane, at most 1; unit normals expected. In float
+  /// whatever the coordinates' type (edge weights are floats anyway). O(n k),
+  /// on all threads.
+  template <class N>
+  static std::vector<float> Compute(const std::vector<vcg::Point3<N>>& normal, const KnnTable<Scalar>& knn, int k = 0,
+                                    Progress progress = Progress(nullptr)) {
     if (k <= 0) k = knn.k;
-    std::vector<Scalar> v(normal.size());
+    std::vector<float> v(normal.size());
     ParallelChunks(normal.size(), progress, "Normal variation", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {
         const int* row = knn.Row(i);
         double s = 0;
-        for (int j = 0; j < k; ++j) s += 1.0 - std::abs(double(normal[i].dot(normal[row[j]])));
-        v[i] = Scalar(std::max(0.0, s / k));
+        const vcg::Point3d ni = vcg::Point3d::Construct(normal[i]);
+        for (int j = 0; j < k; ++j) s += 1.0 - std::abs(ni.dot(vcg::Point3d::Construct(normal[row[j]])));
+        v[i] = float(std::max(0.0, s / k));
       }
     });
     return v;

@@ -3,10 +3,14 @@
 // Per-point normals n_i: the input's where valid, else estimated as vcglib's
 // PointCloudNormal does (plane fit to the k nearest points, orientation
 // propagated over neighbours), from a kNN table shared with the rest of the
-// pipeline instead of a kd-tree and queries of its own.
+// pipeline instead of a kd-tree and queries of its own. Normals are kept in
+// float whatever the coordinates' type: a unit vector needs no more (a plane
+// fit's own error is far larger), and in double they would cost 12 more bytes
+// a point at the pipeline's peak.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 #include <Eigen/Eigenvalues>
 #include "knn_table.h"
@@ -20,13 +24,17 @@ template <class Scalar>
 class PointNormals {
  public:
   typedef vcg::Point3<Scalar> Coord;
+  typedef vcg::Point3f Normal;
   struct Param {
     int k = 20;                  ///< neighbours of the plane fit (the point itself included, as in vcglib)
     bool useInputNormals = true; ///< keep the input's finite, non-zero normals
   };
   struct Result {
-    std::vector<Coord> normal;   ///< unit normal per point
+    std::vector<Normal> normal;  ///< unit normal per point (signs consistent once Orient has run)
     size_t estimated = 0;        ///< how many were estimated, not taken from the input
+    /// Until Orient: the fitted normals of the points that keep their input
+    /// normal, when only some do (the walk goes over fitted normals only).
+    std::vector<std::pair<int, Normal>> fittedOfKept;
   };
 
   static bool IsValid(const Coord& n) {
@@ -51,34 +59,55 @@ class PointNormals {
   }
 
   /// The same from a kNN table of at least k - 1 columns (unused when
-  /// NeedsEstimate is false). Plane fits on all threads, O(n k); orientation
-  /// O(n) on one thread.
+  /// NeedsEstimate is false): Estimate, then Orient.
   static Result Compute(const std::vector<Coord>& pos, const std::vector<Coord>& inputNormal,
                         const KnnTable<Scalar>& knn, const Param& p, Progress progress = Progress(nullptr)) {
+    Result r = Estimate(pos, inputNormal, knn, p, progress);
+    Orient(pos, knn, p, r);
+    return r;
+  }
+
+  /// The normals up to their signs (all eq. 1 needs): the input's where kept,
+  /// else plane fits, on all threads, O(n k).
+  static Result Estimate(const std::vector<Coord>& pos, const std::vector<Coord>& inputNormal,
+                         const KnnTable<Scalar>& knn, const Param& p, Progress progress = Progress(nullptr)) {
     Result r;
     const size_t n = pos.size();
     if (!NeedsEstimate(inputNormal, n, p)) {
       r.normal.resize(n);
-      for (size_t i = 0; i < n; ++i) r.normal[i] = inputNormal[i] / inputNormal[i].Norm();
+      for (size_t i = 0; i < n; ++i) r.normal[i] = Unit(inputNormal[i]);
       return r;
     }
     r.normal = FitPlanes(pos, knn, std::min(p.k, knn.k + 1), progress);
-    Orient(knn, std::min(p.k, 8) - 1, r.normal);  // vcglib's coherentAdjNum: 8 with the point
-    OrientOutward(pos, r.normal);
     for (size_t i = 0; i < n; ++i) {
       const bool keep = p.useInputNormals && inputNormal.size() == n && IsValid(inputNormal[i]);
-      if (keep) r.normal[i] = inputNormal[i] / inputNormal[i].Norm();
+      if (keep) r.fittedOfKept.emplace_back(int(i), r.normal[i]), r.normal[i] = Unit(inputNormal[i]);
       r.estimated += !keep;
     }
     return r;
   }
 
+  /// The kNN columns Orient reads (vcglib's coherentAdjNum: 8 with the point).
+  static int OrientColumns(const Param& p) { return std::min(p.k, 8) - 1; }
+
+  /// Consistent signs for the estimated normals of Estimate's result, from a
+  /// table of at least OrientColumns columns (the same rows Estimate had, or
+  /// their first columns): O(n) on one thread.
+  static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r) {
+    if (r.estimated == 0) return;
+    for (auto& f : r.fittedOfKept) std::swap(r.normal[size_t(f.first)], f.second);
+    Orient(knn, OrientColumns(p), r.normal);
+    OrientOutward(pos, r.normal);
+    for (const auto& f : r.fittedOfKept) r.normal[size_t(f.first)] = f.second;
+    r.fittedOfKept = std::vector<std::pair<int, Normal>>();
+  }
+
  private:
   // Least-squares plane through the point and its k - 1 nearest: the normal is
   // the covariance's eigenvector of least eigenvalue (vcg::FitPlaneToPointSet).
-  static std::vector<Coord> FitPlanes(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, int k,
-                                      Progress progress) {
-    std::vector<Coord> normal(pos.size());
+  static std::vector<Normal> FitPlanes(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, int k,
+                                       Progress progress) {
+    std::vector<Normal> normal(pos.size());
     ParallelChunks(pos.size(), progress, "Estimating normals", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {
         const int* row = knn.Row(i);
@@ -98,9 +127,9 @@ class PointNormals {
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
         eig.computeDirect(cov, Eigen::ComputeEigenvectors);
         const Eigen::Vector3d v = eig.eigenvectors().col(0);  // eigenvalues ascend
-        Coord nv = Coord(Scalar(v[0]), Scalar(v[1]), Scalar(v[2]));
-        if (!IsValid(nv) || !std::isfinite(v.sum())) nv = Coord(0, 0, 1);  // only fully degenerate neighbourhoods
-        normal[i] = nv / nv.Norm();
+        const vcg::Point3d nv(v[0], v[1], v[2]);
+        // Only fully degenerate neighbourhoods fail the fit.
+        normal[i] = PointNormals<double>::IsValid(nv) ? Unit(nv) : Normal(0, 0, 1);
       }
     });
     return normal;
@@ -112,8 +141,11 @@ class PointNormals {
   // agree with the one it was reached from. A bucket queue of 64 levels of
   // |n_s . n_t| replaces the binary heap: O(1) per arc instead of O(log n).
   // The arcs' levels do not depend on the signs: they are found first, on all
-  // threads, leaving the walk itself (one thread) only the queue.
-  static void Orient(const KnnTable<Scalar>& knn, int c, std::vector<Coord>& normal) {
+  // threads, leaving the walk itself (one thread) only the queue. An arc to a
+  // point that already has one queued at a lower level is never the one that
+  // reaches it (that lower bucket empties first), so it is not queued: at 14M
+  // points the queue held 17M arcs at once without this.
+  static void Orient(const KnnTable<Scalar>& knn, int c, std::vector<Normal>& normal) {
     const size_t n = normal.size();
     c = std::min(c, knn.k);
     if (c <= 0) return;
@@ -124,39 +156,42 @@ class PointNormals {
       for (size_t s = b; s < e; ++s) {
         const int* row = knn.Row(s);
         for (int j = 0; j < c; ++j) {
-          const double w = std::abs(double(normal[s].dot(normal[row[j]])));
+          const double w = std::abs(Dot(normal[s], normal[row[j]]));
           arcLevel[s * c + j] = w < 0.3 ? kDropped : uint8_t(std::min(kLevels - 1, int((1.0 - w) / 0.7 * kLevels)));
         }
       }
     });
     std::vector<std::vector<std::pair<int, int>>> bucket(kLevels);  // (source, target), level 0 most parallel
-    std::vector<char> visited(n, 0);
+    // Per point: the lowest level of an arc queued to it (kLevels: none), or kVisited.
+    constexpr uint8_t kVisited = 254;
+    std::vector<uint8_t> state(n, uint8_t(kLevels));
     int top = kLevels;  // lowest level that may be non-empty
     auto addArcs = [&](int s) {
       const int* row = knn.Row(s);
       const uint8_t* level = &arcLevel[size_t(s) * c];
       for (int j = 0; j < c; ++j) {
         const int t = row[j];
-        if (visited[t] || level[j] == kDropped) continue;
+        if (level[j] == kDropped || state[t] == kVisited || level[j] > state[t]) continue;
         // The walk jumps between rows: start fetching what popping t will read.
         Prefetch(knn.idx.data() + size_t(t) * size_t(knn.k));
         Prefetch(arcLevel.data() + size_t(t) * size_t(c));
         Prefetch(normal.data() + t);
+        state[t] = level[j];
         bucket[level[j]].emplace_back(s, t);
         top = std::min(top, int(level[j]));
       }
     };
     for (size_t seed = 0; seed < n; ++seed) {
-      if (visited[seed]) continue;
-      visited[seed] = 1;
+      if (state[seed] == kVisited) continue;
+      state[seed] = kVisited;
       addArcs(int(seed));
       while (top < kLevels) {
         if (bucket[top].empty()) { ++top; continue; }
         const std::pair<int, int> a = bucket[top].back();
         bucket[top].pop_back();
-        if (visited[a.second]) continue;
-        visited[a.second] = 1;
-        if (normal[a.first].dot(normal[a.second]) < 0) normal[a.second] = -normal[a.second];
+        if (state[a.second] == kVisited) continue;
+        state[a.second] = kVisited;
+        if (Dot(normal[a.first], normal[a.second]) < 0) normal[a.second] = -normal[a.second];
         addArcs(a.second);
       }
     }
@@ -164,7 +199,7 @@ class PointNormals {
 
   // Propagation leaves a global sign open: choose the one whose normals point
   // away from the centroid on average (outward on closed scans).
-  static void OrientOutward(const std::vector<Coord>& pos, std::vector<Coord>& normal) {
+  static void OrientOutward(const std::vector<Coord>& pos, std::vector<Normal>& normal) {
     vcg::Point3d c(0, 0, 0);
     for (const Coord& p : pos) c += vcg::Point3d::Construct(p);
     c /= double(pos.size());
@@ -172,7 +207,16 @@ class PointNormals {
     for (size_t i = 0; i < pos.size(); ++i)
       s += vcg::Point3d::Construct(normal[i]).dot(vcg::Point3d::Construct(pos[i]) - c);
     if (s < 0)
-      for (Coord& v : normal) v = -v;
+      for (Normal& v : normal) v = -v;
+  }
+
+  template <class T>
+  static Normal Unit(const vcg::Point3<T>& n) {
+    const vcg::Point3d d = vcg::Point3d::Construct(n);
+    return Normal::Construct(d / d.Norm());
+  }
+  static double Dot(const Normal& a, const Normal& b) {
+    return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
   }
 };
 

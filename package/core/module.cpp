@@ -210,7 +210,7 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
     normal.resize(in.n);
     for (size_t i = 0; i < d.size(); ++i) {
       curvature[d.points.vertIndex[i]] = d.curvature[i];
-      normal[d.points.vertIndex[i]] = d.normal[i];
+      normal[d.points.vertIndex[i]] = vcg::Point3d::Construct(d.normal[i]);
     }
     estimated = d.estimatedNormals;
     return 0;

@@ -42,3 +42,25 @@ TEST(PointNormals, RecomputeIgnoresInputNormals) {
   EXPECT_EQ(r.estimated, ps.size());
   for (const auto& n : r.normal) EXPECT_NEAR(std::abs(n[2]), 1.f, 1e-5f);
 }
+
+// The pipeline's split: eq. 1 reads Estimate's normals (signs open), then the
+// table shrinks and Orient sets the signs. That must give Compute's normals,
+// with some input normals kept (the walk still goes over the fitted ones).
+TEST(PointNormals, OrientOnTheTablesFirstColumnsGivesComputesNormals) {
+  test::TMesh m;
+  test::HeightField(m, 60, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (size_t i = 0; i < m.vert.size(); ++i) m.vert[i].N() = i % 4 ? test::P3(0, 0, 0) : test::P3(0.2f, 0, 1);
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  const Normals::Param p{20, true};
+  const auto full = vcg_ext::KnnTable<float>::Compute(ps.pos, 20);
+  const auto want = Normals::Compute(ps.pos, ps.normal, full, p);
+  auto r = Normals::Estimate(ps.pos, ps.normal, full, p);
+  ASSERT_EQ(r.estimated, want.estimated);
+  ASSERT_FALSE(r.fittedOfKept.empty());
+  for (size_t i = 0; i < ps.size(); ++i) EXPECT_NEAR(std::abs(r.normal[i].dot(want.normal[i])), 1.f, 1e-6f) << i;
+  auto shrunk = full;
+  shrunk.KeepColumns(Normals::OrientColumns(p));
+  Normals::Orient(ps.pos, shrunk, p, r);
+  EXPECT_TRUE(r.fittedOfKept.empty());
+  for (size_t i = 0; i < ps.size(); ++i) ASSERT_EQ(r.normal[i], want.normal[i]) << i;
+}
