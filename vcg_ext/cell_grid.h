@@ -15,9 +15,7 @@
 #include <vector>
 #include <vcg/space/box3.h>
 #include <vcg/space/index/kdtree/kdtree.h>
-#ifdef _OPENMP
-#include <parallel/algorithm>
-#endif
+#include "radix_sort.h"
 
 namespace vcg_ext {
 
@@ -29,7 +27,7 @@ class CellGrid {
   static constexpr int kBits = 21;  ///< per axis: Morton keys of 63 bits
 
   /// Cells of side `h` (when h is not positive, the box's extent over 2^21).
-  /// Cost O(n log n), the sort on all threads.
+  /// Cost O(n) (a radix sort of the keys), on all threads.
   CellGrid(const std::vector<Coord>& pos, double h) {
     vcg::Box3d box;
     for (const Coord& p : pos) box.Add(vcg::Point3d::Construct(p));
@@ -37,22 +35,16 @@ class CellGrid {
     const double extent = std::max({box.DimX(), box.DimY(), box.DimZ()});
     h_ = h > 0 ? h : extent / double(1 << kBits);
     if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1;  // all points coincide: one cell
-    std::vector<std::pair<uint64_t, int>> kp(pos.size());
-    for (size_t i = 0; i < pos.size(); ++i) kp[i] = {Key(CellOf(pos[i])), int(i)};
-#ifdef _OPENMP
-    __gnu_parallel::sort(kp.begin(), kp.end());  // keys with indices are unique: the same order on any thread count
-#else
-    std::sort(kp.begin(), kp.end());
-#endif
-    pts_.resize(kp.size());
-    for (size_t r = 0; r < kp.size(); ++r) {
-      pts_[r] = kp[r].second;
-      if (r == 0 || kp[r].first != kp[r - 1].first) {
-        key_.push_back(kp[r].first);
+    std::vector<uint64_t> key(pos.size());
+#pragma omp parallel for
+    for (long long i = 0; i < (long long)pos.size(); ++i) key[size_t(i)] = Key(CellOf(pos[size_t(i)]));
+    pts_ = SortKeys(key);  // ties by index: the same order on any thread count
+    for (size_t r = 0; r < key.size(); ++r)
+      if (r == 0 || key[r] != key[r - 1]) {
+        key_.push_back(key[r]);
         start_.push_back(int(r));
       }
-    }
-    start_.push_back(int(kp.size()));
+    start_.push_back(int(key.size()));
   }
 
   double CellSide() const { return h_; }

@@ -92,7 +92,7 @@ class GeodesicDomain {
     return Build(std::move(ps), std::move(tris), p, progress);
   }
 
-  /// Cost O(n log n) for the grid's sort, O(n k) for the rest on well-sampled
+  /// Cost O(n) for the grid's radix sort, O(n k) for the rest on well-sampled
   /// surfaces; the row-independent passes on all threads (the same result for
   /// any thread count).
   static GeodesicDomain Build(PointSet<Scalar> ps, MeshTriangles tris, const Param& p,
@@ -138,6 +138,7 @@ class GeodesicDomain {
       // it, when the table has shrunk to what the graph and the walk read (at
       // the peak, the walk's queue and levels would add about 20 bytes a point).
       if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
+      if (nr.estimated) progress(55, 100, "Orienting normals");
       PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr);
       d.normal = std::move(nr.normal);
       d.estimatedNormals = nr.estimated;

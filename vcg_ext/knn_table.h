@@ -68,7 +68,7 @@ class KnnTable {
     auto number = [&](int64_t key) { return int(id ? key % kLow : key); };
     KnnTable t;
     t.k = k;
-    t.idx.assign(pos.size() * k, -1);
+    t.idx.ResizeForOverwrite(pos.size() * k);  // every row is written below
     ParallelChunks(pos.size(), progress, "Finding nearest neighbours", [&](size_t b, size_t e) {
       std::vector<double> bx, by, bz, d2;  // the block of cells searched: positions, numbers
       std::vector<int64_t> bi;  // the block's sort keys
@@ -82,6 +82,7 @@ class KnnTable {
         const int i = grid.Point(r);
         const typename CellGrid<Scalar>::Cell cell = grid.CellOf(pos[i]);
         int* out = &t.idx[size_t(i) * k];
+        out[0] = -1;  // until found: the kd-tree answers the rows left so
         for (int ring = 1; ring <= kMaxRing; ++ring) {
           if (cell != last || ring != lastRing) {  // near points share their cell's block
             bx.clear(), by.clear(), bz.clear(), bi.clear();

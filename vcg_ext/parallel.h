@@ -26,6 +26,14 @@ inline int ThreadIndex() {
   return 0;
 #endif
 }
+/// Inside a parallel region: the threads it got.
+inline int TeamSize() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
 
 /// One object per thread: the given one for thread 0, copies for the others
 /// (searches, each with its own scratch space).

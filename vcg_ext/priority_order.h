@@ -5,13 +5,9 @@
 // its own id, never on which other points are present or how they are
 // numbered, so a tile of a larger cloud visits its points in the order the
 // whole cloud would: the basis of the same samples tile by tile.
-#include <algorithm>
 #include <cstdint>
-#include <utility>
 #include <vector>
-#ifdef _OPENMP
-#include <parallel/algorithm>
-#endif
+#include "radix_sort.h"
 
 namespace vcg_ext {
 
@@ -26,22 +22,15 @@ inline uint64_t Mix64(uint64_t x) {
 /// The priority of id under seed: lower comes first.
 inline uint64_t Priority(uint64_t seed, uint64_t id) { return Mix64(Mix64(seed) ^ id); }
 
-/// order[k] = the point (index into `id`) visited k-th. O(n log n), the sort
+/// order[k] = the point (index into `id`) visited k-th. O(n) (SortKeys),
 /// on all threads; the same order for any thread count. Priority is a
 /// bijection of the id for a given seed, so only equal ids share a hash, and
 /// those keep their numbering's order.
 template <class Id>
 std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
-  std::vector<std::pair<uint64_t, int>> key(id.size());
-  for (size_t i = 0; i < id.size(); ++i) key[i] = {Priority(seed, uint64_t(id[i])), int(i)};
-#ifdef _OPENMP
-  __gnu_parallel::sort(key.begin(), key.end());
-#else
-  std::sort(key.begin(), key.end());
-#endif
-  std::vector<int> order(id.size());
-  for (size_t k = 0; k < key.size(); ++k) order[k] = key[k].second;
-  return order;
+  std::vector<uint64_t> key(id.size());
+  for (size_t i = 0; i < id.size(); ++i) key[i] = Priority(seed, uint64_t(id[i]));
+  return SortKeys(key);
 }
 
 }  // namespace vcg_ext

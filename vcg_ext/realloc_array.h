@@ -55,6 +55,15 @@ class ReallocArray {
     if (n > n_) std::memset(static_cast<void*>(q + n_), 0, (n - n_) * sizeof(T));
     p_ = q, n_ = n;
   }
+  /// New elements are left as they come: for an array whose every element is
+  /// written next, by all threads (its pages are then first touched, and
+  /// zeroed by the kernel, in parallel rather than by a fill on one thread).
+  void ResizeForOverwrite(size_t n) {
+    if (n <= n_) return resize(n);
+    T* q = static_cast<T*>(std::realloc(p_, n * sizeof(T)));
+    if (!q) throw std::bad_alloc();
+    p_ = q, n_ = n;
+  }
   void assign(size_t n, const T& v) {
     resize(n);
     std::fill(p_, p_ + n_, v);

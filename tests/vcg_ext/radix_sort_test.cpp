@@ -1,0 +1,66 @@
+// SortKeys against a comparison sort of (key, index) pairs, on key sets that
+// take each of its paths, on one and several threads.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include "vcg_ext/radix_sort.h"
+
+namespace {
+void MatchesAComparisonSort(std::vector<uint64_t> key) {
+  std::vector<std::pair<uint64_t, int>> want(key.size());
+  for (size_t i = 0; i < key.size(); ++i) want[i] = {key[i], int(i)};
+  std::sort(want.begin(), want.end());
+  const std::vector<int> order = vcg_ext::SortKeys(key);
+  ASSERT_EQ(order.size(), want.size());
+  for (size_t r = 0; r < want.size(); ++r) {
+    ASSERT_EQ(key[r], want[r].first) << r;
+    ASSERT_EQ(order[r], want[r].second) << r;
+  }
+}
+
+std::vector<uint64_t> Keys(size_t n, uint64_t seed, uint64_t mask, uint64_t offset = 0) {
+  std::mt19937_64 rng(seed);
+  std::vector<uint64_t> k(n);
+  for (auto& x : k) x = (rng() & mask) + offset;
+  return k;
+}
+
+void AllShapes() {
+  MatchesAComparisonSort({});
+  MatchesAComparisonSort({42});
+  MatchesAComparisonSort(std::vector<uint64_t>(1000, 7));              // no digit differs
+  MatchesAComparisonSort(Keys(200000, 1, ~uint64_t(0)));                // hashes: passes, then a few ties
+  MatchesAComparisonSort(Keys(200000, 2, 0xfff));                       // two digits, many equal keys
+  MatchesAComparisonSort(Keys(200000, 3, 0x3fffffff, uint64_t(1) << 50));  // Morton-like, a constant high part
+  auto tied = Keys(200000, 4, 0xffff);                                  // all tied in the high digits but
+  for (size_t i = 0; i < tied.size(); i += 1000) tied[i] |= uint64_t(1) << 60;  // a few outliers: long runs
+  MatchesAComparisonSort(tied);
+  // Five differing digits, the four high ones from 40 values: runs of about
+  // eight tied there, short enough for insertion, with equal keys in them.
+  std::mt19937_64 rng(5);
+  std::vector<uint64_t> shortRuns(300);
+  for (auto& x : shortRuns) x = (rng() % 40) * 0x0101010100000000ULL + rng() % 2;
+  MatchesAComparisonSort(shortRuns);
+}
+}  // namespace
+
+TEST(SortKeys, MatchesAComparisonSortOnEveryPath) { AllShapes(); }
+
+TEST(SortKeys, TheSameOnOneAndThreeThreads) {
+#ifdef _OPENMP
+  const int before = omp_get_max_threads();
+  for (int t : {1, 3}) {
+    omp_set_num_threads(t);
+    AllShapes();
+  }
+  omp_set_num_threads(before);
+#else
+  AllShapes();
+#endif
+}
