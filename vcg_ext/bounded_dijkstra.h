@@ -2,6 +2,7 @@
 #define VCG_EXT_BOUNDED_DIJKSTRA_H
 // Dijkstra on a NeighbourGraph, stopped at a radius: the geodesic disk search.
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -18,11 +19,13 @@ namespace vcg_ext {
 template <class Scalar>
 class BoundedDijkstra {
  public:
-  /// On the graph's stored weights.
+  /// On the graph's stored weights (a point graph stores none: use Lengths()).
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g) : BoundedDijkstra(g, g.w) {}
   /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for adj[e].
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const std::vector<float>& w)
-      : g_(g), w_(w.data()), dist_(g.size(), kInf) {}
+      : g_(g), w_(w.data()), dist_(g.size(), kInf) {
+    assert(w.size() == g.adj.size() && "one weight per arc");
+  }
   /// On a graph without weights: `len` gives them as an edge is relaxed (the
   /// same values SetWeights would store; slower where every point is reached
   /// many times, as in farthest point sampling).
