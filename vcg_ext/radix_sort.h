@@ -27,12 +27,11 @@ template <class Move>
 void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
   constexpr size_t kBuckets = size_t(1) << kRadixBits;
   const size_t n = key.size();
-  std::vector<size_t> count;
+  // Zeroed before the parallel region: nothing there may throw.
+  std::vector<size_t> count(size_t(ThreadCount()) * kBuckets, 0);
 #pragma omp parallel
   {
     const int threads = TeamSize(), t = ThreadIndex();
-#pragma omp single
-    count.assign(size_t(threads) * kBuckets, 0);
     const size_t b = n * size_t(t) / size_t(threads), e = n * size_t(t + 1) / size_t(threads);
     size_t* mine = &count[size_t(t) * kBuckets];
     for (size_t i = b; i < e; ++i) ++mine[(key[i] >> shift) & (kBuckets - 1)];
@@ -90,14 +89,15 @@ inline std::vector<int> SortKeys(std::vector<uint64_t>& key) {
     for (j = i + 1; j < n && key[j] >> low == key[i] >> low;) ++j;
     if (j - i > 1) runs.emplace_back(i, j);
   }
-  auto sortRun = [&](size_t b, size_t e, bool parallel) {
+  typedef std::vector<std::pair<uint64_t, int>> Pairs;
+  auto sortRun = [&](size_t b, size_t e, Pairs& kp, bool parallel) {
     if (e - b <= 16) {  // the usual tie of two or three keys: insertion, in place
       for (size_t i = b + 1; i < e; ++i)
         for (size_t j = i; j > b && std::make_pair(key[j], order[j]) < std::make_pair(key[j - 1], order[j - 1]); --j)
           std::swap(key[j], key[j - 1]), std::swap(order[j], order[j - 1]);
       return;
     }
-    std::vector<std::pair<uint64_t, int>> kp(e - b);
+    kp.resize(e - b);
     for (size_t i = b; i < e; ++i) kp[i - b] = {key[i], order[i]};
 #ifdef _OPENMP
     if (parallel) __gnu_parallel::sort(kp.begin(), kp.end());
@@ -107,11 +107,18 @@ inline std::vector<int> SortKeys(std::vector<uint64_t>& key) {
     for (size_t i = b; i < e; ++i) key[i] = kp[i - b].first, order[i] = kp[i - b].second;
   };
   const size_t large = std::max<size_t>(size_t(1) << 16, n / (4 * size_t(ThreadCount())));
+  size_t longest = 0;  // of the runs sorted in parallel: each thread's scratch, allocated before
+  for (const auto& r : runs)
+    if (r.second - r.first <= large) longest = std::max(longest, r.second - r.first);
+  std::vector<Pairs> scratch(static_cast<size_t>(ThreadCount()));
+  for (Pairs& kp : scratch) kp.reserve(longest);
 #pragma omp parallel for schedule(dynamic, 64)
   for (long long r = 0; r < (long long)runs.size(); ++r)
-    if (runs[size_t(r)].second - runs[size_t(r)].first <= large) sortRun(runs[size_t(r)].first, runs[size_t(r)].second, false);
+    if (runs[size_t(r)].second - runs[size_t(r)].first <= large)
+      sortRun(runs[size_t(r)].first, runs[size_t(r)].second, scratch[size_t(ThreadIndex())], false);
+  Pairs kp;
   for (const auto& r : runs)  // skewed keys: the few large runs on all threads each
-    if (r.second - r.first > large) sortRun(r.first, r.second, true);
+    if (r.second - r.first > large) sortRun(r.first, r.second, kp, true);
   return order;
 }
 
