@@ -38,8 +38,8 @@ class FarthestPoint {
   /// Propagator: `Lower(int src, std::vector<Scalar>& dist, F f)` lowering
   /// dist for a new source and calling f(i, d) for each point it lowers
   /// (BoundedDijkstra). Each step costs in proportion to the points whose
-  /// distance drops (the new sample's region), plus rescans of the few older
-  /// regions whose farthest point the new region took.
+  /// distance drops (the new sample's region); finding the next farthest
+  /// point adds O(log k) (amortized).
   template <class Scalar, class Propagator>
   static Result Compute(size_t n, Propagator& prop, const Param& p, Progress progress = Progress(nullptr)) {
     const size_t m = p.candidates ? p.candidates->size() : n;
@@ -105,7 +105,8 @@ class FarthestPoint {
     }
     /// After region k was filled: its top, and the tops of the regions it robbed.
     void Settle(int k) {
-      Rescan(k);  // from the final distances, however often a point was lowered
+      Order(k);  // by the final distances, however often a point was lowered
+      Rescan(k);
       Publish(k);
       std::sort(dirty_.begin(), dirty_.end());
       dirty_.erase(std::unique(dirty_.begin(), dirty_.end()), dirty_.end());
@@ -116,7 +117,7 @@ class FarthestPoint {
         }
       dirty_.clear();
       if (stored_ > 4 * chosen_.size() + 1024)  // lists hold points long gone: compact them all
-        for (size_t o = 0; o < members_.size(); ++o) Rescan(int(o));
+        for (size_t o = 0; o < members_.size(); ++o) Compact(int(o));
     }
     /// The farthest free point, -1 when none is left.
     int Top() {
@@ -143,19 +144,29 @@ class FarthestPoint {
       heap_.push_back({top_[size_t(k)], k, s});
       std::push_heap(heap_.begin(), heap_.end());
     }
-    // Drops the points that left region o or were chosen, and finds its top.
+    // Each list is kept in increasing (distance, point) order, so a region's
+    // top is the last of its points still in it. Dijkstra and fast marching
+    // report a region's points in that order already; others are sorted here.
+    void Order(int k) {
+      std::vector<int>& list = members_[size_t(k)];
+      auto before = [&](int a, int b) { return Entry(dist_[size_t(a)], a) < Entry(dist_[size_t(b)], b); };
+      if (!std::is_sorted(list.begin(), list.end(), before)) std::sort(list.begin(), list.end(), before);
+    }
+    bool Holds(int o, int i) const { return owner_[size_t(i)] == o && chosen_[size_t(i)] == kFree; }
+    // Region o's top: the points that left it or were chosen are dropped from
+    // the end of its list (the others wait for Compact). O(1) amortized.
     void Rescan(int o) {
       std::vector<int>& list = members_[size_t(o)];
-      Entry top(-std::numeric_limits<Scalar>::infinity(), -1);
-      size_t kept = 0;
-      for (int i : list)
-        if (owner_[size_t(i)] == o && chosen_[size_t(i)] == kFree) {
-          list[kept++] = i;
-          top = std::max(top, Entry(dist_[size_t(i)], i));
-        }
-      stored_ -= list.size() - kept;
-      list.resize(kept);
-      top_[size_t(o)] = top;
+      for (; !list.empty() && !Holds(o, list.back()); --stored_) list.pop_back();
+      top_[size_t(o)] = list.empty() ? Entry(-std::numeric_limits<Scalar>::infinity(), -1)
+                                     : Entry(dist_[size_t(list.back())], list.back());
+    }
+    // Drops all the points that left region o, keeping the order.
+    void Compact(int o) {
+      std::vector<int>& list = members_[size_t(o)];
+      const size_t before = list.size();
+      list.erase(std::remove_if(list.begin(), list.end(), [&](int i) { return !Holds(o, i); }), list.end());
+      stored_ -= before - list.size();
     }
 
     const std::vector<char>& chosen_;

@@ -22,7 +22,7 @@ class FastMarchingMesh {
  public:
   struct Fan {  // triangle (v, a, b) seen from v
     int a, b;
-    Scalar va, vb, ab;  // weighted edge lengths
+    float va, vb, ab;  // weighted edge lengths (the graph's, floats)
   };
   NeighbourGraph<Scalar> edges;  ///< the mesh edges, weighted
   std::vector<int> fanOffset;    ///< n+1 row starts into `fans`
@@ -31,8 +31,8 @@ class FastMarchingMesh {
   size_t size() const { return edges.size(); }
 
   /// `weight(i, j, |p_i - p_j|)` gives g_ij. `links`: extra edges, such as
-  /// CoincidentPairs. Memory: about 6 fans and 6 edges per vertex on a
-  /// manifold mesh, roughly 200 bytes per vertex (double).
+  /// CoincidentPairs. Memory: on a manifold mesh, about 6 fans (20 bytes
+  /// each) and 6 edges (8 bytes each) per vertex, whatever the Scalar.
   template <class WeightFn>
   static FastMarchingMesh Build(const std::vector<vcg::Point3<Scalar>>& pos,
                                 const std::vector<std::array<int, 3>>& tri, const WeightFn& weight,
@@ -80,7 +80,8 @@ class FastMarchingMesh {
     const double cy = std::sqrt(cy2), sy = -std::sqrt(sy2);
     const double x = sx + (cx - sx) * (-sy) / (cy - sy);  // where the ray s->c crosses ab
     if (x < 0 || x > ab) return inf;
-    return std::max(std::hypot(cx - sx, cy - sy), std::max(ta, tb));
+    // Not hypot: its guard against overflow is slow, and no distance here nears overflow.
+    return std::max(std::sqrt((cx - sx) * (cx - sx) + (cy - sy) * (cy - sy)), std::max(ta, tb));
   }
 };
 
@@ -173,15 +174,17 @@ class FastMarching {
       f(v, top.first);
       from = v;
       const double tv = top.first;
-      const auto& g = m_.edges;
-      for (int e = g.offset[v]; e < g.offset[v + 1]; ++e)
-        if (done_[g.adj[e]] != stamp) offer(g.adj[e], tv + g.w[e]);
+      // Triangles first: their updates are mostly below the edges', which
+      // then push nothing (the order of offers changes no distance).
       for (int k = m_.fanOffset[v]; k < m_.fanOffset[v + 1]; ++k) {
         const typename Mesh::Fan& t = m_.fans[k];
         const bool da = done_[t.a] == stamp, db = done_[t.b] == stamp;
         if (da && !db && together(v, t.a)) offer(t.b, Mesh::TriangleUpdate(tv, get(t.a), t.va, t.vb, t.ab));
         if (db && !da && together(v, t.b)) offer(t.a, Mesh::TriangleUpdate(tv, get(t.b), t.vb, t.va, t.ab));
       }
+      const auto& g = m_.edges;
+      for (int e = g.offset[v]; e < g.offset[v + 1]; ++e)
+        if (done_[g.adj[e]] != stamp) offer(g.adj[e], tv + g.w[e]);
     }
   }
   void NextStamp() {

@@ -3,12 +3,15 @@
 // The live (non-deleted) vertices of a vcglib mesh as a dense point array.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 #include <vcg/complex/complex.h>
 #include "input_error.h"
+#include "priority_order.h"
 
 namespace vcg_ext {
 
@@ -24,17 +27,34 @@ struct PointSet {
 
 /// Pairs (a, b) linking the points at exactly the same position into chains:
 /// meshes often repeat a vertex along seams, and these pairs let distances
-/// cross such seams at no cost. Cost O(n log n).
+/// cross such seams at no cost. Cost O(n): the points sorted by a hash of
+/// their position (SortKeys), then the few runs of equal hashes by position.
 template <class Scalar>
 std::vector<std::pair<int, int>> CoincidentPairs(const std::vector<vcg::Point3<Scalar>>& pos) {
-  std::vector<int> order(pos.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = int(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
-  });
+  std::vector<uint64_t> key(pos.size());
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < (long long)pos.size(); ++i) {
+    uint64_t h = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Scalar x = pos[size_t(i)][c] + Scalar(0);  // -0 and 0 are one position
+      uint64_t bits = 0;
+      std::memcpy(&bits, &x, sizeof x);
+      h = Mix64(h ^ bits);
+    }
+    key[size_t(i)] = h;
+  }
+  const std::vector<int> order = SortKeys(key);
+  auto before = [&](int a, int b) { return pos[a] < pos[b] || (pos[a] == pos[b] && a < b); };
   std::vector<std::pair<int, int>> pairs;
-  for (size_t k = 1; k < order.size(); ++k)
-    if (pos[order[k]] == pos[order[k - 1]]) pairs.emplace_back(order[k - 1], order[k]);
+  std::vector<int> run;
+  for (size_t b = 0, e = 0; b < order.size(); b = e) {
+    for (e = b + 1; e < order.size() && key[e] == key[b];) ++e;
+    if (e - b < 2) continue;
+    run.assign(order.begin() + std::ptrdiff_t(b), order.begin() + std::ptrdiff_t(e));
+    std::sort(run.begin(), run.end(), before);
+    for (size_t k = 1; k < run.size(); ++k)
+      if (pos[run[k]] == pos[run[k - 1]]) pairs.emplace_back(run[k - 1], run[k]);
+  }
   return pairs;
 }
 
