@@ -252,13 +252,13 @@ class GeodesicDomain {
       if (remap[i] == 0) {
         remap[i] = int(kept);
         ps.pos[kept] = ps.pos[i];
-        ps.normal[kept] = ps.normal[i];
+        if (!ps.normal.empty()) ps.normal[kept] = ps.normal[i];
         ps.vertIndex[kept] = ps.vertIndex[i];
         ++kept;
       }
     const size_t dropped = ps.size() - kept;
     ps.pos.resize(kept);
-    ps.normal.resize(kept);
+    if (!ps.normal.empty()) ps.normal.resize(kept);
     ps.vertIndex.resize(kept);
     for (auto& t : tri)
       for (int& c : t) c = remap[c];

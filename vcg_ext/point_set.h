@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <utility>
 #include <stdexcept>
 #include <string>
@@ -20,7 +21,7 @@ namespace vcg_ext {
 template <class Scalar>
 struct PointSet {
   std::vector<vcg::Point3<Scalar>> pos;      ///< positions
-  std::vector<vcg::Point3<Scalar>> normal;   ///< the mesh's normals (zero if it has none)
+  std::vector<vcg::Point3<Scalar>> normal;   ///< the mesh's normals; empty when it has none, or only zero ones
   std::vector<int> vertIndex;                ///< index in m.vert of each point
   size_t size() const { return pos.size(); }
 };
@@ -63,32 +64,56 @@ class PointSetFromMesh {
  public:
   typedef typename MeshType::ScalarType Scalar;
 
-  /// Copies the live vertices of `m` (deleted ones are skipped). The mesh is
-  /// not modified. Throws InputError (Coordinates) on non-finite coordinates,
+  /// Copies the live vertices of `m` (deleted ones are skipped), on all
+  /// threads: the arrays' pages are first touched there too. The mesh is not
+  /// modified. Throws InputError (Coordinates) on non-finite coordinates,
   /// which no distance can be computed from.
   static PointSet<Scalar> Compute(const MeshType& m) {
-    PointSet<Scalar> ps;
-    ps.pos.reserve(m.vn);
-    ps.vertIndex.reserve(m.vn);
+    const size_t nv = m.vert.size(), chunk = size_t(1) << 16, chunks = (nv + chunk - 1) / chunk;
     const bool hasNormal = vcg::tri::HasPerVertexNormal(m);
-    if (hasNormal) ps.normal.reserve(m.vn);
-    size_t nonFinite = 0;
-    for (size_t i = 0; i < m.vert.size(); ++i) {
-      const auto& v = m.vert[i];
-      if (v.IsD()) continue;
-      const auto& p = v.cP();
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-        ++nonFinite;
-        continue;
+    auto isFinite = [](const typename MeshType::CoordType& p) {
+      return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    };
+    // Pass 1: per chunk, its live points, its non-finite ones, and whether a normal is not zero.
+    std::vector<size_t> start(chunks + 1, 0), nonFinite(chunks, 0);
+    std::vector<char> someNormal(chunks, 0);
+#pragma omp parallel for schedule(static)
+    for (long long c = 0; c < (long long)chunks; ++c) {
+      const size_t b = size_t(c) * chunk, e = std::min(nv, b + chunk);
+      size_t live = 0, bad = 0;
+      bool normal = false;
+      for (size_t i = b; i < e; ++i) {
+        const auto& v = m.vert[i];
+        if (v.IsD()) continue;
+        if (!isFinite(v.cP())) { ++bad; continue; }
+        ++live;
+        normal = normal || (hasNormal && v.cN() != typename MeshType::VertexType::NormalType(0, 0, 0));
       }
-      ps.pos.push_back(vcg::Point3<Scalar>::Construct(p));
-      ps.vertIndex.push_back(int(i));
-      if (hasNormal) ps.normal.push_back(vcg::Point3<Scalar>::Construct(v.cN()));
+      start[size_t(c) + 1] = live, nonFinite[size_t(c)] = bad, someNormal[size_t(c)] = normal;
     }
-    if (nonFinite)
-      throw InputError(Field::Coordinates, "holds " + std::to_string(nonFinite) +
-                                               (nonFinite == 1 ? " point" : " points") + " with NaN or infinite coordinates");
-    if (!hasNormal) ps.normal.assign(ps.pos.size(), vcg::Point3<Scalar>(0, 0, 0));
+    const size_t bad = std::accumulate(nonFinite.begin(), nonFinite.end(), size_t(0));
+    if (bad)
+      throw InputError(Field::Coordinates,
+                       "holds " + std::to_string(bad) + (bad == 1 ? " point" : " points") + " with NaN or infinite coordinates");
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    const bool copyNormals = std::find(someNormal.begin(), someNormal.end(), 1) != someNormal.end();
+    PointSet<Scalar> ps;
+    ps.pos.resize(start[chunks]);  // Point3's constructor leaves them for the threads to write
+    ps.vertIndex.resize(start[chunks]);
+    if (copyNormals) ps.normal.resize(start[chunks]);
+    // Pass 2: each chunk writes its points from its start.
+#pragma omp parallel for schedule(static)
+    for (long long c = 0; c < (long long)chunks; ++c) {
+      const size_t b = size_t(c) * chunk, e = std::min(nv, b + chunk);
+      for (size_t i = b, o = start[size_t(c)]; i < e; ++i) {
+        const auto& v = m.vert[i];
+        if (v.IsD() || !isFinite(v.cP())) continue;
+        ps.pos[o] = vcg::Point3<Scalar>::Construct(v.cP());
+        ps.vertIndex[o] = int(i);
+        if (copyNormals) ps.normal[o] = vcg::Point3<Scalar>::Construct(v.cN());
+        ++o;
+      }
+    }
     return ps;
   }
 };
