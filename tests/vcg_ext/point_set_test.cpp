@@ -1,12 +1,16 @@
-// CoincidentPairs against a brute force: the pairs join exactly the points
-// at one position, into one chain per position.
+// PointSetFromMesh against a plain copy, over many chunks; CoincidentPairs
+// against a brute force: the pairs join exactly the points at one position,
+// into one chain per position.
 #include <gtest/gtest.h>
+#include <cmath>
 #include <map>
 #include <random>
 #include <set>
 #include <utility>
 #include <vector>
+#include "vcg_ext/input_error.h"
 #include "vcg_ext/point_set.h"
+#include "test_mesh.h"
 
 namespace {
 template <class Scalar>
@@ -59,4 +63,59 @@ TEST(CoincidentPairs, JoinsExactlyThePointsAtOnePosition) {
   JoinsExactlyTheCoincidentPoints(Cloud<float>(20000, 1));
   JoinsExactlyTheCoincidentPoints(Cloud<double>(20000, 2));
   JoinsExactlyTheCoincidentPoints(std::vector<vcg::Point3d>(5000, vcg::Point3d(0.5, 0.25, 2)));  // one position
+}
+
+// Many chunks of the parallel copy, with deleted vertices spread over them
+// (whole chunks too): the live ones in mesh order, normals only where some are not zero.
+TEST(PointSetFromMesh, CopiesTheLiveVerticesInOrderOverManyChunks) {
+  test::TMesh m;
+  const size_t n = 300000;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, n);
+  for (size_t i = 0; i < n; ++i) {
+    m.vert[i].P() = test::P3(float(i % 1000), float(i / 1000), float(i % 7));
+    m.vert[i].N() = test::P3(0, 0, 0);
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (i % 3 == 1 || (i >= 70000 && i < 140000)) vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[i]);
+  auto plain = [&](bool normals) {
+    vcg_ext::PointSet<float> want;
+    for (size_t i = 0; i < n; ++i)
+      if (!m.vert[i].IsD()) {
+        want.pos.push_back(m.vert[i].cP());
+        want.vertIndex.push_back(int(i));
+        if (normals) want.normal.push_back(m.vert[i].cN());
+      }
+    return want;
+  };
+  auto same = [](const vcg_ext::PointSet<float>& a, const vcg_ext::PointSet<float>& b) {
+    EXPECT_EQ(a.vertIndex, b.vertIndex);
+    EXPECT_TRUE(a.pos == b.pos);
+    EXPECT_TRUE(a.normal == b.normal);
+  };
+  const auto zero = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  EXPECT_TRUE(zero.normal.empty());
+  same(zero, plain(false));
+  m.vert[n - 1].N() = test::P3(0, 0, 1);  // one normal, in the last chunk
+  const auto one = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  ASSERT_EQ(one.normal.size(), one.pos.size());
+  same(one, plain(true));
+}
+
+TEST(PointSetFromMesh, CountsEveryNonFinitePointAcrossChunks) {
+  test::TMesh m;
+  const size_t n = 200000;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, n);
+  for (size_t i = 0; i < n; ++i) m.vert[i].P() = test::P3(float(i), 0, 0);
+  m.vert[5].P()[0] = NAN;
+  m.vert[100000].P()[1] = INFINITY;
+  m.vert[199999].P()[2] = -INFINITY;
+  vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[7]);
+  m.vert[7].P()[0] = NAN;  // deleted: not counted
+  try {
+    vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+    FAIL();
+  } catch (const vcg_ext::InputError& e) {
+    EXPECT_EQ(e.field, vcg_ext::Field::Coordinates);
+    EXPECT_NE(std::string(e.what()).find("holds 3 points with NaN or infinite coordinates"), std::string::npos) << e.what();
+  }
 }
