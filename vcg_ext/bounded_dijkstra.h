@@ -14,8 +14,8 @@
 namespace vcg_ext {
 
 /// Build once per graph, then run many searches. A search costs in proportion
-/// to the points it reaches and their edges, never to the graph's size: the
-/// next search resets only the distances the last one set.
+/// to the points it reaches and their edges, never to the graph's size: its
+/// distances are kept in a table of its own size, not one entry per point.
 template <class Scalar>
 class BoundedDijkstra {
  public:
@@ -23,32 +23,37 @@ class BoundedDijkstra {
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g) : BoundedDijkstra(g, g.w) {}
   /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for adj[e].
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const std::vector<float>& w)
-      : g_(g), w_(w.data()), dist_(g.size(), kInf) {
+      : g_(g), w_(w.data()) {
     assert(w.size() == g.adj.size() && "one weight per arc");
   }
   /// On a graph without weights: `len` gives them as an edge is relaxed (the
   /// same values SetWeights would store; slower where every point is reached
   /// many times, as in farthest point sampling).
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const EdgeLength<Scalar>& len)
-      : g_(g), len_(len), dist_(g.size(), kInf) {}
+      : g_(g), len_(len) {}
 
   /// Calls f(i, d) once for every point i at graph distance d <= r from
   /// `src`, in order of increasing d (src first, with d = 0).
   template <class F>
   void Visit(int src, Scalar r, F&& f) {
-    Reset();
+    near_.Clear();
     heap_.clear();
-    Reach(src, 0);
+    near_.Add(src, 0);
+    heap_.push(Scalar(0), src);
     while (!heap_.empty()) {
       const Entry top = heap_.pop();
       const int i = top.second;
-      if (top.first != dist_[i]) continue;  // stale: a shorter path came later
+      if (top.first != *near_.Find(i)) continue;  // stale: a shorter path came later
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
         const int j = g_.adj[e];
-        if (dist_[j] <= top.first) continue;  // no edge can lower it: its length is not needed
+        Scalar* dj = near_.Find(j);
+        if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, e);
-        if (nd <= r && nd < dist_[j]) Reach(j, nd);
+        if (nd <= r && (!dj || nd < *dj)) {
+          if (dj) *dj = nd; else near_.Add(j, nd);
+          Push(j, nd);
+        }
       }
     }
   }
@@ -104,16 +109,6 @@ class BoundedDijkstra {
     }
   }
   float Length(int i, int e) const { return w_ ? w_[e] : len_(i, g_.adj[size_t(e)]); }
-  // Before a search rather than after: one left by an exception is cleared too.
-  void Reset() {
-    for (int j : touched_) dist_[size_t(j)] = kInf;
-    touched_.clear();
-  }
-  void Reach(int j, Scalar d) {
-    if (dist_[j] == kInf) touched_.push_back(j);
-    dist_[j] = d;
-    Push(j, d);
-  }
   void Push(int j, Scalar d) {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
@@ -125,9 +120,61 @@ class BoundedDijkstra {
   const NeighbourGraph<Scalar>& g_;
   const float* w_ = nullptr;  ///< the weights, or null: len_ computes them
   EdgeLength<Scalar> len_;
-  static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
-  std::vector<Scalar> dist_;  ///< infinity but where the last Visit reached
-  std::vector<int> touched_;  ///< where the last Visit set dist_
+  // The distances one Visit has set, by point: an open-addressing table with
+  // room for twice as many, so a disk's stays in the first-level cache where a
+  // per-point array would be read at a miss per point reached (and cost 8 bytes
+  // a point for each thread's search).
+  class NearTable {
+   public:
+    NearTable() { Rehash(256); }
+    void Clear() {
+      for (uint32_t s : used_) key_[s] = -1;
+      used_.clear();
+    }
+    Scalar* Find(int j) {
+      for (uint32_t s = Slot(j);; s = (s + 1) & mask_) {
+        if (key_[s] == j) return &val_[s];
+        if (key_[s] < 0) return nullptr;
+      }
+    }
+    void Add(int j, Scalar d) {  // j not in the table yet
+      if (2 * (used_.size() + 1) > key_.size()) Rehash(2 * key_.size());
+      uint32_t s = Slot(j);
+      while (key_[s] >= 0) s = (s + 1) & mask_;
+      key_[s] = j, val_[s] = d;
+      used_.push_back(s);  // within its capacity: nothing can throw once the slot is taken
+    }
+
+   private:
+    uint32_t Slot(int j) const { return Slot(j, shift_); }
+    // Fibonacci hashing: the product's high bits spread near numbers apart.
+    static uint32_t Slot(int j, int shift) { return (uint32_t(j) * 2654435769u) >> shift; }
+    // Moves the entries to a table of `count` slots (a power of two), all allocated
+    // before anything changes.
+    void Rehash(size_t count) {
+      std::vector<int> key(count, -1);
+      std::vector<Scalar> val(count);
+      std::vector<uint32_t> used;
+      used.reserve(count / 2);
+      const uint32_t mask = uint32_t(count - 1);
+      const int shift = 32 - __builtin_ctzll(count);
+      for (uint32_t t : used_) {
+        uint32_t s = Slot(key_[t], shift);
+        while (key[s] >= 0) s = (s + 1) & mask;
+        key[s] = key_[t], val[s] = val_[t];
+        used.push_back(s);
+      }
+      key_.swap(key), val_.swap(val), used_.swap(used);
+      mask_ = mask, shift_ = shift;
+    }
+    std::vector<int> key_;        ///< point, or -1 for an empty slot
+    std::vector<Scalar> val_;
+    std::vector<uint32_t> used_;  ///< the count taken, to clear them
+    uint32_t mask_ = 0;
+    int shift_ = 32;
+  };
+
+  NearTable near_;
   RadixHeap<Scalar> heap_;
 };
 

@@ -139,15 +139,22 @@ class GeodesicDomain {
       // the peak, the walk's queue and levels would add about 20 bytes a point).
       if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
       if (nr.estimated) progress(55, 100, "Orienting normals");
-      PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr);
+      // The walk takes one thread: what the graph needs of the table is found meanwhile.
+      std::vector<bool> oneWay;
+      PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, [&] {
+        if (!graph) return;
+        oneWay = NeighbourGraph<Scalar>::OneWayArcs(knn, p.graphNeighbours, progress.Sub(55, 75));
+        d.components = NeighbourGraph<Scalar>::ComponentCount(knn, p.graphNeighbours);
+      });
       d.normal = std::move(nr.normal);
       d.estimatedNormals = nr.estimated;
-      if (graph) d.graph = NeighbourGraph<Scalar>::FromKnn(std::move(knn), p.graphNeighbours, progress.Sub(55, 95));
+      // Its weights come from Lengths(), as the searches need them.
+      if (graph)
+        d.graph = NeighbourGraph<Scalar>::FromKnn(std::move(knn), p.graphNeighbours, std::move(oneWay),
+                                                  progress.Sub(75, 95));
     }
     progress(95, 100, "Building the geodesic domain");
-    if (graph) {
-      d.components = d.graph.ComponentCount();  // its weights come from Lengths(), as the searches need them
-    } else if (d.meshGeodesics) {
+    if (d.meshGeodesics) {
       // Vertices a mesh repeats (seams, split normals) are joined at no cost.
       d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, d.Lengths().weight,
                                                  CoincidentPairs(d.points.pos));

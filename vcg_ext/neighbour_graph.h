@@ -47,13 +47,18 @@ class NeighbourGraph {
   /// the same bytes. Each row is kNN(i) plus the points having i among their
   /// k nearest but not among i's: no duplicates to sort out, no pair list.
   static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, Progress progress = Progress(nullptr)) {
-    knn.KeepColumns(k);
+    std::vector<bool> oneWay = OneWayArcs(knn, k, progress.Sub(0, 50));
+    return FromKnn(std::move(knn), k, std::move(oneWay), progress.Sub(50, 100));
+  }
+
+  /// Per arc i -> knn(i)[c] of the first k columns, at i k + c: whether the
+  /// table has no reverse arc (the arcs FromKnn adds to other rows). One bit
+  /// each. O(n k^2), on all threads; it only reads the table.
+  static std::vector<bool> OneWayArcs(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
     const size_t n = knn.size();
-    // oneWay[i k + c]: the arc i -> knn(i)[c] has no reverse arc in the table.
-    // One bit each; chunks start at multiples of 1024 rows, so no two threads
-    // write the same word.
+    // Chunks start at multiples of 1024 rows, so no two threads write the same word.
     std::vector<bool> oneWay(n * k);
-    ParallelChunks(n, progress.Sub(0, 50), "Building the neighbour graph", [&](size_t b, size_t e) {
+    ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c) {
           const int* back = knn.Row(knn.Row(i)[c]);
@@ -62,6 +67,14 @@ class NeighbourGraph {
           oneWay[i * k + c] = !found;
         }
     });
+    return oneWay;
+  }
+
+  /// FromKnn with the table's OneWayArcs(knn, k) found before.
+  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, std::vector<bool> oneWay,
+                                Progress progress = Progress(nullptr)) {
+    knn.KeepColumns(k);
+    const size_t n = knn.size();
     // Rows get their one-way arcs from other rows: counted and placed with
     // atomic steps, in an order that varies with the threads, then each row is
     // sorted, so the graph does not.
@@ -106,7 +119,7 @@ class NeighbourGraph {
     });
     oneWay = std::vector<bool>();
     fill = std::vector<int>();
-    ParallelChunks(n, progress.Sub(50, 100), "Building the neighbour graph", [&](size_t b, size_t e) {
+    ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) std::sort(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1]);
     });
     return g;
@@ -169,7 +182,24 @@ class NeighbourGraph {
   /// order: near points have near numbers, so its reads stay local. About
   /// O(edges), one thread.
   int ComponentCount() const {
-    const size_t n = size();
+    return CountComponents(size(), [&](size_t i, auto&& edge) {
+      for (int e = offset[i]; e < offset[i + 1]; ++e)
+        if (adj[e] < int(i)) edge(adj[e]);  // each edge once
+    });
+  }
+  /// The same for the graph FromKnn(knn, k) would build, from the table: an
+  /// edge joins the same two points whichever of them has the other among its
+  /// k nearest. O(n k), one thread.
+  static int ComponentCount(const KnnTable<Scalar>& knn, int k) {
+    return CountComponents(knn.size(), [&](size_t i, auto&& edge) {
+      for (int c = 0; c < k; ++c) edge(knn.Row(i)[c]);
+    });
+  }
+
+ private:
+  // forEdges(i, edge) calls edge(j) for edges (i, j), each edge at least once.
+  template <class ForEdges>
+  static int CountComponents(size_t n, const ForEdges& forEdges) {
     std::vector<int> parent(n);
     std::iota(parent.begin(), parent.end(), 0);
     auto root = [&](int x) {
@@ -178,11 +208,10 @@ class NeighbourGraph {
     };
     int c = int(n);
     for (size_t i = 0; i < n; ++i)
-      for (int e = offset[i]; e < offset[i + 1]; ++e) {
-        if (adj[e] >= int(i)) continue;  // each edge once
-        const int a = root(int(i)), b = root(adj[e]);
+      forEdges(i, [&](int j) {
+        const int a = root(int(i)), b = root(j);
         if (a != b) parent[std::max(a, b)] = std::min(a, b), --c;
-      }
+      });
     return c;
   }
 };

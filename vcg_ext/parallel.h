@@ -3,6 +3,7 @@
 // Loops over independent rows on all OpenMP threads (one thread without OpenMP).
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <vector>
 #ifdef _OPENMP
 #include <omp.h>
@@ -67,6 +68,34 @@ void ParallelChunks(size_t n, Progress progress, const char* what, F&& f) {
     for (long long c = 0; c < chunks; ++c) f(b + size_t(c) * chunk, std::min(e, b + size_t(c + 1) * chunk));
     progress(e, n, what);
   }
+}
+
+/// Runs `main` on the calling thread while `single`, a pass that cannot use
+/// more than one thread, runs on another: the second core is not left idle.
+/// `main`'s parallel loops then get one thread, and only it may report
+/// progress. With one thread, `single` then `main`. An exception from either
+/// is rethrown once both have finished (`main`'s first).
+template <class Main, class Single>
+void Beside(Main&& main, Single&& single) {
+  std::exception_ptr error[2];
+  auto run = [&](int t) {
+    try {
+      if (t == 0) main(); else single();
+    } catch (...) {
+      error[t] = std::current_exception();
+    }
+  };
+  bool pair = false;  // the team may be smaller than asked for
+  if (ThreadCount() > 1) {
+#pragma omp parallel num_threads(2)
+    if (TeamSize() == 2) {
+      if (ThreadIndex() == 0) pair = true;
+      run(ThreadIndex());
+    }
+  }
+  if (!pair) run(1), run(0);
+  for (const std::exception_ptr& e : error)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace vcg_ext

@@ -92,12 +92,24 @@ class PointNormals {
 
   /// Consistent signs for the estimated normals of Estimate's result, from a
   /// table of at least OrientColumns columns (the same rows Estimate had, or
-  /// their first columns): O(n) on one thread.
+  /// their first columns): O(n), the walk on one thread.
   static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r) {
-    if (r.estimated == 0) return;
+    Orient(pos, knn, p, r, [] {});
+  }
+  /// The same, running `beside()` on another thread during the walk (Beside),
+  /// or alone when there is nothing to orient. `beside` may read `knn` and
+  /// `pos`, not `r`.
+  template <class F>
+  static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r,
+                     F&& beside) {
+    if (r.estimated == 0) return beside();
     for (auto& f : r.fittedOfKept) std::swap(r.normal[size_t(f.first)], f.second);
-    Orient(knn, OrientColumns(p), r.normal);
-    OrientOutward(pos, r.normal);
+    const int c = std::min(OrientColumns(p), knn.k);
+    const std::vector<uint8_t> level = ArcLevels(knn, c, r.normal);
+    Beside(beside, [&] {
+      Walk(knn, c, level, r.normal);
+      OrientOutward(pos, r.normal);
+    });
     for (const auto& f : r.fittedOfKept) r.normal[size_t(f.first)] = f.second;
     r.fittedOfKept = std::vector<std::pair<int, Normal>>();
   }
@@ -145,14 +157,12 @@ class PointNormals {
   // point that already has one queued at a lower level is never the one that
   // reaches it (that lower bucket empties first), so it is not queued: at 14M
   // points the queue held 17M arcs at once without this.
-  static void Orient(const KnnTable<Scalar>& knn, int c, std::vector<Normal>& normal) {
+  static constexpr int kLevels = 64;
+  static constexpr uint8_t kDropped = 255;
+  static std::vector<uint8_t> ArcLevels(const KnnTable<Scalar>& knn, int c, const std::vector<Normal>& normal) {
     const size_t n = normal.size();
-    c = std::min(c, knn.k);
-    if (c <= 0) return;
-    constexpr int kLevels = 64;
-    constexpr uint8_t kDropped = 255;
-    std::vector<uint8_t> arcLevel(n * size_t(c));
-    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+    std::vector<uint8_t> arcLevel(n * size_t(std::max(c, 0)));
+    ParallelChunks(c > 0 ? n : 0, Progress(nullptr), "", [&](size_t b, size_t e) {
       for (size_t s = b; s < e; ++s) {
         const int* row = knn.Row(s);
         for (int j = 0; j < c; ++j) {
@@ -161,6 +171,12 @@ class PointNormals {
         }
       }
     });
+    return arcLevel;
+  }
+  static void Walk(const KnnTable<Scalar>& knn, int c, const std::vector<uint8_t>& arcLevel,
+                   std::vector<Normal>& normal) {
+    const size_t n = normal.size();
+    if (c <= 0) return;
     std::vector<std::vector<std::pair<int, int>>> bucket(kLevels);  // (source, target), level 0 most parallel
     // Per point: the lowest level of an arc queued to it (kLevels: none), or kVisited.
     constexpr uint8_t kVisited = 254;

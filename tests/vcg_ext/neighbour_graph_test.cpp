@@ -58,6 +58,26 @@ TEST(NeighbourGraph, CountsDisconnectedParts) {
   EXPECT_EQ(Build(m, vcg_ext::Metric::Geodesic).components, 3);
 }
 
+// The domain counts the parts from the kNN table, before the graph exists:
+// the count must be the graph's, also where few neighbours leave many parts
+// joined only by one-way arcs.
+TEST(NeighbourGraph, ComponentsFromTheTableAreTheGraphs) {
+  test::TMesh m;
+  test::Plane(m, 20);
+  test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 500, 0.3f); }, test::P3(0, 5, 0));
+  test::AppendShifted(m, [](test::TMesh& b) { test::HeightField(b, 25, [](float x, float y) { return test::HalfBumpy(x, y); }); },
+                      test::P3(5, 0, 0));
+  const auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  const auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 10);
+  for (int k : {1, 2, 3, 10}) {
+    const auto g = vcg_ext::NeighbourGraph<float>::FromKnn(vcg_ext::KnnTable<float>(knn), k);
+    const int parts = g.ComponentCount();
+    EXPECT_EQ(vcg_ext::NeighbourGraph<float>::ComponentCount(knn, k), parts) << "k = " << k;
+    if (k == 1) EXPECT_GT(parts, 3);  // one neighbour each cannot join a whole plane
+    if (k == 10) EXPECT_EQ(parts, 3);
+  }
+}
+
 TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });

@@ -2,6 +2,7 @@
 // seed: every parallel pass computes each row from that row's inputs alone.
 #include <gtest/gtest.h>
 #include <cstring>
+#include <stdexcept>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -106,5 +107,27 @@ TEST(Threads, PoissonDisksAreIdenticalOnOneAndTwoThreadsForEverySearch) {
     EXPECT_GT(a.vertIndex.size(), c.radius < 0.1 ? 500u : 3u);
     EXPECT_EQ(a.vertIndex, b.vertIndex);
     EXPECT_EQ(a.regionOf, b.regionOf);
+  }
+}
+
+// Beside runs both passes whatever the threads, `main` on the calling thread,
+// and rethrows an exception from either only once the other has finished.
+TEST(Threads, BesideRunsBothAndRethrowsAfterBoth) {
+  for (int threads : {1, 2}) {
+    OnThreads(threads, [&] {
+      int mainThread = -1;
+      bool mainDone = false, singleDone = false;
+      vcg_ext::Beside([&] { mainThread = vcg_ext::ThreadIndex(), mainDone = true; }, [&] { singleDone = true; });
+      EXPECT_TRUE(mainDone && singleDone) << threads << " threads";
+      EXPECT_EQ(mainThread, 0);
+      mainDone = singleDone = false;
+      EXPECT_THROW(vcg_ext::Beside([&] { mainDone = true; }, [&] { throw std::runtime_error("single"); }),
+                   std::runtime_error);
+      EXPECT_TRUE(mainDone);
+      EXPECT_THROW(vcg_ext::Beside([&] { throw std::runtime_error("main"); }, [&] { singleDone = true; }),
+                   std::runtime_error);
+      EXPECT_TRUE(singleDone);
+      return 0;
+    });
   }
 }
