@@ -169,7 +169,7 @@ class BoundedDijkstra {
     }
     std::vector<int> key_;        ///< point, or -1 for an empty slot
     std::vector<Scalar> val_;
-    std::vector<uint32_t> used_;  ///< the count taken, to clear them
+    std::vector<uint32_t> used_;  ///< the slots taken, to clear them
     uint32_t mask_ = 0;
     int shift_ = 32;
   };
