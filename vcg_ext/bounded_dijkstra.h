@@ -121,9 +121,9 @@ class BoundedDijkstra {
   const float* w_ = nullptr;  ///< the weights, or null: len_ computes them
   EdgeLength<Scalar> len_;
   // The distances one Visit has set, by point: an open-addressing table with
-  // room for twice as many, so a disk's stays in the first-level cache where a
-  // per-point array would be read at a miss per point reached (and cost 8 bytes
-  // a point for each thread's search).
+  // room for twice as many, so a search holds memory the size of its disk, not
+  // a per-point array (8 bytes a point in double for each thread's search, to
+  // be filled before the first one).
   class NearTable {
    public:
     NearTable() { Rehash(256); }
