@@ -19,6 +19,7 @@ namespace vcg_ext {
 template <class Scalar>
 class BoundedDijkstra {
  public:
+  typedef vcg::Point3<Scalar> Coord;
   /// On the graph's stored weights (a point graph stores none: use Lengths()).
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g) : BoundedDijkstra(g, g.w) {}
   /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for adj[e].
@@ -45,8 +46,17 @@ class BoundedDijkstra {
       const int i = top.second;
       if (top.first != *near_.Find(i)) continue;  // stale: a shorter path came later
       f(i, top.first);
+      // No length is below the straight one (g_ij >= |p_i - p_j|): an edge
+      // longer in a straight line than the room left to r is skipped on its
+      // squared length alone, with no root, weight or table look-up (most edges
+      // of a small disk). The margin, a few roundings of Scalar at r, keeps the
+      // skip exact: such an edge's sum would land beyond r however it rounds.
+      const double eps = 8 * double(std::numeric_limits<Scalar>::epsilon()), room = double(r) - double(top.first);
+      const double bound = room * (1 + eps) + eps * double(r), room2 = bound * bound;
+      const Coord* pi = len_.pos ? &(*len_.pos)[size_t(i)] : nullptr;
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
         const int j = g_.adj[e];
+        if (pi && double(vcg::SquaredDistance(*pi, (*len_.pos)[size_t(j)])) > room2) continue;
         Scalar* dj = near_.Find(j);
         if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, e);

@@ -78,24 +78,29 @@ TEST(NeighbourGraph, ComponentsFromTheTableAreTheGraphs) {
   }
 }
 
+// Radii at a point's exact distance too: the disk's edges skipped by their
+// straight length must not lose a point lying on its rim.
 TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
-  const Domain d = Build(m, vcg_ext::Metric::WeightedEq3);
-  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
-  for (int src : {0, 333, 801, 1599}) {
-    const std::vector<float> full = search.Distances(src);
-    for (float r : {0.02f, 0.1f, 0.3f}) {
-      std::vector<char> seen(full.size(), 0);
-      float last = 0;
-      search.Visit(src, r, [&](int i, float di) {
-        EXPECT_FALSE(seen[i]) << "visited twice";
-        seen[i] = 1;
-        EXPECT_FLOAT_EQ(di, full[i]);
-        EXPECT_GE(di, last);  // increasing distance
-        last = di;
-      });
-      for (size_t i = 0; i < full.size(); ++i) EXPECT_EQ(bool(seen[i]), full[i] <= r) << "point " << i;
+  for (vcg_ext::Metric metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity}) {
+    const Domain d = Build(m, metric);
+    vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
+    for (int src : {0, 333, 801, 1599}) {
+      const std::vector<float> full = search.Distances(src);
+      auto at = [&](int step) { return full[size_t(src + step) % full.size()]; };
+      for (float r : {0.02f, 0.1f, 0.3f, at(1), at(41), at(83)}) {
+        std::vector<char> seen(full.size(), 0);
+        float last = 0;
+        search.Visit(src, r, [&](int i, float di) {
+          EXPECT_FALSE(seen[i]) << "visited twice";
+          seen[i] = 1;
+          EXPECT_FLOAT_EQ(di, full[i]);
+          EXPECT_GE(di, last);  // increasing distance
+          last = di;
+        });
+        for (size_t i = 0; i < full.size(); ++i) EXPECT_EQ(bool(seen[i]), full[i] <= r) << "point " << i;
+      }
     }
   }
 }

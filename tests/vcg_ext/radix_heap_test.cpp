@@ -9,8 +9,10 @@
 namespace {
 // Pops against a binary min-heap of (distance, point) under a Dijkstra-like
 // load: every push at or above the last pop, with many equal distances.
+// With `clearEvery`, the heap is emptied and cleared that often: many small
+// searches, in its binary-heap mode and across the change to buckets.
 template <class Scalar>
-void MatchesTheBinaryHeap(uint64_t seed) {
+void MatchesTheBinaryHeap(uint64_t seed, int clearEvery = 0) {
   std::mt19937_64 rng(seed);
   vcg_ext::RadixHeap<Scalar> radix;
   std::vector<std::pair<Scalar, int>> binary;
@@ -18,6 +20,17 @@ void MatchesTheBinaryHeap(uint64_t seed) {
   Scalar last = 0;
   size_t popped = 0;
   for (int step = 0; step < 200000; ++step) {
+    if (clearEvery && step % clearEvery == 0) {
+      while (!binary.empty()) {
+        std::pop_heap(binary.begin(), binary.end(), greater);
+        ASSERT_EQ(radix.pop(), binary.back()) << "draining at step " << step;
+        binary.pop_back();
+      }
+      ASSERT_TRUE(radix.empty());
+      radix.clear();
+      last = 0;
+      clearEvery = 20 + int(rng() % 200);  // runs below and above the binary-heap mode's size
+    }
     if (binary.empty() || rng() % 3 != 0) {
       // Steps from the last pop: zero (ties), tiny, or large; points drawn with repeats.
       const int kind = int(rng() % 4);
@@ -46,3 +59,7 @@ void MatchesTheBinaryHeap(uint64_t seed) {
 
 TEST(RadixHeap, PopsInTheBinaryHeapsOrderInDouble) { MatchesTheBinaryHeap<double>(1); }
 TEST(RadixHeap, PopsInTheBinaryHeapsOrderInFloat) { MatchesTheBinaryHeap<float>(2); }
+TEST(RadixHeap, PopsInTheBinaryHeapsOrderOverManySmallRuns) {
+  MatchesTheBinaryHeap<double>(3, 50);
+  MatchesTheBinaryHeap<float>(4, 50);
+}
