@@ -197,8 +197,8 @@ class GeodesicDomain {
   /// Calls f(search) with the distance search of this domain's metric and
   /// geodesics: BoundedDijkstra, FastMarching or EuclideanBall, each with
   /// Visit(src, r, f) and Lower(src, dist, f). `reachesAll`: the searches
-  /// will reach every point many times (farthest points, Voronoi regions, the
-  /// count search's runs), so the point graph's weights are stored while they
+  /// will reach every point many times (farthest points, Voronoi regions),
+  /// so the point graph's weights are stored while they
   /// run (4 bytes an edge) rather than computed at every step; the same
   /// distances either way.
   template <class F>

@@ -96,8 +96,10 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = CoreDiagonal(d.points.pos) / std::sqrt(double(p.sampleNum));
     PoissonTargetCount::Result r;
-    // Several Poisson runs and a thinning reach every point many times: the weights are kept meanwhile.
-    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); }, true);
+    // Its runs compute each edge's length as they go, as one run does: kept
+    // weights (4 bytes an arc) measured no faster now that disks skip edges by
+    // their straight length, and held 0.6 GB more at 14M points.
+    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
     return r;
   }
 
