@@ -76,11 +76,7 @@ class RadixHeap {
     spill_.assign(bucket_[0].begin(), bucket_[0].end());  // both buffers are kept for the next searches
     small_ = false;
     bucket_[0].clear();
-    for (const Entry& e : spill_) {
-      const uint64_t k = Bits(e.first);
-      bucket_[k == last_ ? 0 : Index(k)].push_back(e);
-    }
-    std::make_heap(bucket_[0].begin(), bucket_[0].end(), std::greater<Entry>());
+    Scatter(spill_);
   }
   // Bucket 0 is empty: the first non-empty bucket's least distance becomes the
   // last popped, and its entries move to lower buckets (those at that distance to 0).
@@ -91,11 +87,15 @@ class RadixHeap {
     uint64_t least = Bits(from[0].first);
     for (const Entry& e : from) least = std::min(least, Bits(e.first));
     last_ = least;
+    Scatter(from);  // into buckets below b only
+    from.clear();
+  }
+  // Adds `from`'s entries to their buckets under last_; bucket 0 is a heap again.
+  void Scatter(const std::vector<Entry>& from) {
     for (const Entry& e : from) {
       const uint64_t k = Bits(e.first);
       bucket_[k == last_ ? 0 : Index(k)].push_back(e);
     }
-    from.clear();
     std::make_heap(bucket_[0].begin(), bucket_[0].end(), std::greater<Entry>());
   }
 
