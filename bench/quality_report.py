@@ -477,7 +477,7 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_model
         + (" (MeshLab's `get_hausdorff_distance` from the input vertices to the surface; runs cached "
            "before the plugin had the normal-projection deviation filter)" if measure == "Hausdorff distance"
            else " (`get_normal_projection_deviation`: along each input point's normal line)")
-        + ". The paper's measure (Hou et al. 2015, Table 1).",
+        + ".",
         f"- plane-fit error (no reconstruction): the distance from each input point to the "
         f"least-squares plane through its {config.PLANE_NEIGHBOURS} nearest LOD points.",
         "",

@@ -7,9 +7,8 @@
 namespace geodesic_lod {
 
 inline QString PaperReference() {
-  return "<br><br>Method: W. Hou, Z. Xu, N. Qin, D. Xiong, M. Ding, "
-         "<i>Surface Reconstruction through Poisson Disk Sampling</i>, PLoS ONE 10(4): e0120151, 2015, "
-         "<a href=\"https://doi.org/10.1371/journal.pone.0120151\">doi:10.1371/journal.pone.0120151</a>.";
+  return "<br><br>Method: W. Hou, M. Ding, X. Lai, "
+         "<i>Uniform Sampling in Geodesic Metric for LOD Generation</i>, Journal of Software 7(5): 1066, 2012.";
 }
 
 // Each description says in two or three sentences what the filter does and
@@ -64,7 +63,7 @@ inline QString PyramidInfo() {
 inline QString NormalProjectionName() { return "Normal projection deviation"; }
 inline QString NormalProjectionPythonName() { return kNormalProjectionPythonName; }
 inline QString NormalProjectionInfo() {
-  return "The error measure of the paper's Table 1: for each vertex p_i of the reference layer with normal n_i, "
+  return "An error measure between two layers: for each vertex p_i of the reference layer with normal n_i, "
          "the distance from p_i to where the line through p_i along n_i (both ways) first meets the surface "
          "layer's triangles. Vertices without a valid normal are skipped; lines that meet nothing within the "
          "maximum distance count as misses. Nothing is changed. Returns <i>point_num</i>, <i>hit_num</i>, "

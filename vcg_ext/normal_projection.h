@@ -1,6 +1,6 @@
 #ifndef VCG_EXT_NORMAL_PROJECTION_H
 #define VCG_EXT_NORMAL_PROJECTION_H
-// The paper's error measure (Table 1): for each reference point p_i with
+// An error measure between a point set and a surface: for each point p_i with
 // normal n_i, the distance from p_i to where the line <p_i, n_i> meets a
 // surface. vcglib's uniform grid and its ray walk find the crossings.
 #include <algorithm>
