@@ -94,7 +94,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="the seed of the sampling order (default: %(default)s)")
     p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "
                    "is the same on any number")
+    p.add_argument("--overwrite", action="store_true", help="replace output files that exist (never an input)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary")
+    p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     dask = p.add_argument_group("on a Dask cluster: the same samples as on one machine at the same radius, "
                                 "written as tiles with an index.json")
     dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
@@ -107,6 +109,14 @@ def parser() -> argparse.ArgumentParser:
     dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
                       "(default: %(default)s, a share of this machine's)")
     return p
+
+
+def _version() -> str:
+    from importlib import metadata
+    try:
+        return metadata.version("geodesic-lod")
+    except metadata.PackageNotFoundError:  # run from a build tree
+        return "(not installed)"
 
 
 def _on_cluster(args) -> bool:
@@ -198,6 +208,10 @@ def _request(args) -> dict:
         raise ValueError("--tolerance goes with --count or --rate (Poisson-disk), or with --levels on a cluster")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
         raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
+    arrays._real(args.adaptivity, "--adaptivity", positive=False)
+    if args.threads is not None:
+        arrays._integer(args.threads, "--threads", 1)
+    arrays._integer(args.seed, "--seed", 0, 2 ** 64 - 1)
     if args.levels is not None:
         return {"levels": _level_items(args.levels)}
     if args.rate is not None:
@@ -208,47 +222,78 @@ def _request(args) -> dict:
     return {"radius": args.radius}
 
 
+def _outputs(args, request: dict) -> list:
+    """The files a single-machine run writes: -o, or one per level."""
+    out = pathlib.Path(args.output)
+    if "levels" in request:
+        return [_level_path(out, item) for item in request["levels"]]
+    return [out]
+
+
 def _run(args, request: dict, source: point_files.PointFile, progress):
+    """The LOD's indices per output file: in the input's order, but for --fps (farthest-point order)."""
     common = dict(faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
-    out = pathlib.Path(args.output)
     n = source.points.shape[0]
     if "levels" in request:
         lod = arrays.lod_pyramid(source.points, source.normals, levels=request["levels"], **common)
-        return lod, [(_level_path(out, item), level) for item, level in zip(request["levels"], lod.levels)]
+        return [np.sort(level) for level in lod.levels]
     if "radius" in request:
-        return arrays.poisson_lod(source.points, source.normals, radius=_radius(request["radius"], source.points),
-                                  **common), None
+        return [np.sort(arrays.poisson_lod(source.points, source.normals,
+                                           radius=_radius(request["radius"], source.points), **common).indices)]
     count = request.get("count") or max(1, int(arrays._core.percent_of(request["rate"], n)))
     if count > n:
         raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
     if args.fps:
-        return arrays.fps_lod(source.points, source.normals, count=count, **common), None
-    return arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
-                              **common), None
+        return [arrays.fps_lod(source.points, source.normals, count=count, **common).indices]
+    return [np.sort(arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
+                                       **common).indices)]
+
+
+def _needed_points() -> int:
+    """Points an input must hold: more than the neighbours its normals and geodesics are computed from."""
+    return max(arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors) + 1
+
+
+def _stop_on_sigterm():
+    """SIGTERM stops a run as Ctrl-C does: files being written are removed."""
+    import signal
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+    try:
+        signal.signal(signal.SIGTERM, stop)
+    except ValueError:  # not the main thread (main() called from a thread)
+        pass
 
 
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
+    _stop_on_sigterm()
     bar = None
     try:
         start = time.perf_counter()
         request = _request(args)
         if _on_cluster(args):
             return _run_on_cluster(args, request)
+        paths = _outputs(args, request)
+        point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
         source = point_files.read(args.input[0])
-        point_files.check_output(source, args.output)
+        n = source.points.shape[0]
+        if n < _needed_points():
+            raise point_files.PointFileError(source.path, f"holds {n} points: at least {_needed_points()} are "
+                                             "needed (the neighbours each normal and the geodesics are built from)")
+        point_files.check_writable(source, paths)
         bar = _Bar(args.quiet, "sampling")
         try:
-            lod, outputs = _run(args, request, source, bar if bar.bar is not None else None)
+            chosen = _run(args, request, source, bar if bar.bar is not None else None)
         except ValueError as e:  # the input's data or a value that depends on it
             raise point_files.PointFileError(source.path, str(e)) from None
         bar.close()
-        outputs = outputs or [(pathlib.Path(args.output), lod.indices)]
+        outputs = list(zip(paths, chosen))
         point_files.write_all(source, outputs)
         if not args.quiet:
-            n = source.points.shape[0]
             for path, indices in outputs:
                 print(f"{PROG}: {path}: {len(indices):,} of {n:,} points", file=sys.stderr)
             print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
@@ -263,8 +308,7 @@ def main(argv=None) -> int:
     except MemoryError as e:
         _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
     except OSError as e:  # writing: a full disk, a folder without permission
-        print(f"{PROG}: error: {e.filename or args.output}: {e.strerror or e}", file=sys.stderr)
-        return 1
+        _fail(f"{e.filename or args.output}: {e.strerror or e}")
 
 
 if __name__ == "__main__":

@@ -8,7 +8,6 @@ the name asked for.
 """
 from __future__ import annotations
 
-import copy
 import os
 import pathlib
 from dataclasses import dataclass
@@ -16,20 +15,12 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
+from . import las_files
+from .errors import PointFileError
+
 FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
 # The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table).
 WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".npy",)}
-
-
-class PointFileError(ValueError):
-    """A point file that cannot be read or written; the message names the file."""
-
-    def __init__(self, path, problem: str):
-        super().__init__(f"{path}: {problem}")
-        self.path, self.problem = path, problem
-
-    def __reduce__(self):  # raised in a Dask worker, re-raised where the job was started
-        return PointFileError, (self.path, self.problem)
 
 
 @dataclass
@@ -51,18 +42,64 @@ def format_of(path, role: str = "input") -> str:
     return FORMATS[ext]
 
 
-def check_output(source: PointFile, path) -> None:
-    """Refuses, before any work, an output that could not be written or would replace the input."""
-    out = pathlib.Path(path)
-    format_of(out, "output")
-    if out.suffix.lower() not in WRITABLE[source.kind]:
-        *first, last = WRITABLE[source.kind]
-        raise PointFileError(out, f"a {source.kind.upper()} input can be written as "
-                             f"{', '.join(first)} or {last}")
-    if not out.parent.resolve().is_dir():
-        raise PointFileError(out, f"the folder {out.parent} does not exist")
-    if out.exists() and out.resolve() == source.path.resolve():
-        raise PointFileError(out, "is the input: choose another output name (the input is never modified)")
+def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) -> None:
+    """Refuses, before any input is read, outputs that could not be written or would replace a file:
+    an unknown or unfitting format, a missing or read-only folder, a name too long, a folder, a name
+    given twice, an input (also through a link), or an existing file unless `overwrite`."""
+    kinds = {format_of(p) for p in inputs}
+    seen = set()
+    for path in outputs:
+        out = pathlib.Path(path)
+        format_of(out, "output")
+        for kind in kinds:
+            if out.suffix.lower() not in WRITABLE[kind]:
+                *first, last = WRITABLE[kind]
+                raise PointFileError(out, f"a {kind.upper()} input can be written as {', '.join(first)} or {last}")
+        folder = out.parent
+        if not folder.is_dir():
+            raise PointFileError(out, f"the folder {folder} does not exist")
+        if not os.access(folder, os.W_OK | os.X_OK):
+            raise PointFileError(out, f"the folder {folder} is not writable")
+        if len(os.fsencode(out.name)) > _name_max(folder):
+            raise PointFileError(out, f"the name is longer than its folder allows ({_name_max(folder)} bytes)")
+        if out.is_dir():
+            raise PointFileError(out, "is a folder: give a file name")
+        if any(_same_file(out, p) for p in inputs):
+            raise PointFileError(out, "is an input: choose another output name (the input is never modified)")
+        key = os.path.abspath(out)
+        if key in seen:
+            raise PointFileError(out, "would be written twice: give each output its own name")
+        seen.add(key)
+        if (out.exists() or out.is_symlink()) and not overwrite:
+            raise PointFileError(out, "exists: choose another name, or allow replacing it (--overwrite)")
+
+
+def _name_max(folder) -> int:
+    try:
+        return os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        return 255
+
+
+def _same_file(a, b) -> bool:
+    """Whether a and b are one file: the same path, a link to it or a hard link."""
+    a, b = pathlib.Path(a), pathlib.Path(b)
+    if a.exists() and b.exists():
+        return os.path.samefile(a, b)
+    return a.resolve() == b.resolve()
+
+
+def check_writable(source: "PointFile", outputs: Sequence) -> None:
+    """Writes one record of the input in each output's format to memory, before the computation, so a
+    file the writer cannot produce (such as an unsupported header) is refused at once."""
+    import io
+    for ext in sorted({pathlib.Path(p).suffix.lower() for p in outputs}):
+        try:
+            _write(source, np.zeros(min(1, len(source.points)), dtype=np.int64), ext, io.BytesIO())
+        except PointFileError:
+            raise
+        except Exception as e:
+            raise PointFileError(source.path, f"cannot be written as {ext}: {e}") from None
 
 
 def read(path) -> PointFile:
@@ -129,11 +166,8 @@ def _triangles(face, n, path):
 
 
 def _read_las(path):
-    import laspy
-    las = laspy.read(str(path))
-    points = np.column_stack([np.asarray(las.x, dtype=np.float64), np.asarray(las.y, dtype=np.float64),
-                              np.asarray(las.z, dtype=np.float64)])
-    return PointFile(path, "las", points, None, None, las.points, las)
+    source, records, points = las_files.read(path)
+    return PointFile(path, "las", points, None, None, records, source)
 
 
 def _read_npy(path):
@@ -147,8 +181,20 @@ def _read_npy(path):
                      np.asarray(a[:, 3:], dtype=np.float64) if a.shape[1] == 6 else None, None, a, None)
 
 
+PARTIAL_PREFIX, PARTIAL_SUFFIX = ".geodesic-lod-", ".partial"  # files being written
+
+
 def _partial(path: pathlib.Path) -> pathlib.Path:
-    return path.with_name(f".{path.name}.partial-{os.getpid()}")
+    """A new, empty temporary file beside path: a short name whatever path's length, and the
+    permissions any new file gets."""
+    import secrets
+    while True:
+        tmp = path.with_name(f"{PARTIAL_PREFIX}{secrets.token_hex(6)}{PARTIAL_SUFFIX}")
+        try:
+            with open(tmp, "xb"):
+                return tmp
+        except FileExistsError:
+            continue
 
 
 def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
@@ -162,7 +208,7 @@ def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
             path = pathlib.Path(path)
             tmp = _partial(path)
             done.append((tmp, path))
-            with open(tmp, "wb") as f:
+            with open(tmp, "r+b") as f:
                 _write(source, np.asarray(indices, dtype=np.int64), path.suffix.lower(), f)
         for tmp, path in done:
             os.replace(tmp, path)
@@ -183,7 +229,4 @@ def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
         plyfile.PlyData([vertex], text=ply.text, byte_order=ply.byte_order, comments=ply.comments,
                         obj_info=ply.obj_info).write(f)
     else:
-        import laspy
-        header = copy.deepcopy(source.source.header)
-        out = laspy.LasData(header, points=source.rows[idx])
-        out.write(f, do_compress=ext == ".laz")
+        las_files.write(f, source.source, source.rows.array[idx], compress=ext == ".laz")

@@ -42,25 +42,29 @@ def ply_mesh(path, n=30, quads=False):
 WKT = b'PROJCS["ETRS89 / UTM zone 32N",GEOGCS["ETRS89"],UNIT["metre",1]]\x00'
 
 
-def las_cloud(path, n=3000):
-    """A LAS 1.4 cloud (point format 7) 5,000 km from the origin with millimetre scales, colours, GPS
-    times, an extra dimension, a WKT CRS record and an EVLR."""
+def las_cloud(path, n=3000, version="1.4", point_format=7):
+    """A LAS cloud (by default 1.4, point format 7) 5,000 km from the origin with millimetre scales, GPS
+    times, colours where the format has them, and in LAS 1.4 an extra dimension, a WKT CRS record and an
+    EVLR."""
     p = bumpy_sphere(n)
-    header = laspy.LasHeader(point_format=7, version="1.4")
+    header = laspy.LasHeader(point_format=point_format, version=version)
     header.scales = [0.001] * 3
     header.offsets = [500000.0, 5000000.0, 100.0]
-    header.add_extra_dim(laspy.ExtraBytesParams(name="reflectance", type=np.float32))
-    header.vlrs.append(laspy.VLR(user_id="LASF_Projection", record_id=2112, description="WKT", record_data=WKT))
-    header.global_encoding.wkt = True
+    if version == "1.4":
+        header.add_extra_dim(laspy.ExtraBytesParams(name="reflectance", type=np.float32))
+        header.vlrs.append(laspy.VLR(user_id="LASF_Projection", record_id=2112, description="WKT", record_data=WKT))
+        header.global_encoding.wkt = True
     las = laspy.LasData(header)
     las.x, las.y, las.z = 500000 + 10 * p[:, 0], 5000000 + 10 * p[:, 1], 100 + 10 * p[:, 2]
-    las.red, las.green, las.blue = np.arange(n) * 7 % 65536, np.arange(n) * 13 % 65536, np.full(n, 300)
+    if "red" in header.point_format.dimension_names:
+        las.red, las.green, las.blue = np.arange(n) * 7 % 65536, np.arange(n) * 13 % 65536, np.full(n, 300)
     las.gps_time = np.linspace(1e8, 1e8 + 60, n)
     las.classification = np.arange(n) % 7
     las.intensity = np.arange(n) % 4000
-    las.reflectance = np.linspace(-1, 1, n).astype(np.float32)
-    las.evlrs = laspy.vlrs.vlrlist.VLRList([laspy.VLR(user_id="geodesic-lod", record_id=7, description="test",
-                                         record_data=b"evlr data")])
+    if version == "1.4":
+        las.reflectance = np.linspace(-1, 1, n).astype(np.float32)
+        las.evlrs = laspy.vlrs.vlrlist.VLRList([laspy.VLR(user_id="geodesic-lod", record_id=7, description="test",
+                                                          record_data=b"evlr data")])
     las.write(str(path))
     return path
 

@@ -114,11 +114,11 @@ def test_unreadable_files_are_named(tmp_path, make, problem):
 
 
 def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
-    src = pf.read(las_cloud(tmp_path / "in.laz"))
+    src = las_cloud(tmp_path / "in.laz")
     for out, problem in [(tmp_path / "out.ply", "can be written as .las, .laz or .npy"),
                          (tmp_path / "out.txt", "unknown output format"),
                          (tmp_path / "no" / "out.laz", "does not exist"),
-                         (tmp_path / "in.laz", "is the input")]:
+                         (tmp_path / "in.laz", "is an input")]:
         with pytest.raises(pf.PointFileError, match=problem):
-            pf.check_output(src, out)
+            pf.check_outputs([src], [out])
     assert sorted(os.listdir(tmp_path)) == ["in.laz"]

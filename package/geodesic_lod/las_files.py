@@ -1,0 +1,171 @@
+"""LAS and LAZ files in and out (laspy with lazrs), for one machine and for the cluster's tiles alike.
+
+Reading checks what a real file can get wrong before any work is done on it: a version laspy cannot
+write back, a header announcing more records than the file holds (LAS: from the file's size at once;
+LAZ: once decoded), a point count beyond 63-bit ids. COPC files are read as the LAZ files they are.
+
+Writing keeps the input's header fields, scales and offsets, and every VLR and EVLR as the input's own
+bytes (laspy would parse the GeoTIFF keys and extra-bytes records and write them anew), except the
+records that describe the input's own layout: LASzip's (the writer makes its own) and COPC's (a LOD is
+no octree).
+"""
+from __future__ import annotations
+
+import copy
+import os
+import struct
+from dataclasses import dataclass
+from typing import BinaryIO, Iterator
+
+import numpy as np
+
+from .errors import PointFileError
+
+CHUNK = 1_000_000  # records decoded at a time
+MAX_POINTS = 2 ** 63 - 1  # ids are 63-bit
+# The VLRs a LOD does not inherit: the compressor's and the COPC octree's own.
+LAYOUT_USER_IDS = ("laszip encoded", "copc")
+WRITABLE_VERSIONS = ("1.1", "1.2", "1.3", "1.4")
+
+
+@dataclass
+class LasSource:
+    """What a LOD of a LAS/LAZ file is written with: its header and its own VLR and EVLR bytes."""
+    header: object   #: laspy.LasHeader
+    vlrs: list       #: laspy.VLR, the input's bytes, in file order
+    evlrs: list      #: likewise, the extended records
+
+    def crs(self) -> bytes:
+        """The bytes of the coordinate reference system's records (GeoTIFF keys and WKT)."""
+        return b"".join(v.record_data for v in self.vlrs + self.evlrs if v.user_id == "LASF_Projection")
+
+
+def _fail(path, problem: str):
+    raise PointFileError(path, problem) from None
+
+
+def _laspy_error(e: Exception) -> bool:
+    return type(e).__module__.split(".")[0] in ("laspy", "lazrs")
+
+
+def open_source(path) -> LasSource:
+    """The header and own records of a LAS/LAZ file, checked; refuses what cannot be read or written
+    back, naming the file and the problem."""
+    import laspy
+    try:
+        with laspy.open(str(path)) as f:
+            header = f.header
+            if f.header.number_of_evlrs and f.evlrs is None:
+                f.read_evlrs()
+    except (OSError, ValueError, EOFError, OverflowError, struct.error) as e:
+        _fail(path, f"cannot be read as LAS: {e}")
+    except Exception as e:
+        if _laspy_error(e):
+            _fail(path, f"cannot be read as LAS: {e}")
+        raise
+    version = f"{header.version.major}.{header.version.minor}"
+    if version not in WRITABLE_VERSIONS:
+        _fail(path, f"is LAS {version}, which cannot be written back: convert it to LAS 1.2 or later first "
+              "(pdal translate or las2las)")
+    count = int(header.point_count)
+    if count > MAX_POINTS:
+        _fail(path, f"its header announces {count} points, beyond 63-bit ids: the header is damaged")
+    if not header.are_points_compressed:
+        size = os.path.getsize(path)
+        end = header.start_of_first_evlr if getattr(header, "start_of_first_evlr", 0) else size
+        room = max(0, min(end, size) - header.offset_to_point_data) // header.point_format.size
+        if count > room:
+            _fail(path, f"its header announces {count} points but the file holds {room}: it is cut short or its "
+                  "header is wrong")
+    vlrs, evlrs = _own_records(path, header)
+    return LasSource(header, vlrs, evlrs)
+
+
+def _own_records(path, header) -> tuple:
+    """The file's VLRs and EVLRs as raw laspy.VLRs of their own bytes, without the layout records."""
+    import laspy
+    with open(path, "rb") as f:
+        def read_list(start, n, extended):
+            out = []
+            f.seek(start)
+            for _ in range(n):
+                head = f.read(60 if extended else 54)
+                if len(head) < (60 if extended else 54):
+                    _fail(path, "cannot be read as LAS: it ends inside its variable-length records")
+                user_id = head[2:18].split(b"\0", 1)[0].decode("ascii", "replace")
+                record_id = int.from_bytes(head[18:20], "little")
+                length = int.from_bytes(head[20:28] if extended else head[20:22], "little")
+                description = head[28:60] if extended else head[22:54]
+                data = f.read(length)
+                if len(data) < length:
+                    _fail(path, "cannot be read as LAS: it ends inside its variable-length records")
+                if user_id not in LAYOUT_USER_IDS:
+                    out.append(laspy.VLR(user_id, record_id, description.split(b"\0", 1)[0].decode("ascii", "replace"),
+                                         data))
+            return out
+        f.seek(94)
+        header_size, _, n_vlrs = struct.unpack("<HII", f.read(10))
+        vlrs = read_list(header_size, n_vlrs, False)
+        evlrs = []
+        if header.version.minor >= 4 and header.number_of_evlrs:
+            evlrs = read_list(header.start_of_first_evlr, header.number_of_evlrs, True)
+    return vlrs, evlrs
+
+
+def chunks(path, size: int = CHUNK) -> Iterator[tuple]:
+    """(first row, records) of a LAS/LAZ file, `size` records at a time; a file that ends before the
+    records its header announces, or does not decode, is named."""
+    import laspy
+    try:
+        with laspy.open(str(path)) as f:
+            start, count = 0, int(f.header.point_count)
+            while start < count:
+                chunk = f.read_points(min(size, count - start))
+                if len(chunk) == 0:
+                    break
+                yield start, chunk
+                start += len(chunk)
+    except PointFileError:
+        raise
+    except (OSError, ValueError, EOFError, OverflowError) as e:
+        _fail(path, f"cannot be read as LAS: {e}")
+    except Exception as e:
+        if _laspy_error(e):
+            _fail(path, f"cannot be read as LAS: {e}")
+        raise
+    if start != count:
+        _fail(path, f"holds {start} of the {count} points its header announces: it is cut short or its header "
+              "is wrong")
+
+
+def read(path) -> tuple:
+    """(LasSource, every record as a laspy.PackedPointRecord, xyz as (n, 3) float64)."""
+    import laspy
+    source = open_source(path)
+    parts = [c.array for _, c in chunks(path)]
+    array = np.concatenate(parts) if parts else np.zeros(0, source.header.point_format.dtype())
+    records = laspy.PackedPointRecord(array, source.header.point_format)
+    return source, records, xyz(records, source.header)
+
+
+def xyz(records, header) -> np.ndarray:
+    """Scaled and offset coordinates of records, (n, 3) float64."""
+    return np.column_stack([records[c].astype(np.float64) * s + o
+                            for c, s, o in zip("XYZ", header.scales, header.offsets)])
+
+
+def write(f: BinaryIO, source: LasSource, array: np.ndarray, compress: bool) -> None:
+    """Writes records (a structured array of the source's point format) as a LAS or LAZ file with the
+    source's header and own records."""
+    import laspy
+    from laspy.vlrs.vlrlist import VLRList
+    header = copy.deepcopy(source.header)
+    # Not the vlrs setter: it would write the extra-bytes record anew from the point format.
+    header._vlrs = VLRList(copy.copy(source.vlrs))
+    evlrs = VLRList(copy.copy(source.evlrs))
+    if evlrs and header.version.minor < 4:  # cannot happen for a file read: EVLRs exist from 1.4
+        raise ValueError("EVLRs need LAS 1.4")
+    with laspy.LasWriter(f, header, do_compress=compress, closefd=False) as writer:
+        writer.write_points(laspy.PackedPointRecord(array, header.point_format))
+        if evlrs:
+            writer.write_evlrs(evlrs)

@@ -1,0 +1,96 @@
+"""The command on one machine never loses a user's file: no output, derived level name or link may be an
+input, an existing file is replaced only when asked, everything about the outputs is checked before the
+input is read, and SIGTERM, like Ctrl-C, leaves no partial file."""
+import os
+import signal
+import subprocess
+import threading
+
+import laspy
+import numpy as np
+import pytest
+
+import geodesic_lod as gl
+from geodesic_lod import point_files as pf
+from conftest import bumpy_sphere
+from point_file_inputs import las_cloud, ply_cloud
+from test_cli import COMMAND, digest, names, run
+
+
+def contents(folder):
+    return {p.name: (os.readlink(p) if p.is_symlink() else digest(p)) for p in folder.iterdir()}
+
+
+@pytest.mark.parametrize("name, levels", [("lod_50pct.laz", "50%,10%"), ("lod_2000.laz", "2000,400"),
+                                          ("lod_10pct.laz", "50%,10%")])
+def test_a_level_named_like_an_input_is_refused(tmp_path, name, levels):
+    las_cloud(tmp_path / name)
+    before = contents(tmp_path)
+    r = run(tmp_path / name, "-o", tmp_path / "lod.laz", "--levels", levels, "-q")
+    assert r.returncode == 2 and f"{name}: is an input" in r.stderr, r.stderr
+    assert contents(tmp_path) == before
+
+
+def test_an_output_linking_to_the_input_is_refused(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    (tmp_path / "soft.laz").symlink_to(src)
+    os.link(src, tmp_path / "hard.laz")
+    before = contents(tmp_path)
+    for out in ("soft.laz", "hard.laz"):
+        r = run(src, "-o", tmp_path / out, "--rate", "10%", "-q", "--overwrite")
+        assert r.returncode == 2 and "is an input" in r.stderr, r.stderr
+    assert contents(tmp_path) == before
+
+
+def test_an_existing_file_is_replaced_only_when_asked(tmp_path):
+    src = ply_cloud(tmp_path / "in.ply")
+    (tmp_path / "lod.ply").write_text("the user's own file")
+    before = contents(tmp_path)
+    r = run(src, "-o", tmp_path / "lod.ply", "--rate", "10%", "-q")
+    assert r.returncode == 2 and "lod.ply: exists" in r.stderr and "--overwrite" in r.stderr, r.stderr
+    assert contents(tmp_path) == before
+    assert run(src, "-o", tmp_path / "lod.ply", "--rate", "10%", "-q", "--overwrite").returncode == 0
+    assert len(pf.read(tmp_path / "lod.ply").points) == 300
+
+
+@pytest.mark.parametrize("output, problem", [("folder.ply", "is a folder"), ("x" * 300 + ".ply", "name is longer"),
+                                             ("lod.ply,lod.ply", "written twice")])
+def test_output_problems_are_found_before_reading(tmp_path, output, problem):
+    (tmp_path / "folder.ply").mkdir()
+    # An input that takes minutes to read would show a late check; an unreadable one shows an early one.
+    (tmp_path / "in.ply").write_bytes(b"not a PLY file")
+    args = ["--levels", "100,100"] if "," in output else ["--rate", "10%"]
+    r = run(tmp_path / "in.ply", "-o", tmp_path / output.split(",")[0], *args, "-q")
+    assert r.returncode == 2 and problem in r.stderr and "cannot be read" not in r.stderr, r.stderr
+
+
+def test_a_poisson_lod_keeps_the_inputs_order(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    assert run(src, "-o", tmp_path / "lod.laz", "--rate", "10%", "-q").returncode == 0
+    expected = np.sort(gl.poisson_lod(pf.read(src).points, rate=10).indices)
+    records = laspy.read(str(src)).points.array
+    assert laspy.read(str(tmp_path / "lod.laz")).points.array.tobytes() == records[expected].tobytes()
+
+
+def test_sigterm_stops_and_writes_nothing(tmp_path):
+    np.save(tmp_path / "big.npy", bumpy_sphere(1_500_000))
+    proc = subprocess.Popen(COMMAND + [str(tmp_path / "big.npy"), "-o", str(tmp_path / "lod.npy"), "--count",
+                                       "100000"], stderr=subprocess.PIPE, text=True)
+    seen, started = [], threading.Event()
+
+    def read():
+        while ch := proc.stderr.read(1):
+            seen.append(ch)
+            if "sampling" in "".join(seen[-40:]):
+                started.set()
+    threading.Thread(target=read, daemon=True).start()
+    assert started.wait(120), "".join(seen)
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(60) == 130
+    assert "geodesic-lod: stopped" in "".join(seen) and "Traceback" not in "".join(seen)
+    assert names(tmp_path) == ["big.npy"]
+
+
+def test_version():
+    r = run("--version")
+    assert r.returncode == 0 and r.stdout.startswith("geodesic-lod ")

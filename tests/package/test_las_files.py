@@ -1,0 +1,128 @@
+"""geodesic_lod.las_files on real files and on damaged ones: every file of ../shared/data/lidar/ (CRS as
+GeoTIFF keys and WKT, EVLRs, extra bytes, COPC) is sampled by the command with its records, VLRs and
+EVLRs kept byte for byte; a file that lies about its records or cannot be written back is refused, naming
+it, before any work."""
+import pathlib
+import struct
+
+import laspy
+import numpy as np
+import pytest
+
+import geodesic_lod as gl
+from common_inputs import SHARED_DATA
+from geodesic_lod import las_files
+from point_file_inputs import las_cloud
+from test_cli import run
+
+LIDAR = SHARED_DATA / "lidar"
+CORPUS = sorted(p.name for p in LIDAR.glob("*.la[sz]")) if LIDAR.is_dir() else []
+LAYOUT = ("laszip encoded", "copc")  # the records a LOD does not inherit
+
+
+def own_records(path):
+    """(user id, record id, description, data) of each VLR and EVLR, read from the bytes directly."""
+    b = pathlib.Path(path).read_bytes()
+    header_size, _, n_vlrs = struct.unpack_from("<HII", b, 94)
+    minor = b[25]
+    out, at = [], header_size
+    for _ in range(n_vlrs):
+        length = struct.unpack_from("<H", b, at + 20)[0]
+        out.append((b[at + 2:at + 18].rstrip(b"\0"), b[at + 18:at + 20], b[at + 22:at + 54].rstrip(b"\0"),
+                    b[at + 54:at + 54 + length]))
+        at += 54 + length
+    if minor >= 4:
+        at, n = struct.unpack_from("<QI", b, 235)
+        for _ in range(n):
+            length = struct.unpack_from("<Q", b, at + 20)[0]
+            out.append((b[at + 2:at + 18].rstrip(b"\0"), b[at + 18:at + 20], b[at + 28:at + 60].rstrip(b"\0"),
+                        b[at + 60:at + 60 + length]))
+            at += 60 + length
+    return [r for r in out if r[0].decode() not in LAYOUT]
+
+
+def corpus_file(name):
+    path = LIDAR / name
+    if not path.is_file():
+        pytest.skip(f"needs {path} (present in CI, not in a user's clone)")
+    return path
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+@pytest.mark.parametrize("ext", [".laz", ".las"])
+def test_every_shared_lidar_file_is_sampled_with_its_own_bytes(tmp_path, name, ext):
+    src = corpus_file(name)
+    out = tmp_path / f"lod{ext}"
+    r = run(src, "-o", out, "--rate", "10%", "-q")
+    assert r.returncode == 0, r.stderr
+    las = laspy.read(str(src))
+    points = np.column_stack([las.x, las.y, las.z])
+    expected = np.sort(gl.poisson_lod(points, rate=10).indices)
+    got = laspy.read(str(out))
+    assert got.points.array.tobytes() == las.points.array[expected].tobytes()
+    assert own_records(out) == own_records(src)
+    assert np.array_equal(got.header.scales, las.header.scales)
+    assert np.array_equal(got.header.offsets, las.header.offsets)
+    assert got.header.version == las.header.version and got.header.point_format.id == las.header.point_format.id
+
+
+def test_the_corpus_is_there_in_ci():
+    if not CORPUS:
+        pytest.skip(f"needs {LIDAR} (present in CI, not in a user's clone)")
+    assert any(n.endswith(".copc.laz") for n in CORPUS)
+
+
+def with_bytes(path, at, fmt, value):
+    b = bytearray(path.read_bytes())
+    struct.pack_into(fmt, b, at, value)
+    path.write_bytes(bytes(b))
+    return path
+
+
+def cut(path, records):
+    """The file cut after its first `records` point records."""
+    h = laspy.read(str(path)).header
+    path.write_bytes(path.read_bytes()[:h.offset_to_point_data + records * h.point_format.size])
+    return path
+
+
+def cut_bytes(path, fraction):
+    b = path.read_bytes()
+    path.write_bytes(b[:int(len(b) * fraction)])
+    return path
+
+
+def las_of(d, name="in.las", version="1.4", fmt=6):
+    return las_cloud(d / name, version=version, point_format=fmt)
+
+
+DAMAGED = [
+    ("a LAS cut at a record boundary",
+     lambda d: cut(las_of(d, version="1.2", fmt=3), 1000),
+     "header announces 3000 points but the file holds 1000"),
+    ("a header count beyond the records", lambda d: with_bytes(las_of(d, version="1.2", fmt=3), 107, "<I", 6000),
+     "header announces 6000 points but the file holds 3000"),
+    ("a 2^62 point count", lambda d: with_bytes(las_of(d), 247, "<Q", 2 ** 62),
+     "header announces 4611686018427387904 points"),
+    ("a 2^64-1 point count", lambda d: with_bytes(las_of(d), 247, "<Q", 2 ** 64 - 1), "beyond 63-bit ids"),
+    ("a LAZ cut short", lambda d: cut_bytes(las_cloud(d / "in.laz"), 0.6), "in.laz: "),
+    ("LAS 1.0", lambda d: with_bytes(las_of(d, version="1.2", fmt=1), 25, "<B", 0), "is LAS 1.0"),
+]
+
+
+@pytest.mark.parametrize("what, make, problem", DAMAGED, ids=[d[0] for d in DAMAGED])
+def test_a_damaged_file_is_named_before_any_work(tmp_path, what, make, problem):
+    src = make(tmp_path)
+    r = run(src, "-o", tmp_path / "lod.npy", "--rate", "10%")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert problem in r.stderr and "Traceback" not in r.stderr and "sampling" not in r.stderr, r.stderr
+    assert not (tmp_path / "lod.npy").exists()
+
+
+def test_a_copc_file_reads_as_the_laz_it_is(tmp_path):
+    src = corpus_file("simple.copc.laz")
+    source, records, xyz = las_files.read(src)
+    las = laspy.read(str(src))
+    assert records.array.tobytes() == las.points.array.tobytes()
+    assert np.array_equal(xyz, np.column_stack([las.x, las.y, las.z]))
+    assert not any(v.user_id == "copc" for v in source.vlrs + source.evlrs)
