@@ -173,7 +173,8 @@ def _run_on_cluster(args, request: dict) -> int:
             cluster.close()
     if not args.quiet:
         for level in index.get("levels", [index]):
-            where = pathlib.Path(args.output) / level.get("level", "")
+            where = pathlib.Path(args.output) / pathlib.Path(level["tiles"][0]["file"]).parent if level["tiles"] \
+                else pathlib.Path(args.output)
             print(f"{PROG}: {where}: {level['samples']:,} of {index['points']:,} points in "
                   f"{len(level['tiles'])} tiles, radius {level['radius']:.6g}", file=sys.stderr)
         print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)

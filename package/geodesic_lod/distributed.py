@@ -23,18 +23,16 @@ import json
 import math
 import os
 import pathlib
-import shutil
 import time
 from dataclasses import dataclass, field
 from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, point_files, tiles
+from . import arrays, las_files, point_files, tiles
+from .output_folder import INDEX, OutputFolder, remove_own
 
-INDEX = "index.json"
 WORK = ".levels"   # each level's samples per tile, while the next level is made
-CHUNK = 1_000_000  # points read at a time from a LAS/LAZ file
 
 
 @dataclass
@@ -49,10 +47,10 @@ class Source:
     signature: tuple = field(default_factory=tuple)  #: what must match across files to write them together
 
 
-def _las_signature(header) -> tuple:
-    crs = b"".join(bytes(v.record_data) for v in header.vlrs if v.user_id == "LASF_Projection")
-    return ("las", header.point_format.id, tuple(d.name for d in header.point_format.extra_dimensions),
-            tuple(np.round(header.scales, 15)), tuple(header.offsets), crs)
+def _las_signature(source: las_files.LasSource) -> tuple:
+    h = source.header
+    return ("las", h.point_format.id, tuple(d.name for d in h.point_format.extra_dimensions),
+            tuple(np.round(h.scales, 15)), tuple(h.offsets), source.crs())
 
 
 def survey(path: str) -> dict:
@@ -62,18 +60,22 @@ def survey(path: str) -> dict:
     if not p.is_file():
         raise point_files.PointFileError(path, "no such file")
     if kind == "las":
-        import laspy
-        try:
-            with laspy.open(path) as f:
-                h = f.header
-                return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
-                        "hi": np.array(h.maxs, float), "signature": _las_signature(h)}
-        except Exception as e:  # laspy's errors have no common base
-            raise point_files.PointFileError(path, f"cannot be read as LAS: {e}") from None
+        s = las_files.open_source(path)
+        h = s.header
+        return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
+                "hi": np.array(h.maxs, float), "signature": _las_signature(s)}
     src = point_files.read(path)
+    _check_finite(path, src.points)
     fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
     return {"kind": kind, "count": len(src.points), "lo": src.points.min(axis=0), "hi": src.points.max(axis=0),
             "signature": (kind, str(fields))}
+
+
+def _check_finite(path, points: np.ndarray) -> None:
+    bad = int(np.count_nonzero(~np.isfinite(points).all(axis=1)))
+    if bad:
+        raise point_files.PointFileError(path, f"{bad} row{' has' if bad == 1 else 's have'} NaN or infinite "
+                                               "coordinates")
 
 
 def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
@@ -129,30 +131,15 @@ def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple
     return np.concatenate(pts), normals, np.concatenate(ids)
 
 
-def _las_chunks(path: str):
-    """(header, first row, records) of a LAS/LAZ file a chunk at a time; a file that ends early or
-    does not decode is named."""
-    import laspy
-    try:
-        with laspy.open(path) as f:
-            start = 0
-            for chunk in f.chunk_iterator(CHUNK):
-                yield f.header, start, chunk
-                start += len(chunk)
-            if start != f.header.point_count:
-                raise ValueError(f"holds {start} of the {f.header.point_count} points its header announces")
-    except Exception as e:  # laspy's and lazrs's errors have no common base
-        raise point_files.PointFileError(path, f"cannot be read as LAS: {e}") from None
-
-
 def _chunks(s: Source):
     """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
     if s.kind == "las":
-        for _, start, chunk in _las_chunks(s.path):
-            yield start, np.column_stack([np.asarray(chunk.x, float), np.asarray(chunk.y, float),
-                                          np.asarray(chunk.z, float)]), None
+        header = las_files.open_source(s.path).header
+        for start, chunk in las_files.chunks(s.path):
+            yield start, las_files.xyz(chunk, header), None
     else:
         src = point_files.read(s.path)
+        _check_finite(s.path, src.points)
         yield 0, src.points, src.normals
 
 
@@ -168,14 +155,13 @@ def read_records(srcs: Sequence[Source], ids: np.ndarray):
             continue
         rows = (ordered[lo:hi] - np.uint64(s.first_id)).astype(np.int64)
         if s.kind == "las":
-            import laspy
             picked = []
-            for header, start, chunk in _las_chunks(s.path):
+            for start, chunk in las_files.chunks(s.path):
                 a, b = np.searchsorted(rows, [start, start + len(chunk)])
                 picked.append(chunk.array[rows[a:b] - start])
             records = np.concatenate(picked)
             if first is None:
-                first = laspy.LasData(header)
+                first = las_files.open_source(s.path)
         else:
             src = point_files.read(s.path)
             records = np.asarray(src.rows[rows])
@@ -249,13 +235,12 @@ def seams(d: Optional[tiles.Decision]):
 
 def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str,
                ids_path: Optional[str] = None) -> Optional[dict]:
-    """A Dask task: the tile's samples (its own and the settled open ones) written in visiting order, and
-    with `ids_path` their ids (sorted) for the next level."""
-    ids = np.empty(0, np.uint64) if d is None else \
-        tiles.in_visiting_order(np.concatenate([d.samples, settled]).astype(np.uint64), job.seed)
+    """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order, and
+    with `ids_path` their ids for the next level."""
+    ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
         tmp = f"{ids_path}.partial-{os.getpid()}.npy"
-        np.save(tmp, np.sort(ids))
+        np.save(tmp, ids)
         os.replace(tmp, ids_path)
     if d is None:
         return None
@@ -285,7 +270,7 @@ def expand_inputs(inputs: Sequence[str]) -> list:
             if not found:
                 raise point_files.PointFileError(item, "holds no .ply, .las, .laz or .npy files")
             out += found
-        elif any(c in item for c in "*?["):
+        elif any(c in item for c in "*?[") and not p.exists():  # a file named a[1].laz is that file
             found = sorted(glob.glob(item))
             if not found:
                 raise point_files.PointFileError(item, "matches no files")
@@ -326,11 +311,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     from dask.distributed import KilledWorker
 
     paths = expand_inputs(inputs)
-    out = pathlib.Path(out_dir)
-    if out.exists() and not out.is_dir():
-        raise point_files.PointFileError(out, "exists and is not a folder")
-    if not out.parent.resolve().is_dir():
-        raise point_files.PointFileError(out, f"the folder {out.parent} does not exist")
+    out = OutputFolder(out_dir, paths)
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
              if v is not None]
     if len(given) != 1:
@@ -451,10 +432,38 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
                 raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {pct}")
             targets = [("count", int(max(1, arrays._core.percent_of(pct, total))))]
         folders = [None]
-    out.mkdir(exist_ok=True)
-    (out / INDEX).unlink(missing_ok=True)  # a folder without an index is an unfinished one
-    work = out / WORK
-    shutil.rmtree(work, ignore_errors=True)
+    run_dir = out.begin()
+    try:
+        made = _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total,
+                       run_dir, ticks)
+    except BaseException:
+        out.abort()
+        raise
+    first = srcs[0]
+    index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
+             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "bounds": [cloud.lo.tolist(), cloud.hi.tolist()],
+             **_format_fields(first), **made[0]}
+    if size["levels"] is not None:
+        index["levels"] = made
+    return out.commit(index)
+
+
+def _format_fields(s: Source) -> dict:
+    """The output's record layout and CRS as the index states them."""
+    if s.kind != "las":
+        return {"format": s.kind}
+    src = las_files.open_source(s.path)
+    wkt = [v.record_data for v in src.vlrs + src.evlrs if v.user_id == "LASF_Projection" and v.record_id == 2112]
+    return {"format": "las", "point_format": src.header.point_format.id,
+            "las_version": f"{src.header.version.major}.{src.header.version.minor}",
+            "crs_wkt": wkt[0].rstrip(b"\0").decode("utf-8", "replace") if wkt else None,
+            "crs_geotiff": any(v.user_id == "LASF_Projection" and v.record_id == 34735 for v in src.vlrs)}
+
+
+def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total, run_dir,
+            ticks) -> list:
+    """Each level's run (at its radius, or searched to its count) written into the run folder: index entries."""
+    work = run_dir / WORK
     job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
     pool, made = total, []
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
@@ -468,38 +477,21 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None
-        level = _write_level(client, job, run, boxes, out if folder is None else out / folder, ids_dir, ticks)
+        level_dir = run_dir if folder is None else run_dir / folder
+        level = _write_level(client, job, run, boxes, level_dir, ids_dir, ticks)
+        for t in level["tiles"]:  # paths relative to the index
+            t["file"] = str((level_dir / t["file"]).relative_to(run_dir.parent))
         made.append({**({"level": folder} if folder else {}), **level, **search})
         pool = level["samples"]
         if ids_dir is not None:
             job = dataclasses.replace(job, within=(str(ids_dir), boxes))
-    index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "adaptivity": adaptivity, "tiles_per_axis": list(shape), **made[0]}
-    if size["levels"] is not None:
-        index["levels"] = made
-    tmp = out / f".{INDEX}.partial-{os.getpid()}"
-    tmp.write_text(json.dumps(index, indent=1))
-    os.replace(tmp, out / INDEX)
-    shutil.rmtree(work, ignore_errors=True)
-    _remove_other_levels(out, folders)
-    return index
-
-
-def _remove_other_levels(out: pathlib.Path, folders: list) -> None:
-    """The tiles an earlier run into `out` wrote where this one wrote none: level folders it did not make,
-    or, after a run with levels, the tiles of a single level in `out` itself."""
-    stale = [f for f in out.iterdir() if f.is_dir() and f.name.startswith("level_") and f.name not in folders]
-    for folder in stale + ([out] if None not in folders else []):
-        for f in folder.glob("tile_*"):
-            f.unlink(missing_ok=True)
-        if folder != out and not any(folder.iterdir()):
-            folder.rmdir()
+    remove_own(work)
+    return made
 
 
 def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: _Ticks) -> dict:
-    """Writes one level's tiles into `folder` (and its samples' ids per tile into `ids_dir`); its index
-    entry. Tiles of an earlier run into this folder that this one did not write, and files left
-    half-written by interrupted tasks, are removed."""
+    """Writes one level's tiles into `folder`, a new one (and its samples' ids per tile into `ids_dir`); its
+    index entry. Files left half-written by tasks lost with their worker are removed."""
     from dask.distributed import as_completed
     parts, settled = run.parts, run.settled
     owned = [np.empty(0, np.uint64) if p is None else settled[np.isin(settled, p.open_ids)] for p in parts]
@@ -528,9 +520,8 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
         entry["tiles"].append({"file": res["file"], "count": res["count"], "lo": box.lo.tolist(),
                                "hi": box.hi.tolist(), "points_read": res["read"], "halo": res["halo"]})
         entry["samples"] += res["count"]
-    kept = {t["file"] for t in entry["tiles"]}
-    for f in folder.iterdir():
-        if (f.name.startswith("tile_") and f.name not in kept) or (f.name.startswith(".tile_") and ".partial-" in f.name):
+    for f in folder.iterdir():  # left by tasks lost with their worker
+        if point_files.is_partial(f.name):
             f.unlink(missing_ok=True)
     return entry
 

@@ -184,6 +184,11 @@ def _read_npy(path):
 PARTIAL_PREFIX, PARTIAL_SUFFIX = ".geodesic-lod-", ".partial"  # files being written
 
 
+def is_partial(name: str) -> bool:
+    """Whether a file name is one write_all gives files while they are written."""
+    return name.startswith(PARTIAL_PREFIX) and name.endswith(PARTIAL_SUFFIX)
+
+
 def _partial(path: pathlib.Path) -> pathlib.Path:
     """A new, empty temporary file beside path: a short name whatever path's length, and the
     permissions any new file gets."""

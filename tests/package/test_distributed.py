@@ -50,9 +50,14 @@ def client():
         yield c
 
 
+def files_under(folder):
+    """Every file under folder, as paths relative to it."""
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*") if not p.is_dir())
+
+
 def output_records(out):
     index = json.loads((out / dist.INDEX).read_text())
-    assert sorted(p.name for p in out.iterdir()) == sorted([dist.INDEX] + [t["file"] for t in index["tiles"]])
+    assert files_under(out) == sorted([dist.INDEX] + [t["file"] for t in index["tiles"]])
     tiles = [laspy.read(str(out / t["file"])).points.array for t in index["tiles"]]
     assert [len(t) for t in tiles] == [t["count"] for t in index["tiles"]]
     return index, np.concatenate(tiles)
@@ -91,8 +96,8 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
 
 
 def level_ids(out, level):
-    files = [out / level["level"] / t["file"] for t in level["tiles"]]
-    assert sorted(p.name for p in (out / level["level"]).iterdir()) == sorted(f.name for f in files)
+    files = [out / t["file"] for t in level["tiles"]]
+    assert all(pathlib.Path(t["file"]).parent.name == level["level"] for t in level["tiles"])
     return np.concatenate([laspy.read(str(f)).points.array for f in files])
 
 
@@ -102,7 +107,7 @@ def test_levels_are_the_nested_poisson_sets_of_one_machine(cloud, client, tmp_pa
                            tile_points=6000, seed=5, client=client, threads=1)
     levels = index["levels"]
     assert [lv["level"] for lv in levels] == ["level_20pct", "level_5pct", "level_300"]
-    assert sorted(p.name for p in (tmp_path / "lod").iterdir()) == sorted([dist.INDEX] + [lv["level"] for lv in levels])
+    assert files_under(tmp_path / "lod") == sorted([dist.INDEX] + [t["file"] for lv in levels for t in lv["tiles"]])
     assert index["samples"] == levels[0]["samples"] and index["radius"] == levels[0]["radius"]
     finer = None
     for lv, target in zip(levels, [4800, 1200, 300]):
@@ -231,9 +236,8 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
     # Levels over a single level, then a single level over levels.
     index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["10%", "2%"], tolerance=3.0, tile_points=6000,
                            client=client, threads=1)
-    assert sorted(p.name for p in (tmp_path / "lod").iterdir()) == [dist.INDEX, "level_10pct", "level_2pct"]
-    for level in index["levels"]:
-        level_ids(tmp_path / "lod", level)  # lists exactly the level's tiles
+    assert files_under(tmp_path / "lod") == sorted([dist.INDEX] + [t["file"] for lv in index["levels"]
+                                                                   for t in lv["tiles"]])
     dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=client, threads=1)
     check_equal(tmp_path / "lod", points, records, 0)
 
@@ -259,7 +263,7 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
         with pytest.raises(MemoryError, match="too small for tiles of 1000000 points; lower tile_points"):
             dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=1_000_000, client=c, threads=1)
-        assert not (tmp_path / "lod" / dist.INDEX).exists()
+        assert not (tmp_path / "lod").exists()
         index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=50_000, client=c, threads=1)
     assert index["samples"] > 0 and len(index["tiles"]) >= 12
 

@@ -11,7 +11,6 @@ import pytest
 
 import geodesic_lod as gl
 from common_inputs import SHARED_DATA
-from geodesic_lod import las_files
 from point_file_inputs import las_cloud
 from test_cli import run
 
@@ -120,6 +119,7 @@ def test_a_damaged_file_is_named_before_any_work(tmp_path, what, make, problem):
 
 
 def test_a_copc_file_reads_as_the_laz_it_is(tmp_path):
+    from geodesic_lod import las_files
     src = corpus_file("simple.copc.laz")
     source, records, xyz = las_files.read(src)
     las = laspy.read(str(src))
