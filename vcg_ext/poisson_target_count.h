@@ -29,7 +29,8 @@ class PoissonTargetCount {
  public:
   struct Param {
     size_t sampleNum = 0;        ///< wanted samples, 1..the points `order` visits
-    double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance)
+    double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance); one
+                                 ///< above it (in the thinning window) is thinned to sampleNum
     int maxIterations = 24;      ///< Poisson runs at most
     double initialRadius = 0;    ///< first radius tried, > 0
     uint64_t seed = 0;           ///< the farthest-point fallback's first sample
@@ -86,7 +87,8 @@ class PoissonTargetCount {
       throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
                                              std::to_string(100 * p.tolerance) + "%)");
     const double target = double(p.sampleNum);
-    // Exact counts thin a set at most kThinning larger; a tolerance accepts counts on both sides.
+    // Runs stop in the window an exact count thins from (at most kThinning larger) or, with a tolerance,
+    // within it on either side.
     const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;
     const double accHi = std::max(target * (1 + std::max(p.tolerance, kThinning)), target + 2);
     // An exact count aims at the middle of its window, so a run a little off still lands in it.
@@ -120,7 +122,10 @@ class PoissonTargetCount {
     Trial& from = found ? accepted : above;
     out.radius = from.radius;
     out.poissonCount = from.count;
-    if (found && (p.tolerance > 0 || from.count == p.sampleNum)) {
+    // A set within the tolerance is kept as it is; one in the thinning window above it is thinned.
+    const bool withinTolerance = from.count == p.sampleNum ||
+                                 (p.tolerance > 0 && double(from.count) <= target * (1 + p.tolerance));
+    if (found && withinTolerance) {
       out.samples = std::move(from.samples);
       out.diskOwner = std::move(from.owner);
       out.coveringRadius = out.radius;

@@ -24,6 +24,7 @@ from . import arrays, point_files
 PROG = "geodesic-lod"
 EXIT_BAD_INPUT = 2
 EXIT_STOPPED = 130
+SCHEDULER_TIMEOUT = 10  # seconds
 
 
 class _Parser(argparse.ArgumentParser):
@@ -135,15 +136,25 @@ def _run_on_cluster(args, request: dict) -> int:
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
             if any(b >= a for a, b in zip(values, values[1:])):
                 raise ValueError(f"--levels must get strictly coarser, finest first: {args.levels}")
+    if args.tolerance is not None:
+        distributed.cluster_tolerance(args.tolerance, "--tolerance")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --workers (a cluster on this machine) or --scheduler (an existing one), not both")
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
-    from dask.distributed import Client
+    try:
+        from dask.distributed import Client
+    except ModuleNotFoundError:
+        raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
+                         "pip install '.[dask]')") from None
     start = time.perf_counter()
     cluster = None
     if args.scheduler:
-        client = Client(args.scheduler, timeout="20s")
+        try:
+            client = Client(args.scheduler, timeout=f"{SCHEDULER_TIMEOUT}s")
+        except OSError:
+            raise ValueError(f"--scheduler {args.scheduler}: no Dask scheduler answered within {SCHEDULER_TIMEOUT} "
+                             "s") from None
     else:
         import os
         workers = args.workers or max(1, min(4, os.cpu_count() or 1))

@@ -317,7 +317,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     if len(given) != 1:
         raise ValueError("give exactly one of radius, count, rate or levels" +
                          (f" (got {' and '.join(given)})" if given else ""))
-    tolerance = arrays._real(tolerance, "tolerance", positive=True)
+    tolerance = cluster_tolerance(tolerance)
     max_runs = arrays._integer(max_runs, "max_runs", 1)
     seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
@@ -331,6 +331,15 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
+
+
+def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
+    """A count's tolerance as a cluster run takes it: a percentage above 0 (the tiles make no exact count)."""
+    tolerance = arrays._real(tolerance, name, positive=False)
+    if not 0 < tolerance < 100:
+        raise ValueError(f"{name} must be a percentage above 0 and below 100 on a cluster, got {tolerance} (an "
+                         "exact count, tolerance 0, runs on one machine)")
+    return tolerance
 
 
 def level_folder(item) -> str:

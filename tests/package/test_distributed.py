@@ -275,6 +275,9 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count or --rate"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
+    (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: no Dask scheduler "
+                                                             "answered within"),
+    (["--count", "100", "--tolerance", "0", "--workers", "1"], "tolerance 0, runs on one machine"),
 ])
 def test_bad_cluster_options_are_one_line_and_exit_2(cloud, tmp_path, args, problem):
     folder = cloud[0]
@@ -282,3 +285,10 @@ def test_bad_cluster_options_are_one_line_and_exit_2(cloud, tmp_path, args, prob
                        timeout=120)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and problem in r.stderr, r.stderr
     assert not (tmp_path / "lod").exists()
+
+
+def test_a_cluster_run_without_dask_names_the_extra_to_install(cloud, tmp_path):
+    code = ("import sys; sys.modules['dask'] = None; from geodesic_lod.cli import main; "
+            f"sys.exit(main([{str(cloud[0])!r}, '-o', {str(tmp_path / 'lod')!r}, '--radius', '0.5', '--workers', '1']))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "pip install 'geodesic-lod[dask]'" in r.stderr, r.stderr

@@ -63,6 +63,15 @@ def test_poisson_target_within_a_tolerance_is_an_untrimmed_poisson_set(plugin):
     assert as_set(ms.current_mesh().vertex_matrix()) == as_set(lod)
 
 
+def test_a_tolerance_below_the_thinning_window_is_kept(plugin):
+    for tolerance in (0.5, 1.0, 2.0):
+        for samplenum, seed in ((100, 0), (251, 1), (640, 2)):
+            ms = mesh_set(bumpy_points(60))
+            res = ms.apply_filter(POISSON, samplenum=samplenum, tolerance=tolerance, seed=seed)
+            assert abs(res["sample_num"] - samplenum) <= tolerance / 100 * samplenum, (tolerance, samplenum, res)
+            assert ms.current_mesh().vertex_number() == res["sample_num"]
+
+
 def test_poisson_target_counts_on_the_bunny_scans(plugin, shared):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(shared("bunny_scans_362k.ply"))

@@ -79,6 +79,23 @@ TEST(TargetCount, AToleranceKeepsAnUntrimmedPoissonSet) {
   }
 }
 
+TEST(TargetCount, AToleranceMeansWhatItSaysBelowTheThinningWindow) {
+  // Tolerances narrower than the window an exact count thins from: a set above
+  // the tolerance is thinned to the count, never returned as it is.
+  test::TMesh m;
+  test::HeightField(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
+  for (double tolerance : {0.005, 0.01, 0.02})
+    for (size_t n = 40; n < 700; n = n * 2 + 7)
+      for (uint64_t seed : {0, 1, 2}) {
+        LOD::Param p = Target(n, tolerance);
+        p.seed = seed;
+        const auto r = LOD::Compute(m, p);
+        EXPECT_GE(double(r.vertIndex.size()), n * (1 - tolerance)) << n << " at " << tolerance << ", seed " << seed;
+        EXPECT_LE(double(r.vertIndex.size()), n * (1 + tolerance)) << n << " at " << tolerance << ", seed " << seed;
+        ExpectSeparated(m, p, r);
+      }
+}
+
 TEST(TargetCount, TerminatesWhereTheCountJumpsAcrossTheTarget) {
   // A regular grid in the Euclidean metric: below the spacing every point is
   // its own disk (N = n); just above it, each disk takes its four neighbours
