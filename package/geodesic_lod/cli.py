@@ -136,6 +136,10 @@ def _run_on_cluster(args, request: dict) -> int:
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
             if any(b >= a for a, b in zip(values, values[1:])):
                 raise ValueError(f"--levels must get strictly coarser, finest first: {args.levels}")
+    for flag, given in (("--recompute-normals", args.recompute_normals), ("--overwrite", args.overwrite)):
+        if given:
+            raise ValueError(f"{flag} runs on one machine (a cluster run replaces only its own earlier output, and "
+                             "estimates normals where a file has none)")
     if args.tolerance is not None:
         distributed.cluster_tolerance(args.tolerance, "--tolerance")
     if args.workers is not None and args.scheduler:
@@ -147,6 +151,8 @@ def _run_on_cluster(args, request: dict) -> int:
     except ModuleNotFoundError:
         raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
                          "pip install '.[dask]')") from None
+    from .output_folder import OutputFolder
+    OutputFolder(args.output, distributed.expand_inputs(args.input))  # checked before a cluster starts
     start = time.perf_counter()
     cluster = None
     if args.scheduler:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import logging
 import math
 import os
 import pathlib
@@ -290,7 +291,8 @@ def local_cluster(workers: int, memory_limit="auto"):
     127.0.0.1 only (its dashboard too)."""
     from dask.distributed import LocalCluster
     return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
-                        host="127.0.0.1", dashboard_address="127.0.0.1:0", silence_logs=40)
+                        host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                        silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
 
 
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,

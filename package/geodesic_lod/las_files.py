@@ -15,7 +15,7 @@ import copy
 import os
 import struct
 from dataclasses import dataclass
-from typing import BinaryIO, Iterator
+from typing import BinaryIO, Iterator, Optional
 
 import numpy as np
 
@@ -77,8 +77,30 @@ def open_source(path) -> LasSource:
         if count > room:
             _fail(path, f"its header announces {count} points but the file holds {room}: it is cut short or its "
                   "header is wrong")
+    else:
+        room = _laz_room(path, header)
+        if room is not None and count > room:
+            _fail(path, f"its header announces {count} points but its compressed chunks hold at most {room}: it is "
+                  "cut short or its header is wrong")
     vlrs, evlrs = _own_records(path, header)
     return LasSource(header, vlrs, evlrs)
+
+
+def _laz_room(path, header) -> Optional[int]:
+    """The most points a LAZ file's chunk table leaves room for; None where the table cannot be read (a
+    streamed file has none), and the records are counted as they are decoded."""
+    import lazrs
+    laszip = [v for v in header.vlrs if v.user_id == "laszip encoded"]
+    if not laszip:
+        return None
+    try:
+        vlr = lazrs.LazVlr(laszip[0].record_data_bytes())
+        with open(path, "rb") as f:
+            f.seek(header.offset_to_point_data)
+            table = lazrs.read_chunk_table(f, vlr)
+    except Exception:  # lazrs's errors, or a table the writer never wrote
+        return None
+    return sum(int(n) for n, _ in table)
 
 
 def _own_records(path, header) -> tuple:

@@ -114,9 +114,12 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
         core = box.core_mask(points, cloud)
         if not core.any():
             return None
-        if len(points) <= neighbours:
-            raise ValueError(f"a tile holds only {len(points)} points with its halo, fewer than the neighbours "
-                             "the normals and the graph need: the cloud is too sparse for this radius")
+        if len(points) <= neighbours:  # a stray point far from the rest: read as far as its neighbours
+            if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
+                raise ValueError(f"the cloud holds {len(points)} points: at least {neighbours + 1} are needed (the "
+                                 "neighbours each normal and the geodesics are built from)")
+            halo *= 4
+            continue
         may = None if candidates is None else candidates(ids, halo)
         d, halo = decide(points, normals, ids, core, radius=radius, box=box.outer(cloud), cloud=cloud, halo=halo,
                          domain=domain, seed=seed, candidate=may, threads=threads)

@@ -278,12 +278,24 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: no Dask scheduler "
                                                              "answered within"),
     (["--count", "100", "--tolerance", "0", "--workers", "1"], "tolerance 0, runs on one machine"),
+    (["--radius", "0.5", "--recompute-normals", "--workers", "1"], "--recompute-normals runs on one machine"),
+    (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1", "-o", "/"], "holds files this tool did not write"),
 ])
 def test_bad_cluster_options_are_one_line_and_exit_2(cloud, tmp_path, args, problem):
     folder = cloud[0]
     r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "lod")] + args, capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and problem in r.stderr, r.stderr
+    assert not (tmp_path / "lod").exists()
+
+
+def test_a_worker_side_failure_is_one_line_and_exit_2(tmp_path):
+    folder = write_parts(tmp_path / "in", bumpy_sphere(6000), parts=2)
+    data = (folder / "part1.laz").read_bytes()
+    (folder / "part1.laz").write_bytes(data[: len(data) * 2 // 3])  # found only when a worker decodes it
+    r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "lod"), "--radius", "0.5", "--workers", "1", "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "part1.laz: " in r.stderr, r.stderr
     assert not (tmp_path / "lod").exists()
 
 

@@ -141,3 +141,14 @@ def test_every_shared_lidar_file_gives_one_machines_samples_on_the_cluster(clien
     for f in files:
         assert own_records(f) == own_records(src)
     assert index["point_format"] == las.header.point_format.id
+
+
+def test_a_stray_point_far_away_is_sampled_as_on_one_machine(client, tmp_path):
+    p = bumpy_sphere(6000) * 10
+    p[17] += 1e6
+    np.save(tmp_path / "stray.npy", p)
+    index = dist.lod_files([str(tmp_path / "stray.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1,
+                           tile_points=1000)
+    assert len(index["tiles"]) == 2  # the stray point has a tile of its own
+    got = np.concatenate([np.load(tmp_path / "lod" / t["file"]) for t in index["tiles"]])
+    assert sorted(map(tuple, got)) == sorted(map(tuple, p[gl.poisson_lod(p, radius=0.5).indices]))

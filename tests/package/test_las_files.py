@@ -105,6 +105,8 @@ DAMAGED = [
      "header announces 4611686018427387904 points"),
     ("a 2^64-1 point count", lambda d: with_bytes(las_of(d), 247, "<Q", 2 ** 64 - 1), "beyond 63-bit ids"),
     ("a LAZ cut short", lambda d: cut_bytes(las_cloud(d / "in.laz"), 0.6), "in.laz: "),
+    ("a LAZ header count beyond its chunks", lambda d: with_bytes(las_cloud(d / "in.laz"), 247, "<Q", 4 * 10 ** 9),
+     "header announces 4000000000 points but its compressed chunks hold at most"),
     ("LAS 1.0", lambda d: with_bytes(las_of(d, version="1.2", fmt=1), 25, "<B", 0), "is LAS 1.0"),
 ]
 
