@@ -171,6 +171,41 @@ def radius_from(value, diagonal: Callable[[], float], name: str = "radius") -> f
     return length
 
 
+def percent(value, name: str) -> float:
+    """A percentage given as a number (10) or a string ('10%' or '10'), from above 0 to 100: how every
+    front end reads rates and percentage levels."""
+    if isinstance(value, str):
+        text = value.strip()
+        try:
+            x = float(text[:-1] if text.endswith("%") else text)
+        except ValueError:
+            x = math.nan
+    else:
+        x = _real(value, name, positive=False)
+    if not (math.isfinite(x) and 0 < x <= 100):
+        raise ValueError(f"{name} must be a percentage from above 0 to 100 such as 10 or '10%', got {value!r}")
+    return x
+
+
+def level_items(levels, name: str = "levels") -> list:
+    """Levels as a list of counts and percentage strings, from a list or a comma-separated string such as
+    '50%,10%,500' (as the command and the pyramid filter take them)."""
+    if not isinstance(levels, str):
+        return levels
+    items = [t.strip() for t in levels.split(",")]
+    if any(not t for t in items):
+        raise ValueError(f"{name} must be a comma-separated list such as 50%,10%,2% or 5000,500, got {levels!r}")
+    out = []
+    for t in items:
+        if t.endswith("%"):
+            out.append(t)
+        elif t.isdigit():
+            out.append(int(t))
+        else:
+            raise ValueError(f"{name}: {t!r} is neither a whole number of samples nor a percentage such as 10%")
+    return out
+
+
 def _choice(x, table: dict, name: str):
     if x not in table:
         raise ValueError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
@@ -263,10 +298,10 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                 progress: Progress = None) -> PoissonLod:
     """Geodesic Poisson-disk LOD: samples pairwise farther apart than the radius in the metric, every point
-    within it of a sample. Give one of ``radius`` (absolute, in the metric), ``count`` (exactly that many
-    samples: the radius is searched and a slightly denser set thinned, the samples nearest to others first) or
-    ``rate`` (a percentage of the points, as a count). ``tolerance`` (percent) accepts an untrimmed set that
-    close to the count.
+    within it of a sample. Give one of ``radius`` (absolute, in the metric, or a string such as '1%' of the
+    bounding box diagonal), ``count`` (exactly that many samples: the radius is searched and a slightly denser
+    set thinned, the samples nearest to others first) or ``rate`` (a percentage of the points, 10 or '10%', as
+    a count). ``tolerance`` (percent) accepts an untrimmed set that close to the count.
     ``regions`` ('disk' or 'voronoi') fills ``region_of``. ``within``: indices of the only points that may
     become samples, such as a finer level's (the geodesics still run over every point): nested Poisson
     levels, as the Dask pipeline's ``levels`` makes. Ctrl-C stops the run (KeyboardInterrupt)."""
@@ -274,13 +309,18 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
     domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
                      normal_neighbors, graph_neighbors, recompute_normals)
     param, threads = _poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
-                                    seed, within, threads, progress)
+                                    seed, within, threads, progress, lambda: _diagonal(p))
     param.domain = domain
     return _lod(PoissonLod, _run(_core.poisson_lod, p, n, f, param, threads, progress))
 
 
+def _diagonal(p: np.ndarray) -> float:
+    """The bounding box diagonal of (n, 3) points."""
+    return float(np.linalg.norm(p.max(axis=0).astype(np.float64) - p.min(axis=0).astype(np.float64)))
+
+
 def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
-                   progress):
+                   progress, diagonal: Callable[[], float]):
     """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
     param = _core.PoissonParam()
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
@@ -292,15 +332,15 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
         chosen = _indices(within, n_points, "within")
         param.within = chosen
         pool = len(chosen)
-    if radius is not None:
+    if isinstance(radius, str):  # '1%': of the bounding box diagonal
+        param.radius = radius_from(radius, diagonal)
+    elif radius is not None:
         param.radius = _real(radius, "radius", positive=True)
     elif count is not None:
         param.sample_num = _integer(count, "count", 1, pool,
                                     " (the number of points)" if within is None else " (the points in within)")
     else:
-        r = _real(rate, "rate", positive=True)
-        if r > 100:
-            raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {r}")
+        r = percent(rate, "rate")
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
         if param.sample_num > pool:
             raise ValueError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
@@ -346,8 +386,9 @@ def _fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, 
 
 def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
     """Sample counts of pyramid levels given as counts (5000) or percentages of the points ('50%'),
-    finest first, each strictly smaller than the one before."""
-    if isinstance(levels, (str, bytes)) or not isinstance(levels, Sequence) or len(levels) == 0:
+    finest first, each strictly smaller than the one before; or a comma-separated string of them."""
+    levels = level_items(levels)
+    if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
         raise ValueError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
                          f"got {levels!r}")
     counts = []

@@ -37,16 +37,6 @@ def _fail(message):
     sys.exit(EXIT_BAD_INPUT)
 
 
-def _percent(text: str, name: str) -> float:
-    try:
-        value = float(text.strip().rstrip("%"))
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and 0 < value <= 100):
-        raise ValueError(f"{name} must be a percentage from above 0 to 100 such as 10%, got {text!r}")
-    return value
-
-
 def _count(text: str, name: str) -> int:
     if not text.strip().isdigit() or int(text) < 1:
         raise ValueError(f"{name} must be a whole number of samples of at least 1, got {text!r}")
@@ -55,13 +45,6 @@ def _count(text: str, name: str) -> int:
 
 def _radius(text: str, points: np.ndarray) -> float:
     return arrays.radius_from(text, lambda: np.linalg.norm(points.max(axis=0) - points.min(axis=0)), "--radius")
-
-
-def _level_items(text: str) -> list:
-    items = [t.strip() for t in text.split(",")]
-    if any(not t for t in items):
-        raise ValueError(f"--levels must be a comma-separated list such as 50%,10%,2% or 5000,500, got {text!r}")
-    return [t if t.endswith("%") else _count(t, "--levels") for t in items]
 
 
 def _level_path(out: pathlib.Path, item) -> pathlib.Path:
@@ -231,9 +214,9 @@ def _request(args) -> dict:
         arrays._integer(args.threads, "--threads", 1)
     arrays._integer(args.seed, "--seed", 0, 2 ** 64 - 1)
     if args.levels is not None:
-        return {"levels": _level_items(args.levels)}
+        return {"levels": arrays.level_items(args.levels, "--levels")}
     if args.rate is not None:
-        return {"rate": _percent(args.rate, "--rate")}
+        return {"rate": arrays.percent(args.rate, "--rate")}
     if args.count is not None:
         return {"count": _count(args.count, "--count")}
     _radius(args.radius, np.zeros((1, 3)))

@@ -429,7 +429,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     spacing = tiles.spacing_of(cloud, total)
     ticks = _Ticks(progress)
     if size["levels"] is not None:
-        items = list(size["levels"])
+        items = list(arrays.level_items(size["levels"]))
         targets = [("count", c) for c in arrays.level_counts(items, total)]
         folders = [level_folder(item) for item in items]
     else:
@@ -438,9 +438,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         elif size["count"] is not None:
             targets = [("count", arrays._integer(size["count"], "count", 1, total, " (the number of points)"))]
         else:
-            pct = arrays._real(size["rate"], "rate", positive=True)
-            if pct > 100:
-                raise ValueError(f"rate is a percentage of the points, from above 0 to 100; got {pct}")
+            pct = arrays.percent(size["rate"], "rate")
             targets = [("count", int(max(1, arrays._core.percent_of(pct, total))))]
         folders = [None]
     run_dir = out.begin()

@@ -5,7 +5,7 @@ from typing import Optional, Sequence, Union
 
 from . import _core
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress,
-                     _DOMAIN, _common, _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run,
+                     _DOMAIN, _common, _diagonal, _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run,
                      level_counts)
 
 
@@ -25,6 +25,7 @@ class Domain:
                         normal_neighbors, graph_neighbors, recompute_normals)
         _, threads = _common(0, threads, progress, False, has_faces)
         self._built = _run(_core.build_domain, p, n, f, param, threads, progress)
+        self._diagonal = _diagonal(p)
 
     @property
     def point_count(self) -> int:
@@ -47,7 +48,8 @@ class Domain:
                     progress: Progress = None) -> PoissonLod:
         """geodesic_lod.poisson_lod on this domain."""
         param, threads = _poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
-                                        mesh_output, regions, seed, within, threads, progress)
+                                        mesh_output, regions, seed, within, threads, progress,
+                                        lambda: self._diagonal)
         return _lod(PoissonLod, _run(_core.poisson_on, self._built, param, threads, progress))
 
     def fps_lod(self, *, count: int, mesh_output: bool = False, regions: Optional[str] = None, seed: int = 0,
