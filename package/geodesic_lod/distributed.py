@@ -421,7 +421,27 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     return best, runs
 
 
+def _worker_rss() -> int:
+    import psutil
+    return psutil.Process().memory_info().rss
+
+
+def check_worker_memory(client) -> None:
+    """Refuses workers whose memory limit their own footprint already fills past Dask's pause
+    threshold: they would pause before any task and the job would wait for ever."""
+    import dask
+    pause = dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0
+    used = client.run(_worker_rss)
+    for addr, w in client.scheduler_info()["workers"].items():
+        limit = w.get("memory_limit") or 0
+        if limit and used.get(addr, 0) >= pause * limit:
+            raise ValueError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
+                             f"takes {used[addr] / 1e6:.0f} MB before any task; give workers at least "
+                             f"{2 * used[addr] / 1e6:.0f} MB")
+
+
 def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
+    check_worker_memory(client)
     surveys = client.gather(client.map(survey, paths, pure=False))
     srcs = sources(paths, surveys)
     cloud, boxes, shape = plan(srcs, tile_points)

@@ -35,7 +35,8 @@ def register() -> None:
                           f"(pymeshlab {_release(MESHLAB_VERSION)[0]}.{_release(MESHLAB_VERSION)[1]}.*), "
                           f"but pymeshlab {installed} is installed")
     if not PLUGIN.is_file():
-        raise ImportError(f"geodesic_lod's MeshLab plugin is missing: {PLUGIN} (reinstall the package)")
+        raise ImportError(f"geodesic_lod's MeshLab plugin is missing: {PLUGIN} (this package was built without it, "
+                          "GEODESIC_LOD_BUILD_PLUGIN=OFF, or is damaged: reinstall it with pip install .)")
     if not set(FILTERS) <= set(_pymeshlab.filter_list()):
         _pymeshlab.load_plugin(str(PLUGIN))
     for name in FILTERS:

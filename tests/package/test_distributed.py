@@ -304,3 +304,10 @@ def test_a_cluster_run_without_dask_names_the_extra_to_install(cloud, tmp_path):
             f"sys.exit(main([{str(cloud[0])!r}, '-o', {str(tmp_path / 'lod')!r}, '--radius', '0.5', '--workers', '1']))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "pip install 'geodesic-lod[dask]'" in r.stderr, r.stderr
+
+
+def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_path):
+    with dist.local_cluster(1, memory_limit="50MB") as cluster, Client(cluster) as c:
+        with pytest.raises(ValueError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
+            dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
+    assert not (tmp_path / "lod").exists()

@@ -69,3 +69,36 @@ def test_wheel_installs_and_works_in_a_fresh_venv(tmp_path):
         run([str(command), str(work / name), "-o", str(out), "--count", "150", "--quiet"], env=env)
         check = f"from geodesic_lod import point_files; print(len(point_files.read({str(out)!r}).points))"
         assert run([str(py), "-c", check], env=env, cwd=work).stdout.strip() == "150"
+
+
+NUMPY_ONLY = textwrap.dedent("""
+    import numpy as np
+    import geodesic_lod as gl
+    p = np.random.default_rng(1).normal(size=(2000, 3))
+    assert len(gl.poisson_lod(p, count=100).indices) == 100
+    try:
+        import geodesic_lod.pymeshlab
+    except ImportError as e:
+        assert "built without it" in str(e) or "pymeshlab" in str(e), e
+    else:
+        raise AssertionError("the plugin is in a numpy-only build")
+    print("ok")
+""")
+
+
+def test_the_numpy_only_build_works_from_its_one_option(tmp_path):
+    env = dict(os.environ)
+    env.pop("PYTHONPATH", None)
+    build_env = dict(env, CC="cc", CXX="c++", CCACHE_BASEDIR=str(ROOT), CCACHE_NOHASHDIR="true")
+    run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-w", str(tmp_path / "dist"),
+         "-C", "cmake.define.GEODESIC_LOD_BUILD_PLUGIN=OFF", "-C", "build-dir=build-wheel-numpy", str(ROOT)],
+        env=build_env, timeout=1500)
+    wheels = list((tmp_path / "dist").glob("geodesic_lod-*.whl"))
+    assert len(wheels) == 1, wheels
+    import zipfile
+    assert not any("plugins/" in n and n.endswith(".so") for n in zipfile.ZipFile(wheels[0]).namelist())
+    venv = tmp_path / "venv"
+    run([sys.executable, "-m", "venv", str(venv)], env=env)
+    py = venv / "bin" / "python"
+    run([str(py), "-m", "pip", "install", "-q", str(wheels[0])], env=env, timeout=900)
+    assert run([str(py), "-c", NUMPY_ONLY], env=env, cwd=tmp_path).stdout.strip() == "ok"
