@@ -94,7 +94,7 @@ class GeodesicPoissonLod {
     // this radius would about tile the diagonal plane of the box holding the
     // middle 98% of the points on each axis (a few stray points far away would
     // make the whole box's diagonal, and the first runs, far too large).
-    tp.initialRadius = CoreDiagonal(d.points.pos) / std::sqrt(double(p.sampleNum));
+    tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     PoissonTargetCount::Result r;
     // Its runs compute each edge's length as they go, as one run does: kept
     // weights (4 bytes an arc) measured no faster now that disks skip edges by

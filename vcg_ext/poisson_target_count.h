@@ -18,6 +18,93 @@
 
 namespace vcg_ext {
 
+/// The count search's steps, apart from its runs: the radius of the next run,
+/// and when to stop. PoissonTargetCount makes each run itself; a cluster makes
+/// it over its tiles and reports the summed count, so both step alike.
+/// An exact count (tolerance 0) stops in the window a set is thinned from, at
+/// most kThinning above the target; a tolerance stops within it on either side.
+class RadiusSearch {
+ public:
+  /// What a reported run is to the search.
+  enum class Role { Accepted, Above, Below, None };
+
+  RadiusSearch(size_t target, double tolerance, size_t candidates, double firstRadius, int maxRuns)
+      : target_(double(target)), tolerance_(tolerance), maxRuns_(maxRuns), aboveCount_(double(candidates)),
+        r_(firstRadius > 0 ? firstRadius : 1) {
+    accLo_ = tolerance > 0 ? target_ * (1 - tolerance) : target_;
+    accHi_ = tolerance > 0 ? target_ * (1 + tolerance) : std::max(target_ * (1 + kThinning), target_ + 2);
+    // An exact count aims at the middle of its window, so a run a little off still lands in it.
+    aim_ = tolerance > 0 ? target_ : std::min(0.5 * (target_ + accHi_), double(candidates));
+    done_ = maxRuns < 1;
+  }
+
+  /// Where disks would about tile the diagonal plane of the box holding the
+  /// middle of the points (its diagonal `coreDiagonal`): the first radius.
+  static double FirstRadius(double coreDiagonal, size_t target) { return coreDiagonal / std::sqrt(double(target)); }
+
+  double Radius() const { return r_; }
+  bool Done() const { return done_; }
+  int Runs() const { return runs_; }
+
+  /// Records the count of the run at Radius() and steps to the next radius.
+  Role Report(size_t count) {
+    const double c = double(count), r = r_;
+    ++runs_;
+    Role role = Role::None;
+    if (c >= accLo_ && c <= accHi_) {
+      done_ = true;
+      return Role::Accepted;
+    }
+    if (c >= target_) {
+      if (r > aboveRadius_) aboveRadius_ = r, aboveCount_ = c, role = Role::Above;
+    } else if (belowRadius_ == 0 || r < belowRadius_) {
+      belowRadius_ = r, belowCount_ = c, role = Role::Below;
+    }
+    if ((belowRadius_ > 0 && belowRadius_ <= aboveRadius_ * (1 + 1e-9)) || runs_ >= maxRuns_) {
+      done_ = true;  // the count jumps across the target here, or no runs are left
+      return role;
+    }
+    r_ = NextRadius(aboveRadius_, aboveCount_, belowRadius_, belowCount_, c, r, aim_, prevRadius_, prevCount_);
+    prevRadius_ = r, prevCount_ = c;
+    return role;
+  }
+
+  /// The next radius to try after a run at `r` gave `count`: inside the bracket
+  /// once there is one (above: the largest radius with count >= target, below:
+  /// the smallest with count < target; radius 0 where none yet), by the local
+  /// slope of log N over log r: measured from the run before (`prevRadius`,
+  /// `prevCount`; 0 for none), else -2 as on a surface; clamped so each step
+  /// makes progress.
+  static double NextRadius(double aboveRadius, double aboveCount, double belowRadius, double belowCount,
+                           double count, double r, double target, double prevRadius = 0, double prevCount = 0) {
+    if (aboveRadius > 0 && belowRadius > 0) {
+      const double la = std::log(aboveRadius), lb = std::log(belowRadius);
+      const double ca = std::log(aboveCount), cb = std::log(belowCount);
+      double f = ca > cb ? (ca - std::log(target)) / (ca - cb) : 0.5;
+      f = std::min(0.9, std::max(0.1, f));
+      return std::exp(la + f * (lb - la));
+    }
+    double slope = 2;  // N ~ 1/r^2
+    if (prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r && prevCount != count) {
+      const double s = -std::log(count / prevCount) / std::log(r / prevRadius);
+      if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
+    }
+    const double step = std::pow(count / target, 1.0 / slope);
+    return r * std::min(8.0, std::max(1.0 / 8, step));
+  }
+
+  static constexpr double kThinning = 0.03;  // an exact count thins a set up to 3% larger
+
+ private:
+  double target_, tolerance_;
+  int maxRuns_, runs_ = 0;
+  double accLo_ = 0, accHi_ = 0, aim_ = 0;
+  double aboveRadius_ = 0, aboveCount_, belowRadius_ = 0, belowCount_ = 0;  // radius 0: every point a sample
+  double prevRadius_ = 0, prevCount_ = 0;
+  double r_;
+  bool done_ = false;
+};
+
 /// The count N(r) of a Poisson set falls roughly as 1/r^2 on a surface, but not
 /// monotonically, and it can jump across the target (on regular grids, say).
 /// The search keeps the largest radius seen with N >= target and the smallest
@@ -29,8 +116,8 @@ class PoissonTargetCount {
  public:
   struct Param {
     size_t sampleNum = 0;        ///< wanted samples, 1..the points `order` visits
-    double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance); one
-                                 ///< above it (in the thinning window) is thinned to sampleNum
+    double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance); where
+                                 ///< no run lands there, the nearest set above is thinned to sampleNum
     int maxIterations = 24;      ///< Poisson runs at most
     double initialRadius = 0;    ///< first radius tried, > 0
     uint64_t seed = 0;           ///< the farthest-point fallback's first sample
@@ -51,30 +138,6 @@ class PoissonTargetCount {
     double coveringRadius = 0;
   };
 
-  /// The next radius to try after a run at `r` gave `count`: inside the bracket
-  /// once there is one (above: the largest radius with count >= target, below:
-  /// the smallest with count < target; radius 0 where none yet), by the local
-  /// slope of log N over log r: measured from the run before (`prevRadius`,
-  /// `prevCount`; 0 for none), else -2 as on a surface; clamped so each step
-  /// makes progress. Public for searches whose runs are made elsewhere (tiles).
-  static double NextRadius(double aboveRadius, double aboveCount, double belowRadius, double belowCount,
-                           double count, double r, double target, double prevRadius = 0, double prevCount = 0) {
-    if (aboveRadius > 0 && belowRadius > 0) {
-      const double la = std::log(aboveRadius), lb = std::log(belowRadius);
-      const double ca = std::log(aboveCount), cb = std::log(belowCount);
-      double f = ca > cb ? (ca - std::log(target)) / (ca - cb) : 0.5;
-      f = std::min(0.9, std::max(0.1, f));
-      return std::exp(la + f * (lb - la));
-    }
-    double slope = 2;  // N ~ 1/r^2
-    if (prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r && prevCount != count) {
-      const double s = -std::log(count / prevCount) / std::log(r / prevRadius);
-      if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
-    }
-    const double step = std::pow(count / target, 1.0 / slope);
-    return r * std::min(8.0, std::max(1.0 / 8, step));
-  }
-
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
   /// FastMarching, EuclideanBall).
   template <class Scalar, class Search>
@@ -86,46 +149,27 @@ class PoissonTargetCount {
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))
       throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
                                              std::to_string(100 * p.tolerance) + "%)");
-    const double target = double(p.sampleNum);
-    // Runs stop in the window an exact count thins from (at most kThinning larger) or, with a tolerance,
-    // within it on either side.
-    const double accLo = p.tolerance > 0 ? target * (1 - p.tolerance) : target;
-    const double accHi = std::max(target * (1 + std::max(p.tolerance, kThinning)), target + 2);
-    // An exact count aims at the middle of its window, so a run a little off still lands in it.
-    const double aim = p.tolerance > 0 ? target : std::min(0.5 * (target + accHi), double(candidates));
-    Trial above, below;  // above: count >= target, largest radius; below: count < target, smallest radius
+    RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);
+    Trial above, accepted;     // above: the run with count >= target at the largest radius
     above.count = candidates;  // radius 0: every point is a sample
-    double r = p.initialRadius > 0 ? p.initialRadius : 1, prevRadius = 0, prevCount = 0;
     Result out;
-    Trial accepted;
     const int phase = std::max(1, p.maxIterations);
-    for (int it = 0; it < p.maxIterations; ++it) {
-      Trial t = Run(n, search, r, *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
+    for (int it = 0; !steps.Done(); ++it) {
+      Trial t = Run(n, search, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
       ++out.iterations;
-      const double c = double(t.count);
-      if (c >= accLo && c <= accHi) {
-        accepted = std::move(t);
-        break;
+      switch (steps.Report(t.count)) {
+        case RadiusSearch::Role::Accepted: accepted = std::move(t); break;
+        case RadiusSearch::Role::Above: above = std::move(t); break;
+        case RadiusSearch::Role::Below:
+        case RadiusSearch::Role::None: break;
       }
-      if (t.count >= p.sampleNum) {
-        if (t.radius > above.radius) above = std::move(t);
-      } else if (below.radius == 0 || t.radius < below.radius) {
-        below = std::move(t);
-      }
-      if (below.radius > 0 && below.radius <= above.radius * (1 + 1e-9)) break;  // the count jumps here
-      const double next = NextRadius(above.radius, double(above.count), below.radius, double(below.count), c, r, aim,
-                                     prevRadius, prevCount);
-      prevRadius = r, prevCount = c;
-      r = next;
     }
     const bool found = accepted.radius > 0;
     Trial& from = found ? accepted : above;
     out.radius = from.radius;
     out.poissonCount = from.count;
-    // A set within the tolerance is kept as it is; one in the thinning window above it is thinned.
-    const bool withinTolerance = from.count == p.sampleNum ||
-                                 (p.tolerance > 0 && double(from.count) <= target * (1 + p.tolerance));
-    if (found && withinTolerance) {
+    // A set within the tolerance is kept as it is; one in the thinning window (an exact count) is thinned.
+    if (found && (p.tolerance > 0 || from.count == p.sampleNum)) {
       out.samples = std::move(from.samples);
       out.diskOwner = std::move(from.owner);
       out.coveringRadius = out.radius;
@@ -163,7 +207,6 @@ class PoissonTargetCount {
   }
 
  private:
-  static constexpr double kThinning = 0.03;  // an exact count thins a set up to 3% larger
   struct Trial {
     double radius = 0;
     size_t count = 0;

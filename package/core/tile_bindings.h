@@ -105,10 +105,20 @@ inline void BindTiles(nb::module_& m) {
         "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(),
         "progress"_a.none());
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
-  m.def("next_radius", &vcg_ext::PoissonTargetCount::NextRadius, "above_radius"_a, "above_count"_a,
-        "below_radius"_a, "below_count"_a, "count"_a, "radius"_a, "target"_a, "prev_radius"_a = 0.0,
-        "prev_count"_a = 0.0,
-        "the count search's next radius, as the single-machine search steps");
+  using vcg_ext::RadiusSearch;
+  nb::enum_<RadiusSearch::Role>(m, "SearchRole")
+      .value("Accepted", RadiusSearch::Role::Accepted)
+      .value("Above", RadiusSearch::Role::Above)
+      .value("Below", RadiusSearch::Role::Below)
+      .value("None_", RadiusSearch::Role::None);
+  nb::class_<RadiusSearch>(m, "RadiusSearch", "the count search's steps, as one machine's search takes them")
+      .def(nb::init<size_t, double, size_t, double, int>(), "target"_a, "tolerance"_a, "candidates"_a,
+           "first_radius"_a, "max_runs"_a)
+      .def_prop_ro("radius", &RadiusSearch::Radius)
+      .def_prop_ro("done", &RadiusSearch::Done)
+      .def_prop_ro("runs", &RadiusSearch::Runs)
+      .def("report", &RadiusSearch::Report, "count"_a)
+      .def_static("first_radius", &RadiusSearch::FirstRadius, "core_diagonal"_a, "target"_a);
   m.attr("TILE_OUT") = int(Tile::Out);
   m.attr("TILE_IN") = int(Tile::In);
   m.attr("TILE_OPEN") = int(Tile::Open);

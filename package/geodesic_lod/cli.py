@@ -85,9 +85,8 @@ def parser() -> argparse.ArgumentParser:
                                 "written as tiles with an index.json")
     dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
     dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
-    dask.add_argument("--tolerance", type=float, help="with --count or --rate, a Poisson set within this percentage "
-                      "of the count (of each level's with --levels), untrimmed (default: 1; on one machine the count "
-                      "is exact)")
+    p.add_argument("--tolerance", type=float, help="with --count, --rate or --levels, a Poisson set within this "
+                   "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
     dask.add_argument("--tile-points", type=int, default=2_000_000, help="points per tile, about "
                       "(default: %(default)s)")
     dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
@@ -202,11 +201,11 @@ class _Bar:
 def _request(args) -> dict:
     """The options that need no input, checked before the file is read (a bad one fails at once)."""
     if args.fps and args.rate is None and args.count is None:
-        raise ValueError("--fps takes --rate or --count" + (": --levels are nested already (coarser levels "
-                         "are farthest-point prefixes)" if args.levels is not None else ""))
-    counted = args.rate is not None or args.count is not None or (args.levels is not None and _on_cluster(args))
+        raise ValueError("--fps takes --rate or --count" + (": --levels are nested Poisson-disk sets"
+                                                            if args.levels is not None else ""))
+    counted = args.rate is not None or args.count is not None or args.levels is not None
     if args.tolerance is not None and (args.fps or not counted):
-        raise ValueError("--tolerance goes with --count or --rate (Poisson-disk), or with --levels on a cluster")
+        raise ValueError("--tolerance goes with --count, --rate or --levels (Poisson-disk)")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
         raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
     arrays._real(args.adaptivity, "--adaptivity", positive=False)
@@ -238,8 +237,7 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
                   progress=progress)
     n = source.points.shape[0]
     if "levels" in request:
-        lod = arrays.lod_pyramid(source.points, source.normals, levels=request["levels"], **common)
-        return [np.sort(level) for level in lod.levels]
+        return _nested_levels(args, request["levels"], source, progress)
     if "radius" in request:
         return [np.sort(arrays.poisson_lod(source.points, source.normals,
                                            radius=_radius(request["radius"], source.points), **common).indices)]
@@ -250,6 +248,25 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
         return [arrays.fps_lod(source.points, source.normals, count=count, **common).indices]
     return [np.sort(arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
                                        **common).indices)]
+
+
+def _nested_levels(args, items, source: point_files.PointFile, progress) -> list:
+    """Each level the Poisson set of its count among the finer level's samples, as a cluster run makes
+    them (the same samples where the searches accept a run within the tolerance; one machine thins a
+    set to the exact count where the tolerance is 0)."""
+    from .domain import Domain
+    counts = arrays.level_counts(items, source.points.shape[0])
+    part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
+    dom = Domain(source.points, source.normals, faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
+                 recompute_normals=args.recompute_normals, threads=args.threads, progress=part(0.0, 0.4))
+    levels, finer = [], None
+    for k, count in enumerate(counts):
+        lod = dom.poisson_lod(count=count, tolerance=args.tolerance or 0.0, seed=args.seed, within=finer,
+                              threads=args.threads, progress=part(0.4 + 0.6 * k / len(counts),
+                                                                 0.4 + 0.6 * (k + 1) / len(counts)))
+        finer = np.sort(lod.indices)
+        levels.append(finer)
+    return levels
 
 
 def _needed_points() -> int:

@@ -30,7 +30,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, las_files, point_files, tiles
+from . import arrays, core_diagonal, las_files, point_files, tiles
 from .output_folder import INDEX, OutputFolder, remove_own
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
@@ -297,7 +297,7 @@ def local_cluster(workers: int, memory_limit="auto"):
 
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
               rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
-              max_runs: int = 12, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
+              max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
               adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000, client=None,
               threads: Optional[int] = None, progress=None) -> dict:
     """Samples the files as one cloud on a Dask client (its workers do the tiles; see local_cluster) and
@@ -320,7 +320,8 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         raise ValueError("give exactly one of radius, count, rate or levels" +
                          (f" (got {' and '.join(given)})" if given else ""))
     tolerance = cluster_tolerance(tolerance)
-    max_runs = arrays._integer(max_runs, "max_runs", 1)
+    max_runs = arrays._integer(arrays._core.PoissonParam().max_iterations if max_runs is None else max_runs,
+                               "max_runs", 1)
     seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     if not isinstance(tile_points, int) or tile_points < 1000:
@@ -393,32 +394,39 @@ def _poisson_run(client, job: Job, boxes, ticks: _Ticks) -> _Run:
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: _Ticks,
-                  spacing: float, pool: int) -> tuple:
-    """poisson_lod's count search, each run over all tiles, among `pool` points that may be samples: (the
-    accepted or nearest run, runs made)."""
-    lo, hi = target * (1 - tolerance / 100), target * (1 + tolerance / 100)
-    above_r, above_c, below_r, below_c = 0.0, float(pool), 0.0, 0.0
-    r = float(np.linalg.norm(job.cloud.hi - job.cloud.lo)) / math.sqrt(target)
-    best, runs, spent, prev = None, 0, {"tiles": 0.0, "seams": 0.0}, (0.0, 0.0)
-    for runs in range(1, max_runs + 1):
+                  spacing: float, pool: int, first_radius: float) -> tuple:
+    """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
+    run over all tiles, among `pool` points that may be samples: (the accepted or nearest run, runs made)."""
+    steps = arrays._core.RadiusSearch(target, tolerance / 100, pool, first_radius, max_runs)
+    best, spent = None, {"tiles": 0.0, "seams": 0.0}
+    while not steps.done:
+        r = steps.radius
         run = _poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
                            ticks)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
-        if best is None or abs(run.count - target) < abs(best.count - target):
+        if steps.report(run.count) == arrays._core.SearchRole.Accepted:
             best = run
-        if lo <= run.count <= hi:
-            break
-        if run.count >= target:
-            if r > above_r:
-                above_r, above_c = r, float(run.count)
-        elif below_r == 0 or r < below_r:
-            below_r, below_c = r, float(run.count)
-        if below_r > 0 and below_r <= above_r * (1 + 1e-9):
-            break  # the count jumps across the target here
-        r, prev = arrays._core.next_radius(above_r, above_c, below_r, below_c, float(run.count), r, float(target),
-                                           *prev), (r, float(run.count))
+        elif best is None or abs(run.count - target) < abs(best.count - target):
+            best = run
     best.seconds = spent  # every run's, not only the one kept
-    return best, runs
+    return best, steps.runs
+
+
+def _file_pass(s: Source, targets, gather: bool):
+    """A Dask task: core_diagonal's pass over one file."""
+    return core_diagonal.file_pass(lambda: (xyz for _, xyz, _ in _chunks(s)), targets, gather)
+
+
+def _core_diagonal(client, srcs, cloud: tiles.Box, total: int) -> float:
+    """The diagonal one machine starts its count search from, over every file's points."""
+    def run_pass(targets, gather):
+        parts = client.gather(client.map(_file_pass, srcs, [targets] * len(srcs), [gather] * len(srcs),
+                                         pure=False))
+        merged = [core_diagonal.merge_unique([p[0][k] for p in parts]) if gather else sum(p[0][k] for p in parts)
+                  for k in range(len(targets))]
+        return (merged, sum(p[1] for p in parts), np.min([p[2] for p in parts], axis=0),
+                np.max([p[3] for p in parts], axis=0))
+    return core_diagonal.core_diagonal(run_pass, total, cloud.lo, cloud.hi)
 
 
 def _worker_rss() -> int:
@@ -495,6 +503,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
     work = run_dir / WORK
     job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
     pool, made = total, []
+    diagonal = _core_diagonal(client, srcs, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
@@ -502,7 +511,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
             run = _poisson_run(client, job, boxes, ticks)
         else:
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool)
+                                      pool, arrays._core.RadiusSearch.first_radius(diagonal, value))
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None

@@ -34,3 +34,49 @@ def test_the_cluster_refuses_a_tolerance_it_cannot_keep(tmp_path, tolerance, pro
     with pytest.raises(ValueError, match=problem):
         dist.lod_files([str(tmp_path / "in.npy")], tmp_path / "lod", count=100, tolerance=tolerance)
     assert not (tmp_path / "lod").exists()
+
+
+@pytest.fixture(scope="module")
+def parts(tmp_path_factory):
+    from test_distributed import write_parts
+    import laspy
+    folder = write_parts(tmp_path_factory.mktemp("parts"), bumpy_sphere(20000) * 10, parts=3)
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(3)])
+    return folder, np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
+
+
+def cluster_ids(out, level):
+    import laspy
+    return np.sort(np.concatenate([laspy.read(str(out / t["file"])).points.array["gps_time"]
+                                   for t in level["tiles"]]).astype(np.int64))
+
+
+@pytest.mark.parametrize("count, tolerance", [(700, 1), (2500, 2), (150, 0.5)])
+def test_one_machine_and_the_cluster_step_the_same_count_search(parts, tmp_path, count, tolerance):
+    from dask.distributed import Client
+    folder, points = parts
+    one = gl.poisson_lod(points, count=count, tolerance=tolerance)
+    with dist.local_cluster(2) as cluster, Client(cluster) as client:
+        index = dist.lod_files([str(folder)], tmp_path / "lod", count=count, tolerance=tolerance, client=client,
+                               threads=1, tile_points=5000)
+    assert index["runs"] == one.iterations and index["radius"] == one.radius
+    assert np.array_equal(cluster_ids(tmp_path / "lod", index), np.sort(one.indices))
+
+
+def test_the_commands_levels_are_the_clusters_on_one_machine(parts, tmp_path):
+    from dask.distributed import Client
+    import laspy
+    folder, points = parts
+    with dist.local_cluster(2) as cluster, Client(cluster) as client:
+        index = dist.lod_files([str(folder)], tmp_path / "lod", levels="20%,5%,100", tolerance=2, client=client,
+                               threads=1, tile_points=5000)
+    merged = tmp_path / "all.laz"  # the same cloud as one file, for one machine
+    las = laspy.read(str(folder / "part0.laz"))
+    las.points = laspy.PackedPointRecord(np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array
+                                                         for k in range(3)]), las.header.point_format)
+    las.write(str(merged))
+    r = run(merged, "-o", tmp_path / "one.laz", "--levels", "20%,5%,100", "--tolerance", "2", "-q")
+    assert r.returncode == 0, r.stderr
+    for level, name in zip(index["levels"], ("20pct", "5pct", "100")):
+        one = np.sort(laspy.read(str(tmp_path / f"one_{name}.laz")).points.array["gps_time"].astype(np.int64))
+        assert np.array_equal(cluster_ids(tmp_path / "lod", level), one)
