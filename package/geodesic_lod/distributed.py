@@ -249,7 +249,9 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
         return {"file": None, "count": 0}
     source = read_records(job.srcs, ids)
     point_files.write_all(source, [(path, np.arange(len(ids)))])
-    return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo}
+    xyz = point_files.coordinates(source)
+    return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
+            "bounds": [xyz.min(axis=0).tolist(), xyz.max(axis=0).tolist()]}
 
 
 def domain_fields(metric: str, adaptivity: float) -> dict:
@@ -478,11 +480,18 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "bounds": [cloud.lo.tolist(), cloud.hi.tolist()],
+             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **_format_fields(first), **made[0]}
     if size["levels"] is not None:
         index["levels"] = made
     return out.commit(index)
+
+
+def _union(boxes: list) -> Optional[list]:
+    """The box around boxes given as [lo, hi] lists; None for none."""
+    if not boxes:
+        return None
+    return [np.min([b[0] for b in boxes], axis=0).tolist(), np.max([b[1] for b in boxes], axis=0).tolist()]
 
 
 def _format_fields(s: Source) -> dict:
@@ -555,8 +564,9 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
     for box, res in zip(boxes, results):
         if res is None or res["count"] == 0:
             continue
-        entry["tiles"].append({"file": res["file"], "count": res["count"], "lo": box.lo.tolist(),
-                               "hi": box.hi.tolist(), "points_read": res["read"], "halo": res["halo"]})
+        entry["tiles"].append({"file": res["file"], "count": res["count"], "bounds": res["bounds"],
+                               "tile": [box.lo.tolist(), box.hi.tolist()], "points_read": res["read"],
+                               "halo": res["halo"]})
         entry["samples"] += res["count"]
     for f in folder.iterdir():  # left by tasks lost with their worker
         if point_files.is_partial(f.name):

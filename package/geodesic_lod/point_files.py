@@ -119,6 +119,14 @@ def read(path) -> PointFile:
         raise
 
 
+def coordinates(source: PointFile) -> np.ndarray:
+    """(n, 3) float64 coordinates of a PointFile's rows (LAS: scaled and offset)."""
+    if source.kind == "las":
+        return las_files.xyz(source.rows, source.source.header)
+    rows = source.rows
+    return _xyz(rows, source.path) if rows.dtype.names else np.asarray(rows[:, :3], dtype=np.float64)
+
+
 def _xyz(table, path, names=("x", "y", "z")):
     fields = table.dtype.names or ()
     missing = [n for n in names if n not in fields]

@@ -70,6 +70,9 @@ def check_equal(out, points, records, seed):
     assert sorted(ids) == sorted(whole)
     assert got.tobytes() == records[ids].tobytes()  # bit-identical records
     assert index["samples"] == len(whole) and index["seed"] == seed and index["radius"] == RADIUS
+    xyz = np.column_stack([got[c].astype(np.float64) * 1e-4 + 0.0 for c in "XYZ"])
+    assert index["bounds"] == [xyz.min(axis=0).tolist(), xyz.max(axis=0).tolist()]  # the data's own
+    assert index["point_format"] == 6 and index["las_version"] == "1.4"
     return index
 
 
