@@ -123,7 +123,9 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--seed", "-1"], "seed must be from 0"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--threads", "0"], "threads must be at least 1"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
-     "adaptivity must be a non-negative"),
+     "error: --adaptivity must be a non-negative"),  # the option, not the file
+    (lambda d: [np.save(d / "tiny.npy", bumpy_sphere(3)) or d / "tiny.npy", "-o", "o.npy", "--rate", "50%"],
+     "tiny.npy: holds 3 points: at least 21 are needed"),
 ]
 
 
