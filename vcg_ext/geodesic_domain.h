@@ -62,7 +62,6 @@ class GeodesicDomain {
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
-  size_t skippedFaces = 0;          ///< faces with a deleted or repeated corner
 
   /// Throws InputError for the first bad input.
   static void Check(const PointSet<Scalar>& ps, bool hasTriangles, const Param& p) {
@@ -104,7 +103,6 @@ class GeodesicDomain {
     d.adaptivity = p.adaptivity;
     d.meshGeodesics = p.metric != Metric::Euclidean && !UsesPointGraph(!tris.tri.empty(), p);
     if (d.meshGeodesics) {
-      d.skippedFaces = tris.skipped;
       d.leftOut = KeepReferenced(ps, tris.tri);
       Check(ps, true, p);  // what is left must still be samplable
     }

@@ -55,6 +55,9 @@ def test_wheel_installs_and_works_in_a_fresh_venv(tmp_path):
         env=build_env, timeout=1500)
     wheels = list((tmp_path / "dist").glob("geodesic_lod-*.whl"))
     assert len(wheels) == 1, wheels
+    import zipfile
+    names = zipfile.ZipFile(wheels[0]).namelist()
+    assert "geodesic_lod/py.typed" in names and "geodesic_lod/_core.pyi" in names  # typed, with the core's stub
     venv = tmp_path / "venv"
     run([sys.executable, "-m", "venv", str(venv)], env=env)
     py = venv / "bin" / "python"
