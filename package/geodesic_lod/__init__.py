@@ -16,6 +16,7 @@ machine on a Dask cluster, with the same samples (``geodesic_lod.tiles`` holds t
 from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVariation, PoissonLod, fps_lod,
                      level_counts, lod_pyramid, normal_variation, poisson_lod)
 from .domain import Domain
+from .errors import ClusterJobError, InputError, PointFileError
 
-__all__ = ["poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "Domain", "PoissonLod",
+__all__ = ["InputError", "PointFileError", "ClusterJobError", "poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "Domain", "PoissonLod",
            "FpsLod", "LodPyramid", "NormalVariation", "Lod", "METRICS", "DEFAULT_METRIC"]

@@ -14,6 +14,7 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 
 from . import _core
+from .errors import InputError
 
 # The product defaults live in vcg_ext's Param structs; these read them.
 _DOMAIN = _core.DomainParam()
@@ -92,21 +93,21 @@ def _float_array(a, name: str, allow_none: bool = False):
         return None
     a = np.asarray(a)
     if a.dtype not in (np.float32, np.float64):
-        raise TypeError(f"{name} must hold float32 or float64 values, not {a.dtype} "
+        raise InputError(f"{name} must hold float32 or float64 values, not {a.dtype} "
                         f"(convert with {name}.astype(np.float64))")
     if a.ndim != 2 or a.shape[1] != 3:
-        raise ValueError(f"{name} must be an (n, 3) array, got shape {a.shape}")
+        raise InputError(f"{name} must be an (n, 3) array, got shape {a.shape}")
     return a
 
 
 def _points(points, normals):
     p = _float_array(points, "points")
     if p.shape[0] < 2:
-        raise ValueError(f"points holds {p.shape[0]} point{'s' if p.shape[0] != 1 else ''}: "
+        raise InputError(f"points holds {p.shape[0]} point{'s' if p.shape[0] != 1 else ''}: "
                          "at least 2 are needed to sample from")
     n = _float_array(normals, "normals", allow_none=True)
     if n is not None and n.shape[0] != p.shape[0]:
-        raise ValueError(f"normals must have one row per point ({p.shape[0]}), got {n.shape[0]}")
+        raise InputError(f"normals must have one row per point ({p.shape[0]}), got {n.shape[0]}")
     return p, n
 
 
@@ -122,9 +123,9 @@ def _faces(faces):
         return None
     f = np.asarray(faces)
     if not np.issubdtype(f.dtype, np.integer):
-        raise TypeError(f"faces must hold integer vertex indices, not {f.dtype}")
+        raise InputError(f"faces must hold integer vertex indices, not {f.dtype}")
     if f.ndim != 2 or f.shape[1] != 3:
-        raise ValueError(f"faces must be an (m, 3) array of vertex indices, got shape {f.shape}")
+        raise InputError(f"faces must be an (m, 3) array of vertex indices, got shape {f.shape}")
     if f.dtype.itemsize < 4 or not f.dtype.isnative:  # the core reads native 32- and 64-bit indices
         f = f.astype(np.int64)
     # The core reads the rows in place: a strided view (such as a field of a PLY file's face records) is copied.
@@ -133,20 +134,20 @@ def _faces(faces):
 
 def _integer(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "") -> int:
     if isinstance(x, bool) or not isinstance(x, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, not {type(x).__name__} ({x!r})")
+        raise InputError(f"{name} must be an integer, not {type(x).__name__} ({x!r})")
     x = int(x)
     if x < lo or (hi is not None and x > hi):
         bound = f"from {lo} to {hi}{hi_text}" if hi is not None else f"at least {lo}"
-        raise ValueError(f"{name} must be {bound}, got {x}")
+        raise InputError(f"{name} must be {bound}, got {x}")
     return x
 
 
 def _real(x, name: str, positive: bool) -> float:
     if isinstance(x, bool) or not isinstance(x, numbers.Real):
-        raise TypeError(f"{name} must be a number, not {type(x).__name__} ({x!r})")
+        raise InputError(f"{name} must be a number, not {type(x).__name__} ({x!r})")
     x = float(x)
     if not math.isfinite(x) or (x <= 0 if positive else x < 0):
-        raise ValueError(f"{name} must be a {'positive' if positive else 'non-negative'} finite number, got {x}")
+        raise InputError(f"{name} must be a {'positive' if positive else 'non-negative'} finite number, got {x}")
     return x
 
 
@@ -159,7 +160,7 @@ def radius_from(value, diagonal: Callable[[], float], name: str = "radius") -> f
         except ValueError:
             pct = math.nan
         if not (math.isfinite(pct) and 0 < pct <= 100):
-            raise ValueError(f"{name} must be a percentage of the diagonal from above 0 to 100 such as 1%, "
+            raise InputError(f"{name} must be a percentage of the diagonal from above 0 to 100 such as 1%, "
                              f"got {value!r}")
         return pct / 100 * float(diagonal())
     try:
@@ -167,7 +168,7 @@ def radius_from(value, diagonal: Callable[[], float], name: str = "radius") -> f
     except (TypeError, ValueError):
         length = math.nan
     if not (math.isfinite(length) and length > 0):
-        raise ValueError(f"{name} must be a positive length or a percentage of the diagonal such as 1%, got {value!r}")
+        raise InputError(f"{name} must be a positive length or a percentage of the diagonal such as 1%, got {value!r}")
     return length
 
 
@@ -183,7 +184,7 @@ def percent(value, name: str) -> float:
     else:
         x = _real(value, name, positive=False)
     if not (math.isfinite(x) and 0 < x <= 100):
-        raise ValueError(f"{name} must be a percentage from above 0 to 100 such as 10 or '10%', got {value!r}")
+        raise InputError(f"{name} must be a percentage from above 0 to 100 such as 10 or '10%', got {value!r}")
     return x
 
 
@@ -194,7 +195,7 @@ def level_items(levels, name: str = "levels") -> list:
         return levels
     items = [t.strip() for t in levels.split(",")]
     if any(not t for t in items):
-        raise ValueError(f"{name} must be a comma-separated list such as 50%,10%,2% or 5000,500, got {levels!r}")
+        raise InputError(f"{name} must be a comma-separated list such as 50%,10%,2% or 5000,500, got {levels!r}")
     out = []
     for t in items:
         if t.endswith("%"):
@@ -202,13 +203,13 @@ def level_items(levels, name: str = "levels") -> list:
         elif t.isdigit():
             out.append(int(t))
         else:
-            raise ValueError(f"{name}: {t!r} is neither a whole number of samples nor a percentage such as 10%")
+            raise InputError(f"{name}: {t!r} is neither a whole number of samples nor a percentage such as 10%")
     return out
 
 
 def _choice(x, table: dict, name: str):
     if x not in table:
-        raise ValueError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
+        raise InputError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
     return table[x]
 
 
@@ -218,7 +219,7 @@ def _domain(n: int, has_faces: bool, metric, geodesics, curvature_exponent, adap
     d.metric = _choice(metric, METRICS, "metric")
     d.mode = _choice(geodesics, GEODESICS, "geodesics")
     if d.mode == _core.GeodesicMode.Mesh and not has_faces and d.metric != _core.Metric.Euclidean:
-        raise ValueError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
+        raise InputError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
     d.curvature_exponent = _real(curvature_exponent, "curvature_exponent", positive=True)
     d.adaptivity = _real(adaptivity, "adaptivity", positive=False)
     below_n = f" (below the number of points, {n})"
@@ -228,7 +229,7 @@ def _domain(n: int, has_faces: bool, metric, geodesics, curvature_exponent, adap
     d.graph_neighbors = (_integer(graph_neighbors, "graph_neighbors", 1, n - 1, below_n) if point_graph
                          else _integer(graph_neighbors, "graph_neighbors", 1))
     if not isinstance(recompute_normals, (bool, np.bool_)):
-        raise TypeError(f"recompute_normals must be True or False, not {recompute_normals!r}")
+        raise InputError(f"recompute_normals must be True or False, not {recompute_normals!r}")
     d.use_input_normals = not recompute_normals
     return d
 
@@ -238,11 +239,11 @@ def _common(seed, threads, progress, mesh_output, has_faces):
     if threads is not None:
         threads = _integer(threads, "threads", 1)
     if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be None or a callable taking a fraction, not {type(progress).__name__}")
+        raise InputError(f"progress must be None or a callable taking a fraction, not {type(progress).__name__}")
     if not isinstance(mesh_output, (bool, np.bool_)):
-        raise TypeError(f"mesh_output must be True or False, not {mesh_output!r}")
+        raise InputError(f"mesh_output must be True or False, not {mesh_output!r}")
     if mesh_output and not has_faces:
-        raise ValueError("mesh_output=True needs faces (the samples are triangulated over them)")
+        raise InputError("mesh_output=True needs faces (the samples are triangulated over them)")
     return seed, threads
 
 
@@ -258,26 +259,26 @@ def _run(fn, *args):
     """Calls the core, turning its ValueError(field id, problem) into a message naming the argument."""
     try:
         return fn(*args)
-    except ValueError as e:
+    except ValueError as e:  # the core raises ValueError for bad input only
         if len(e.args) == 2 and e.args[0] in _FIELD_WORDS:
-            raise ValueError(f"{_FIELD_WORDS[e.args[0]]} {e.args[1]}") from None
-        raise
+            raise InputError(f"{_FIELD_WORDS[e.args[0]]} {e.args[1]}") from None
+        raise InputError(str(e)) from None
 
 
 def _indices(values, n: int, name: str) -> np.ndarray:
     """Point indices: a non-empty 1-D array of distinct integers in [0, n), sorted."""
     a = np.asarray(values)
     if a.ndim != 1 or a.size == 0 or not (np.issubdtype(a.dtype, np.integer) or a.dtype == bool):
-        raise ValueError(f"{name} must be a non-empty 1-D array of point indices")
+        raise InputError(f"{name} must be a non-empty 1-D array of point indices")
     if a.dtype == bool:
         if len(a) != n:
-            raise ValueError(f"{name} as a mask must have one entry per point ({n}), got {len(a)}")
+            raise InputError(f"{name} as a mask must have one entry per point ({n}), got {len(a)}")
         a = np.flatnonzero(a)
         if a.size == 0:
-            raise ValueError(f"{name} selects no point")
+            raise InputError(f"{name} selects no point")
     a = np.unique(a.astype(np.int64))
     if a[0] < 0 or a[-1] >= n:
-        raise ValueError(f"{name} holds an index outside 0 .. {n - 1}")
+        raise InputError(f"{name} holds an index outside 0 .. {n - 1}")
     return a
 
 
@@ -325,7 +326,7 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
     param = _core.PoissonParam()
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
     if len(given) != 1:
-        raise ValueError("give exactly one of radius, count or rate" +
+        raise InputError("give exactly one of radius, count or rate" +
                          (f" (got {' and '.join(given)})" if given else ""))
     pool = n_points
     if within is not None:
@@ -343,10 +344,10 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
         r = percent(rate, "rate")
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
         if param.sample_num > pool:
-            raise ValueError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
+            raise InputError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
     t = _real(tolerance, "tolerance", positive=False)
     if t >= 100:
-        raise ValueError(f"tolerance is a percentage below 100, got {t}")
+        raise InputError(f"tolerance is a percentage below 100, got {t}")
     param.tolerance = t / 100
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
@@ -379,7 +380,7 @@ def _fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, 
     param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     if regions == "disk":
-        raise ValueError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
+        raise InputError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
     param.regions = _choice(regions, REGIONS, "regions")
     return param, threads
 
@@ -389,7 +390,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
     finest first, each strictly smaller than the one before; or a comma-separated string of them."""
     levels = level_items(levels)
     if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
-        raise ValueError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
+        raise InputError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
                          f"got {levels!r}")
     counts = []
     for item in levels:
@@ -400,16 +401,16 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
             except ValueError:
                 pct = None
             if pct is None or not math.isfinite(pct) or not 0 < pct <= 100:
-                raise ValueError(f"levels: {item!r} is not a percentage from above 0 to 100 such as '10%'")
+                raise InputError(f"levels: {item!r} is not a percentage from above 0 to 100 such as '10%'")
             c = _core.percent_of(pct, n)
             if c < 1:
-                raise ValueError(f"levels: {item!r} of {n} points gives no samples")
+                raise InputError(f"levels: {item!r} of {n} points gives no samples")
             counts.append(int(c))
         else:
             counts.append(_integer(item, "levels", 1, n, " (the number of points)"))
     for k in range(1, len(counts)):
         if counts[k] >= counts[k - 1]:
-            raise ValueError(f"levels must get strictly coarser: level {k + 1} has {counts[k]} samples, "
+            raise InputError(f"levels must get strictly coarser: level {k + 1} has {counts[k]} samples, "
                              f"level {k} {counts[k - 1]}")
     return counts
 

@@ -20,6 +20,7 @@ import time
 import numpy as np
 
 from . import arrays, point_files
+from .errors import ClusterJobError
 
 PROG = "geodesic-lod"
 EXIT_BAD_INPUT = 2
@@ -316,7 +317,7 @@ def main(argv=None) -> int:
                 print(f"{PROG}: {path}: {len(indices):,} of {n:,} points", file=sys.stderr)
             print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
         return 0
-    except (ValueError, TypeError) as e:
+    except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
         _fail(str(e))
     except KeyboardInterrupt:
         if bar is not None:

@@ -31,6 +31,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from . import arrays, core_diagonal, las_files, point_files, tiles
+from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
@@ -319,7 +320,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
              if v is not None]
     if len(given) != 1:
-        raise ValueError("give exactly one of radius, count, rate or levels" +
+        raise InputError("give exactly one of radius, count, rate or levels" +
                          (f" (got {' and '.join(given)})" if given else ""))
     tolerance = cluster_tolerance(tolerance)
     max_runs = arrays._integer(arrays._core.PoissonParam().max_iterations if max_runs is None else max_runs,
@@ -327,13 +328,13 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     if not isinstance(tile_points, int) or tile_points < 1000:
-        raise ValueError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
+        raise InputError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs), seed, metric, adaptivity, domain, tile_points,
                           client, threads, progress)
     except KilledWorker as e:
-        raise MemoryError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
+        raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
 
@@ -342,7 +343,7 @@ def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
     """A count's tolerance as a cluster run takes it: a percentage above 0 (the tiles make no exact count)."""
     tolerance = arrays._real(tolerance, name, positive=False)
     if not 0 < tolerance < 100:
-        raise ValueError(f"{name} must be a percentage above 0 and below 100 on a cluster, got {tolerance} (an "
+        raise InputError(f"{name} must be a percentage above 0 and below 100 on a cluster, got {tolerance} (an "
                          "exact count, tolerance 0, runs on one machine)")
     return tolerance
 
@@ -445,7 +446,7 @@ def check_worker_memory(client) -> None:
     for addr, w in client.scheduler_info()["workers"].items():
         limit = w.get("memory_limit") or 0
         if limit and used.get(addr, 0) >= pause * limit:
-            raise ValueError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
+            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
                              f"takes {used[addr] / 1e6:.0f} MB before any task; give workers at least "
                              f"{2 * used[addr] / 1e6:.0f} MB")
 

@@ -17,6 +17,7 @@ from typing import Callable, Optional, Sequence
 import numpy as np
 
 from . import _core, arrays
+from .errors import InputError
 
 OUT, IN, OPEN = _core.TILE_OUT, _core.TILE_IN, _core.TILE_OPEN
 
@@ -116,7 +117,7 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
             return None
         if len(points) <= neighbours:  # a stray point far from the rest: read as far as its neighbours
             if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
-                raise ValueError(f"the cloud holds {len(points)} points: at least {neighbours + 1} are needed (the "
+                raise InputError(f"the cloud holds {len(points)} points: at least {neighbours + 1} are needed (the "
                                  "neighbours each normal and the geodesics are built from)")
             halo *= 4
             continue

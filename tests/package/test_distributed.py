@@ -245,7 +245,7 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
     check_equal(tmp_path / "lod", points, records, 0)
 
 
-def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud, client, tmp_path):
+def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(cloud, client, tmp_path):
     from dask.distributed import KilledWorker
 
     class Dying:  # the client as it answers when a tile's worker keeps dying (Dask's KilledWorker)
@@ -256,7 +256,7 @@ def test_a_task_lost_with_its_worker_again_and_again_is_reported_as_memory(cloud
             if fn is dist.decide_tile:
                 raise KilledWorker("decide_tile-0", "tcp://127.0.0.1:1", 3)
             return client.map(fn, *args, **kw)
-    with pytest.raises(MemoryError, match="memory may be too small for tiles of 6000 points"):
+    with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 6000 points"):
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=Dying())
 
 
@@ -264,7 +264,7 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up."""
     folder = write_parts(tmp_path / "big", bumpy_sphere(600_000) * 10, parts=2)
     with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
-        with pytest.raises(MemoryError, match="too small for tiles of 1000000 points; lower tile_points"):
+        with pytest.raises(gl.ClusterJobError, match="too small for tiles of 1000000 points; lower tile_points"):
             dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=1_000_000, client=c, threads=1)
         assert not (tmp_path / "lod").exists()
         index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=50_000, client=c, threads=1)
@@ -311,6 +311,6 @@ def test_a_cluster_run_without_dask_names_the_extra_to_install(cloud, tmp_path):
 
 def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_path):
     with dist.local_cluster(1, memory_limit="50MB") as cluster, Client(cluster) as c:
-        with pytest.raises(ValueError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
+        with pytest.raises(gl.ClusterJobError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
             dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
     assert not (tmp_path / "lod").exists()

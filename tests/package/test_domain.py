@@ -76,12 +76,12 @@ def test_a_domain_gives_the_same_lod_on_any_number_of_threads():
 ])
 def test_bad_sampling_arguments_on_a_domain_are_named(call, words):
     domain = gl.Domain(bumpy_sphere(3000))
-    with pytest.raises(ValueError, match=words):
+    with pytest.raises(gl.InputError, match=words):
         call(domain)
 
 
 def test_bad_domain_arguments_are_named():
-    with pytest.raises(ValueError, match="adaptivity"):
+    with pytest.raises(gl.InputError, match="adaptivity"):
         gl.Domain(bumpy_sphere(500), adaptivity=-1)
-    with pytest.raises(ValueError, match="geodesics='mesh' needs faces"):
+    with pytest.raises(gl.InputError, match="geodesics='mesh' needs faces"):
         gl.Domain(bumpy_sphere(500), geodesics="mesh")

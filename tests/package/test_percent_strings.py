@@ -28,7 +28,7 @@ def test_the_array_api_and_a_domain_read_percent_strings():
                                          ({"rate": 101}, "rate must be a percentage"),
                                          ({"radius": "200%"}, "radius must be a percentage of the diagonal")])
 def test_bad_percentages_name_the_argument(kw, problem):
-    with pytest.raises(ValueError, match=problem):
+    with pytest.raises(gl.InputError, match=problem):
         gl.poisson_lod(bumpy_sphere(300), **kw)
 
 

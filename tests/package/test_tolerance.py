@@ -31,7 +31,7 @@ def test_the_command_keeps_within_the_tolerance(tmp_path):
 @pytest.mark.parametrize("tolerance, problem", [(0, "runs on one machine"), (100, "below 100"), (500, "below 100")])
 def test_the_cluster_refuses_a_tolerance_it_cannot_keep(tmp_path, tolerance, problem):
     np.save(tmp_path / "in.npy", bumpy_sphere(3000))
-    with pytest.raises(ValueError, match=problem):
+    with pytest.raises(gl.InputError, match=problem):
         dist.lod_files([str(tmp_path / "in.npy")], tmp_path / "lod", count=100, tolerance=tolerance)
     assert not (tmp_path / "lod").exists()
 
