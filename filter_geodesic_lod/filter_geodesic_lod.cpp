@@ -1,7 +1,9 @@
 // MeshLab 2025.07 adapter (FilterPlugin API).
 #include "filter_geodesic_lod.h"
+#include <string>
 
 #include "apply_lod.h"
+#include "python_names.h"
 
 using namespace geodesic_lod;
 
@@ -96,3 +98,14 @@ std::map<std::string, QVariant> FilterGeodesicLodPlugin::applyFilter(
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterGeodesicLodPlugin)
+
+// The pymeshlab names of the filters, comma-separated: geodesic_lod.pymeshlab reads them from the plugin
+// it bundles, so the Python package holds no copy.
+extern "C" Q_DECL_EXPORT const char* GeodesicLodPythonFilterNames() {
+  static const std::string joined = [] {
+    std::string s;
+    for (const char* name : geodesic_lod::kPythonNames) s += (s.empty() ? "" : ",") + std::string(name);
+    return s;
+  }();
+  return joined.c_str();
+}

@@ -314,7 +314,7 @@ std::vector<ParamSpec> PyramidParams(const CMeshO&) {
                    "Sample counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
                    "(50%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
                    "finer ones."};
-  levels.text = geodesic_lod::kDefaultLevels;
+  levels.text = vcg_ext::kDefaultPyramidLevels;
   p.push_back(levels);
   AddDomainParams(p);
   return p;

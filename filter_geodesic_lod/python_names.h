@@ -1,8 +1,8 @@
 #ifndef GEODESIC_LOD_PYTHON_NAMES_H
 #define GEODESIC_LOD_PYTHON_NAMES_H
-// The filters' pymeshlab names (the MeshSet methods), without Qt: the plugin
-// declares them and the Python package binds them (geodesic_lod.pymeshlab);
-// and the one default both front ends hold as text, the pyramid's levels.
+// The filters' pymeshlab names (the MeshSet methods), without Qt. The plugin
+// declares them and exports them (GeodesicLodPythonFilterNames), so the
+// Python package binds what the plugin it bundles holds.
 namespace geodesic_lod {
 
 constexpr const char* kPoissonLodPythonName = "generate_geodesic_poisson_lod";
@@ -12,7 +12,6 @@ constexpr const char* kPyramidPythonName = "generate_geodesic_lod_pyramid";
 constexpr const char* kNormalProjectionPythonName = "get_normal_projection_deviation";
 constexpr const char* kPythonNames[] = {kPoissonLodPythonName, kFpsLodPythonName, kNormalVariationPythonName,
                                         kPyramidPythonName, kNormalProjectionPythonName};
-constexpr const char* kDefaultLevels = "50%,25%,10%,5%,2%";
 
 }  // namespace geodesic_lod
 #endif

@@ -16,6 +16,9 @@
 
 namespace vcg_ext {
 
+/// The levels a pyramid is asked for by default: percentages of the points, finest first.
+constexpr const char* kDefaultPyramidLevels = "50%,25%,10%,5%,2%";
+
 template <class MeshType>
 class GeodesicLodPyramid {
  public:

@@ -17,7 +17,6 @@
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/sample_counts.h>
-#include <filter_geodesic_lod/python_names.h>
 #include "array_input.h"
 #include "call_support.h"
 #include "tile_bindings.h"
@@ -294,11 +293,8 @@ NB_MODULE(_core, m) {
       .def_rw("seed", &Pyramid::Param::seed)
       .def_rw("mesh_output", &Pyramid::Param::meshOutput);
 
-  nb::list filters;
-  for (const char* name : geodesic_lod::kPythonNames) filters.append(name);
-  m.attr("PYMESHLAB_FILTERS") = nb::tuple(filters);
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
-  m.attr("DEFAULT_LEVELS") = geodesic_lod::kDefaultLevels;
+  m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;
 
   m.def("percent_of", &vcg_ext::PercentOf, "percent"_a, "n"_a,
         "percent of n points, rounded as the MeshLab filters round it");
