@@ -134,8 +134,9 @@ def _run_on_cluster(args, request: dict) -> int:
     except ModuleNotFoundError:
         raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
                          "pip install '.[dask]')") from None
+    from .cloud_files import expand_inputs
     from .output_folder import OutputFolder
-    OutputFolder(args.output, distributed.expand_inputs(args.input))  # checked before a cluster starts
+    OutputFolder(args.output, expand_inputs(args.input))  # checked before a cluster starts
     start = time.perf_counter()
     cluster = None
     if args.scheduler:

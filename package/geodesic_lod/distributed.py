@@ -19,165 +19,21 @@ written last, lists the tiles, their bounds and counts, the radius, the paramete
 from __future__ import annotations
 
 import dataclasses
-import json
 import logging
-import math
 import os
 import pathlib
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, core_diagonal, las_files, point_files, tiles
+from . import arrays, cloud_files, core_diagonal, point_files, tiles
+from .cloud_files import Source
 from .errors import ClusterJobError, InputError
-from .output_folder import INDEX, OutputFolder, remove_own
+from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
-
-
-@dataclass
-class Source:
-    """One input file as the tiles see it: where its ids start, its bounds and what its records are."""
-    path: str
-    kind: str
-    count: int
-    first_id: int
-    lo: np.ndarray
-    hi: np.ndarray
-    signature: tuple = field(default_factory=tuple)  #: what must match across files to write them together
-
-
-def _las_signature(source: las_files.LasSource) -> tuple:
-    h = source.header
-    return ("las", h.point_format.id, tuple(d.name for d in h.point_format.extra_dimensions),
-            tuple(np.round(h.scales, 15)), tuple(h.offsets), source.crs())
-
-
-def survey(path: str) -> dict:
-    """Counts, bounds and record layout of one file (a LAS header only; other formats are read)."""
-    kind = point_files.format_of(path)
-    p = pathlib.Path(path)
-    if not p.is_file():
-        raise point_files.PointFileError(path, "no such file")
-    if kind == "las":
-        s = las_files.open_source(path)
-        h = s.header
-        return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
-                "hi": np.array(h.maxs, float), "signature": _las_signature(s)}
-    src = point_files.read(path)
-    _check_finite(path, src.points)
-    fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
-    return {"kind": kind, "count": len(src.points), "lo": src.points.min(axis=0), "hi": src.points.max(axis=0),
-            "signature": (kind, str(fields))}
-
-
-def _check_finite(path, points: np.ndarray) -> None:
-    bad = int(np.count_nonzero(~np.isfinite(points).all(axis=1)))
-    if bad:
-        raise point_files.PointFileError(path, f"{bad} row{' has' if bad == 1 else 's have'} NaN or infinite "
-                                               "coordinates")
-
-
-def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
-    """The files in order with their first ids; refuses files that cannot be written together."""
-    out, first = [], 0
-    for path, s in zip(paths, surveys):
-        if s["count"] == 0:
-            continue
-        if out and s["signature"] != out[0].signature:
-            what = "point format, extra dimensions, scale, offset or CRS" if s["kind"] == "las" else "fields"
-            raise point_files.PointFileError(path, f"its {what} differ from {out[0].path}'s: the files cannot "
-                                                   "be sampled as one cloud")
-        out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"]))
-        first += s["count"]
-    if not out:
-        raise point_files.PointFileError(paths[0] if paths else "(no input)", "holds no points")
-    if first >= 2 ** 63:
-        raise point_files.PointFileError(paths[0], "too many points for 63-bit ids")
-    return out
-
-
-def plan(srcs: Sequence[Source], tile_points: int) -> tuple:
-    """The cloud's box and tiles of about `tile_points` points each (split along the longer axes)."""
-    cloud = tiles.Box(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0))
-    total = sum(s.count for s in srcs)
-    want = max(1, math.ceil(total / max(1, tile_points)))
-    extent = np.maximum(cloud.hi - cloud.lo, 0)
-    shape = [1, 1, 1]
-    while np.prod(shape) < want:  # halve the tiles' longest side until there are enough of them
-        a = int(np.argmax(extent / shape))
-        if extent[a] == 0:
-            break
-        shape[a] += 1
-    return cloud, tiles.grid_tiles(cloud, shape), tuple(shape)
-
-
-def _overlapping(srcs, lo, hi):
-    return [s for s in srcs if np.all(s.hi >= lo) and np.all(s.lo <= hi)]
-
-
-def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple:
-    """Points within [lo, hi] of every file, in id order: (points, normals or None, ids)."""
-    pts, nrm, ids = [], [], []
-    for s in _overlapping(srcs, lo, hi):
-        for start, xyz, normals in _chunks(s):
-            keep = np.all((xyz >= lo) & (xyz <= hi), axis=1)
-            pts.append(xyz[keep])
-            nrm.append(None if normals is None else normals[keep])
-            ids.append(np.uint64(s.first_id + start) + np.flatnonzero(keep).astype(np.uint64))
-    if not pts:
-        return np.empty((0, 3)), None, np.empty(0, np.uint64)
-    normals = None if any(n is None for n in nrm) else np.concatenate(nrm)
-    return np.concatenate(pts), normals, np.concatenate(ids)
-
-
-def _chunks(s: Source):
-    """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
-    if s.kind == "las":
-        header = las_files.open_source(s.path).header
-        for start, chunk in las_files.chunks(s.path):
-            yield start, las_files.xyz(chunk, header), None
-    else:
-        src = point_files.read(s.path)
-        _check_finite(s.path, src.points)
-        yield 0, src.points, src.normals
-
-
-def read_records(srcs: Sequence[Source], ids: np.ndarray):
-    """The records of the given ids (any order), in that order, and a source to write them with."""
-    ids = np.asarray(ids, dtype=np.uint64)
-    order = np.argsort(ids, kind="stable")
-    ordered = ids[order]
-    parts, first = [], None
-    for s in srcs:
-        lo, hi = np.searchsorted(ordered, [s.first_id, s.first_id + s.count])
-        if hi <= lo:
-            continue
-        rows = (ordered[lo:hi] - np.uint64(s.first_id)).astype(np.int64)
-        if s.kind == "las":
-            picked = []
-            for start, chunk in las_files.chunks(s.path):
-                a, b = np.searchsorted(rows, [start, start + len(chunk)])
-                picked.append(chunk.array[rows[a:b] - start])
-            records = np.concatenate(picked)
-            if first is None:
-                first = las_files.open_source(s.path)
-        else:
-            src = point_files.read(s.path)
-            records = np.asarray(src.rows[rows])
-            first = src.source if first is None else first
-        parts.append(records)
-    records = np.concatenate(parts)
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
-    records = records[inverse]
-    if srcs[0].kind == "las":
-        import laspy
-        rows = laspy.PackedPointRecord(records, first.header.point_format)
-        return point_files.PointFile(pathlib.Path(srcs[0].path), "las", None, None, None, rows, first)
-    return point_files.PointFile(pathlib.Path(srcs[0].path), srcs[0].kind, None, None, None, records, first)
 
 
 @dataclass
@@ -205,7 +61,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     candidates = None
     if job.within is not None:
         candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
-    return tiles.decide_widening(lambda halo: read_region(job.srcs, outer.lo - halo, outer.hi + halo), box=box,
+    return tiles.decide_widening(lambda halo: cloud_files.read_region(job.srcs, outer.lo - halo, outer.hi + halo), box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads)
 
@@ -248,7 +104,7 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
         return None
     if len(ids) == 0:
         return {"file": None, "count": 0}
-    source = read_records(job.srcs, ids)
+    source = cloud_files.read_records(job.srcs, ids)
     point_files.write_all(source, [(path, np.arange(len(ids)))])
     xyz = point_files.coordinates(source)
     return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
@@ -261,32 +117,6 @@ def domain_fields(metric: str, adaptivity: float) -> dict:
                        not arrays._DOMAIN.use_input_normals)
     return {k: getattr(d, k) for k in ("metric", "mode", "curvature_exponent", "adaptivity", "normal_neighbors",
                                        "graph_neighbors", "use_input_normals")}
-
-
-def expand_inputs(inputs: Sequence[str]) -> list:
-    """Files, folders (their point files) and globs, in a stable order: the order of the ids."""
-    import glob
-    out = []
-    for item in inputs:
-        p = pathlib.Path(item)
-        if p.is_dir():
-            found = sorted(str(f) for f in p.iterdir() if f.suffix.lower() in point_files.FORMATS)
-            if not found:
-                raise point_files.PointFileError(item, "holds no .ply, .las, .laz or .npy files")
-            out += found
-        elif any(c in item for c in "*?[") and not p.exists():  # a file named a[1].laz is that file
-            found = sorted(glob.glob(item))
-            if not found:
-                raise point_files.PointFileError(item, "matches no files")
-            out += found
-        else:
-            out.append(item)
-    for path in out:
-        point_files.format_of(path)
-    kinds = {point_files.format_of(p) for p in out}
-    if len(kinds) > 1:
-        raise point_files.PointFileError(out[0], "the inputs mix formats: give files of one format")
-    return out
 
 
 def local_cluster(workers: int, memory_limit="auto"):
@@ -315,7 +145,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     the worker machine's cores). Returns the index. `progress(done, total)` hears of finished tasks."""
     from dask.distributed import KilledWorker
 
-    paths = expand_inputs(inputs)
+    paths = cloud_files.expand_inputs(inputs)
     out = OutputFolder(out_dir, paths)
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
              if v is not None]
@@ -417,7 +247,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
 
 def _file_pass(s: Source, targets, gather: bool):
     """A Dask task: core_diagonal's pass over one file."""
-    return core_diagonal.file_pass(lambda: (xyz for _, xyz, _ in _chunks(s)), targets, gather)
+    return core_diagonal.file_pass(lambda: (xyz for _, xyz, _ in cloud_files.chunks(s)), targets, gather)
 
 
 def _core_diagonal(client, srcs, cloud: tiles.Box, total: int) -> float:
@@ -453,9 +283,10 @@ def check_worker_memory(client) -> None:
 
 def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
     check_worker_memory(client)
-    surveys = client.gather(client.map(survey, paths, pure=False))
-    srcs = sources(paths, surveys)
-    cloud, boxes, shape = plan(srcs, tile_points)
+    surveys = client.gather(client.map(cloud_files.survey, paths, pure=False))
+    srcs = cloud_files.sources(paths, surveys)
+    cloud, boxes, shape = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                     sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
     spacing = tiles.spacing_of(cloud, total)
     ticks = _Ticks(progress)
@@ -482,7 +313,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
              "adaptivity": adaptivity, "tiles_per_axis": list(shape), "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
-             **_format_fields(first), **made[0]}
+             **cloud_files.format_fields(first), **made[0]}
     if size["levels"] is not None:
         index["levels"] = made
     return out.commit(index)
@@ -493,18 +324,6 @@ def _union(boxes: list) -> Optional[list]:
     if not boxes:
         return None
     return [np.min([b[0] for b in boxes], axis=0).tolist(), np.max([b[1] for b in boxes], axis=0).tolist()]
-
-
-def _format_fields(s: Source) -> dict:
-    """The output's record layout and CRS as the index states them."""
-    if s.kind != "las":
-        return {"format": s.kind}
-    src = las_files.open_source(s.path)
-    wkt = [v.record_data for v in src.vlrs + src.evlrs if v.user_id == "LASF_Projection" and v.record_id == 2112]
-    return {"format": "las", "point_format": src.header.point_format.id,
-            "las_version": f"{src.header.version.major}.{src.header.version.minor}",
-            "crs_wkt": wkt[0].rstrip(b"\0").decode("utf-8", "replace") if wkt else None,
-            "crs_geotiff": any(v.user_id == "LASF_Projection" and v.record_id == 34735 for v in src.vlrs)}
 
 
 def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total, run_dir,

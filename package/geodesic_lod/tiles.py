@@ -53,6 +53,21 @@ def grid_tiles(cloud: Box, shape: Sequence[int]) -> list:
             for i in range(len(edges[0]) - 1) for j in range(len(edges[1]) - 1) for k in range(len(edges[2]) - 1)]
 
 
+def plan(lo: np.ndarray, hi: np.ndarray, total: int, tile_points: int) -> tuple:
+    """The cloud's box [lo, hi] cut into tiles of about `tile_points` of its `total` points each (the
+    longest side halved until there are enough): (cloud box, tiles, tiles per axis)."""
+    cloud = Box(np.asarray(lo, float), np.asarray(hi, float))
+    want = max(1, math.ceil(total / max(1, tile_points)))
+    extent = np.maximum(cloud.hi - cloud.lo, 0)
+    shape = [1, 1, 1]
+    while np.prod(shape) < want:
+        a = int(np.argmax(extent / shape))
+        if extent[a] == 0:
+            break
+        shape[a] += 1
+    return cloud, grid_tiles(cloud, shape), tuple(shape)
+
+
 @dataclass
 class Decision:
     """One tile's decisions: its samples, and what the seams need (the band and the open points)."""

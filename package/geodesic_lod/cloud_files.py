@@ -1,0 +1,178 @@
+"""The input files of a cluster run as one cloud: their surveys (counts, bounds and what must match
+across files), the points of a region and the records of chosen ids, read through the one reader of each
+format (las_files, point_files), with the same checks as on one machine."""
+from __future__ import annotations
+
+import pathlib
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import numpy as np
+
+from . import las_files, point_files
+
+
+@dataclass
+class Source:
+    """One input file as the tiles see it: where its ids start, its bounds and what its records are."""
+    path: str
+    kind: str
+    count: int
+    first_id: int
+    lo: np.ndarray
+    hi: np.ndarray
+    signature: tuple = field(default_factory=tuple)  #: what must match across files to write them together
+
+
+def _las_signature(source: las_files.LasSource) -> tuple:
+    h = source.header
+    return ("las", h.point_format.id, tuple(d.name for d in h.point_format.extra_dimensions),
+            tuple(np.round(h.scales, 15)), tuple(h.offsets), source.crs())
+
+
+def survey(path: str) -> dict:
+    """Counts, bounds and record layout of one file (a LAS header only; other formats are read)."""
+    kind = point_files.format_of(path)
+    p = pathlib.Path(path)
+    if not p.is_file():
+        raise point_files.PointFileError(path, "no such file")
+    if kind == "las":
+        s = las_files.open_source(path)
+        h = s.header
+        return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
+                "hi": np.array(h.maxs, float), "signature": _las_signature(s)}
+    src = point_files.read(path)
+    check_finite(path, src.points)
+    fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
+    return {"kind": kind, "count": len(src.points), "lo": src.points.min(axis=0), "hi": src.points.max(axis=0),
+            "signature": (kind, str(fields))}
+
+
+def check_finite(path, points: np.ndarray) -> None:
+    bad = int(np.count_nonzero(~np.isfinite(points).all(axis=1)))
+    if bad:
+        raise point_files.PointFileError(path, f"{bad} row{' has' if bad == 1 else 's have'} NaN or infinite "
+                                               "coordinates")
+
+
+def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
+    """The files in order with their first ids; refuses files that cannot be written together."""
+    out, first = [], 0
+    for path, s in zip(paths, surveys):
+        if s["count"] == 0:
+            continue
+        if out and s["signature"] != out[0].signature:
+            what = "point format, extra dimensions, scale, offset or CRS" if s["kind"] == "las" else "fields"
+            raise point_files.PointFileError(path, f"its {what} differ from {out[0].path}'s: the files cannot "
+                                                   "be sampled as one cloud")
+        out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"]))
+        first += s["count"]
+    if not out:
+        raise point_files.PointFileError(paths[0] if paths else "(no input)", "holds no points")
+    if first >= 2 ** 63:
+        raise point_files.PointFileError(paths[0], "too many points for 63-bit ids")
+    return out
+
+
+def _overlapping(srcs, lo, hi):
+    return [s for s in srcs if np.all(s.hi >= lo) and np.all(s.lo <= hi)]
+
+
+def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple:
+    """Points within [lo, hi] of every file, in id order: (points, normals or None, ids)."""
+    pts, nrm, ids = [], [], []
+    for s in _overlapping(srcs, lo, hi):
+        for start, xyz, normals in chunks(s):
+            keep = np.all((xyz >= lo) & (xyz <= hi), axis=1)
+            pts.append(xyz[keep])
+            nrm.append(None if normals is None else normals[keep])
+            ids.append(np.uint64(s.first_id + start) + np.flatnonzero(keep).astype(np.uint64))
+    if not pts:
+        return np.empty((0, 3)), None, np.empty(0, np.uint64)
+    normals = None if any(n is None for n in nrm) else np.concatenate(nrm)
+    return np.concatenate(pts), normals, np.concatenate(ids)
+
+
+def chunks(s: Source):
+    """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
+    if s.kind == "las":
+        header = las_files.open_source(s.path).header
+        for start, chunk in las_files.chunks(s.path):
+            yield start, las_files.xyz(chunk, header), None
+    else:
+        src = point_files.read(s.path)
+        check_finite(s.path, src.points)
+        yield 0, src.points, src.normals
+
+
+def read_records(srcs: Sequence[Source], ids: np.ndarray):
+    """The records of the given ids (any order), in that order, and a source to write them with."""
+    ids = np.asarray(ids, dtype=np.uint64)
+    order = np.argsort(ids, kind="stable")
+    ordered = ids[order]
+    parts, first = [], None
+    for s in srcs:
+        lo, hi = np.searchsorted(ordered, [s.first_id, s.first_id + s.count])
+        if hi <= lo:
+            continue
+        rows = (ordered[lo:hi] - np.uint64(s.first_id)).astype(np.int64)
+        if s.kind == "las":
+            picked = []
+            for start, chunk in las_files.chunks(s.path):
+                a, b = np.searchsorted(rows, [start, start + len(chunk)])
+                picked.append(chunk.array[rows[a:b] - start])
+            records = np.concatenate(picked)
+            if first is None:
+                first = las_files.open_source(s.path)
+        else:
+            src = point_files.read(s.path)
+            records = np.asarray(src.rows[rows])
+            first = src.source if first is None else first
+        parts.append(records)
+    records = np.concatenate(parts)
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    records = records[inverse]
+    if srcs[0].kind == "las":
+        import laspy
+        rows = laspy.PackedPointRecord(records, first.header.point_format)
+        return point_files.PointFile(pathlib.Path(srcs[0].path), "las", None, None, None, rows, first)
+    return point_files.PointFile(pathlib.Path(srcs[0].path), srcs[0].kind, None, None, None, records, first)
+
+
+def expand_inputs(inputs: Sequence[str]) -> list:
+    """Files, folders (their point files) and globs, in a stable order: the order of the ids."""
+    import glob
+    out = []
+    for item in inputs:
+        p = pathlib.Path(item)
+        if p.is_dir():
+            found = sorted(str(f) for f in p.iterdir() if f.suffix.lower() in point_files.FORMATS)
+            if not found:
+                raise point_files.PointFileError(item, "holds no .ply, .las, .laz or .npy files")
+            out += found
+        elif any(c in item for c in "*?[") and not p.exists():  # a file named a[1].laz is that file
+            found = sorted(glob.glob(item))
+            if not found:
+                raise point_files.PointFileError(item, "matches no files")
+            out += found
+        else:
+            out.append(item)
+    for path in out:
+        point_files.format_of(path)
+    kinds = {point_files.format_of(p) for p in out}
+    if len(kinds) > 1:
+        raise point_files.PointFileError(out[0], "the inputs mix formats: give files of one format")
+    return out
+
+
+def format_fields(s: Source) -> dict:
+    """The output's record layout and CRS as the index states them."""
+    if s.kind != "las":
+        return {"format": s.kind}
+    src = las_files.open_source(s.path)
+    wkt = [v.record_data for v in src.vlrs + src.evlrs if v.user_id == "LASF_Projection" and v.record_id == 2112]
+    return {"format": "las", "point_format": src.header.point_format.id,
+            "las_version": f"{src.header.version.major}.{src.header.version.minor}",
+            "crs_wkt": wkt[0].rstrip(b"\0").decode("utf-8", "replace") if wkt else None,
+            "crs_geotiff": any(v.user_id == "LASF_Projection" and v.record_id == 34735 for v in src.vlrs)}
