@@ -14,6 +14,7 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 
 from . import _core
+from .docstrings import documented
 from .errors import InputError
 
 # The product defaults live in vcg_ext's Param structs; these read them.
@@ -290,6 +291,7 @@ def _lod(cls, d: dict, **extra):
 Progress = Optional[Callable[[float], object]]
 
 
+@documented
 def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: Optional[int] = None,
                 rate: Optional[float] = None, faces=None, tolerance: float = 0.0,
                 metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
@@ -298,14 +300,6 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
                 regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                 progress: Progress = None) -> PoissonLod:
-    """Geodesic Poisson-disk LOD: samples pairwise farther apart than the radius in the metric, every point
-    within it of a sample. Give one of ``radius`` (absolute, in the metric, or a string such as '1%' of the
-    bounding box diagonal), ``count`` (exactly that many samples: the radius is searched and a slightly denser
-    set thinned, the samples nearest to others first) or ``rate`` (a percentage of the points, 10 or '10%', as
-    a count). ``tolerance`` (percent) accepts an untrimmed set that close to the count.
-    ``regions`` ('disk' or 'voronoi') fills ``region_of``. ``within``: indices of the only points that may
-    become samples, such as a finer level's (the geodesics still run over every point): nested Poisson
-    levels, as the Dask pipeline's ``levels`` makes. Ctrl-C stops the run (KeyboardInterrupt)."""
     p, n, f, has_faces = _inputs(points, normals, faces)
     domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
                      normal_neighbors, graph_neighbors, recompute_normals)
@@ -355,6 +349,7 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
     return param, threads
 
 
+@documented
 def fps_lod(points, normals=None, *, count: int, faces=None,
             metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
             adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
@@ -362,9 +357,6 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
             recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
             regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
             progress: Progress = None) -> FpsLod:
-    """Geodesic farthest-point LOD: exactly ``count`` samples, each the point farthest from those before it
-    (the first drawn from the seed), so ``indices[:k]`` is the k-sample LOD. ``covering_radii[k]`` is the
-    covering radius of the first k+1 samples. ``regions`` may be 'voronoi'."""
     p, n, f, has_faces = _inputs(points, normals, faces)
     domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
                      normal_neighbors, graph_neighbors, recompute_normals)
@@ -418,14 +410,13 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
 DEFAULT_LEVELS = tuple(_core.DEFAULT_LEVELS.split(","))  # the pyramid filter's
 
 
+@documented
 def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                 faces=None, metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
                 adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
                 normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
                 recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
                 seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
-    """Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser level a
-    farthest-point prefix of it. ``levels`` of the result lists their index arrays, finest first."""
     p, n, f, has_faces = _inputs(points, normals, faces)
     counts = level_counts(levels, p.shape[0])
     domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
@@ -444,10 +435,10 @@ def _pyramid_param(counts, has_faces, mesh_output, seed, threads, progress):
     return param, threads
 
 
+@documented
 def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.normal_neighbors,
                      recompute_normals: bool = not _DOMAIN.use_input_normals, threads: Optional[int] = None,
                      progress: Progress = None) -> NormalVariation:
-    """Curvature as normal variation (eq. 1) of every point, with the normals it used, in the input's order."""
     p, n = _points(points, normals)
     d = _domain(p.shape[0], False, "euclidean", "auto", 1.0, 0.0, normal_neighbors, 1, recompute_normals)
     _, threads = _common(0, threads, progress, False, False)

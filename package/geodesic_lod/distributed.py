@@ -30,6 +30,7 @@ import numpy as np
 
 from . import arrays, cloud_files, core_diagonal, point_files, tiles
 from .cloud_files import Source
+from .docstrings import documented
 from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
 
@@ -128,21 +129,12 @@ def local_cluster(workers: int, memory_limit="auto"):
                         silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
 
 
+@documented
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
               rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
               max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
               adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000, client=None,
               threads: Optional[int] = None, progress=None) -> dict:
-    """Samples the files as one cloud on a Dask client (its workers do the tiles; see local_cluster) and
-    writes the LOD as tiles in `out_dir` with an index. Give `radius` (a length, or a string such as
-    '1%' of the cloud's diagonal): the samples are exactly poisson_lod's at that radius. Or give `count`
-    or `rate` (a percentage of the points): the radius is searched as poisson_lod's count search
-    steps, with the counts summed over the tiles, until a Poisson set lies within `tolerance` percent
-    of the count (or after `max_runs` runs, the nearest); there is no trim to the exact count, which
-    would need the whole set in one place. Or give `levels` (counts or percentages of the points, finest
-    first, as lod_pyramid takes them): nested levels, each searched as a count among the finer level's
-    samples, each written into a folder of its own (level_50pct, ...). `threads`: per task (None: all
-    the worker machine's cores). Returns the index. `progress(done, total)` hears of finished tasks."""
     from dask.distributed import KilledWorker
 
     paths = cloud_files.expand_inputs(inputs)

@@ -1,19 +1,18 @@
 """Domain: one input's normals, curvature (eq. 1) and geodesic search structure, built once and kept for
 several LODs, as a user trying radii or counts does. The functions of geodesic_lod.arrays build it anew on
 every call; a Domain's LODs are the same as theirs for the same arguments."""
+import functools
 from typing import Optional, Sequence, Union
 
 from . import _core
+from .docstrings import documented
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress,
                      _DOMAIN, _common, _diagonal, _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run,
                      level_counts)
 
 
+@functools.partial(documented, name="Domain")
 class Domain:
-    """Built from the arrays (copied: changing them afterwards changes nothing here) and the metric's
-    arguments, as poisson_lod takes them. It holds its memory (``nbytes``, a few hundred bytes per point)
-    until it is dropped. Its methods take the sampling arguments of poisson_lod, fps_lod and lod_pyramid."""
-
     def __init__(self, points, normals=None, *, faces=None, metric: str = DEFAULT_METRIC,
                  geodesics: str = DEFAULT_GEODESICS, adaptivity: float = _DOMAIN.adaptivity,
                  curvature_exponent: float = _DOMAIN.curvature_exponent,
@@ -42,27 +41,27 @@ class Domain:
         """Fast marching over the faces (else the point graph, or Euclidean distances)."""
         return self._built.mesh_geodesics
 
+    @functools.partial(documented, name="Domain.poisson_lod")
     def poisson_lod(self, *, radius: Optional[float] = None, count: Optional[int] = None,
                     rate: Optional[float] = None, tolerance: float = 0.0, mesh_output: bool = False,
                     regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                     progress: Progress = None) -> PoissonLod:
-        """geodesic_lod.poisson_lod on this domain."""
         param, threads = _poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
                                         mesh_output, regions, seed, within, threads, progress,
                                         lambda: self._diagonal)
         return _lod(PoissonLod, _run(_core.poisson_on, self._built, param, threads, progress))
 
+    @functools.partial(documented, name="Domain.fps_lod")
     def fps_lod(self, *, count: int, mesh_output: bool = False, regions: Optional[str] = None, seed: int = 0,
                 threads: Optional[int] = None, progress: Progress = None) -> FpsLod:
-        """geodesic_lod.fps_lod on this domain."""
         param, threads = _fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
                                     threads, progress)
         return _lod(FpsLod, _run(_core.fps_on, self._built, param, threads, progress))
 
+    @functools.partial(documented, name="Domain.lod_pyramid")
     def lod_pyramid(self, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                     mesh_output: bool = False, seed: int = 0, threads: Optional[int] = None,
                     progress: Progress = None) -> LodPyramid:
-        """geodesic_lod.lod_pyramid on this domain."""
         param, threads = _pyramid_param(level_counts(levels, self.point_count), self._built.has_faces,
                                         mesh_output, seed, threads, progress)
         return _lod(LodPyramid, _run(_core.pyramid_on, self._built, param, threads, progress))

@@ -1,0 +1,318 @@
+"""The public functions' numpydoc docstrings, with one home for the parameters they share (the inputs,
+the metric, the run) and the defaults read from vcg_ext's Param structs. ``documented`` gives a
+function its docstring."""
+from __future__ import annotations
+
+from . import _core
+
+_D = _core.DomainParam()
+
+INPUTS = """points : (n, 3) array of float32 or float64
+        The points (the vertices of a mesh). Never modified.
+    normals : (n, 3) array of float, optional
+        The points' normals; zero or non-finite rows are estimated from the points. Default: none, all
+        estimated."""
+
+FACES = """faces : (m, 3) array of int, optional
+        Triangles over the points: geodesics then run over them (fast marching). Default: none."""
+
+METRIC = f"""metric : {{'curvature-density', 'eq3', 'geodesic', 'euclidean'}}
+        The distance the samples are spread in: ``'curvature-density'``, (1 + a (v_i + v_j) / 2) |p_i - p_j|
+        (the default); ``'eq3'``, the method's exp(|v_i - v_j|^c) |p_i - p_j|; ``'geodesic'``, unweighted;
+        ``'euclidean'``, straight lines.
+    geodesics : {{'auto', 'mesh', 'point-graph'}}
+        Where geodesics run: ``'mesh'`` over the faces, ``'point-graph'`` on the symmetric k-nearest-neighbour
+        graph; ``'auto'`` (the default) picks the mesh where there are faces.
+    adaptivity : float
+        a of the curvature-density metric, >= 0: how much denser rugged parts get. Default {_D.adaptivity:g}.
+    curvature_exponent : float
+        c of eq. 3, > 0. Default {_D.curvature_exponent:g}.
+    normal_neighbors : int
+        k of the normals' plane fits and of eq. 1, below the number of points. Default {_D.normal_neighbors}.
+    graph_neighbors : int
+        k of the point graph, below the number of points. Default {_D.graph_neighbors}.
+    recompute_normals : bool
+        Estimate every normal, ignoring ``normals``. Default {not _D.use_input_normals}."""
+
+RUN = """seed : int
+        Seed of the visiting order (and of the first farthest point), 0 to 2**64 - 1. Default 0.
+    threads : int, optional
+        Threads to use (default: all cores). The result is the same on any number.
+    progress : callable, optional
+        Called with the fraction done, 0 to 1. Ctrl-C stops a run with KeyboardInterrupt."""
+
+MESH_OUTPUT = """mesh_output : bool
+        Triangulate the samples over the faces (geodesic Delaunay), in ``faces`` of the result; needs
+        ``faces``. Default False."""
+
+RAISES = """Raises
+    ------
+    InputError
+        A bad argument (a ValueError naming it), before any work."""
+
+POISSON_SIZE = """radius : float or str, optional
+        The disk radius in the metric, or a string such as ``'1%'``: a percentage of the bounding box
+        diagonal.
+    count : int, optional
+        Exactly this many samples (1 to the points that may be samples): the radius is searched and a
+        slightly denser Poisson set thinned, the samples nearest to others first.
+    rate : float or str, optional
+        A percentage of the points as a count: 10 or ``'10%'``.
+    tolerance : float
+        With ``count`` or ``rate``: a Poisson set within this percentage of the count is kept untrimmed.
+        Default 0 (an exact count)."""
+
+POISSON_EXAMPLE = """Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> p = np.random.default_rng(0).normal(size=(2000, 3))
+    >>> p /= np.linalg.norm(p, axis=1)[:, None]
+    >>> lod = gl.poisson_lod(p, count=100)
+    >>> len(lod.indices), lod.radius > 0
+    (100, True)"""
+
+TEXTS = {
+    "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
+    point within it of a sample.
+
+    Parameters
+    ----------
+    {INPUTS}
+    {POISSON_SIZE}
+        Give exactly one of ``radius``, ``count`` and ``rate``.
+    {FACES}
+    {METRIC}
+    {MESH_OUTPUT}
+    regions : {{None, 'disk', 'voronoi'}}
+        Fill ``region_of`` with each point's sample: its disk's or its nearest. Default None.
+    within : array of int or bool, optional
+        The only points that may become samples (indices or a mask), such as a finer level's; the
+        geodesics still run over every point.
+    {RUN}
+
+    Returns
+    -------
+    PoissonLod
+        ``indices`` (in visiting order), ``radius``, ``covering_radius``, ``normals``, ``curvature``, ...
+
+    {RAISES}
+
+    {POISSON_EXAMPLE}
+    """,
+    "fps_lod": f"""Geodesic farthest-point LOD: each sample the point farthest from those before it, so
+    ``indices[:k]`` is the k-sample LOD.
+
+    Parameters
+    ----------
+    {INPUTS}
+    count : int
+        The number of samples, 1 to the number of points.
+    {FACES}
+    {METRIC}
+    {MESH_OUTPUT}
+    regions : {{None, 'voronoi'}}
+        Fill ``region_of`` with each point's nearest sample. Default None.
+    {RUN}
+
+    Returns
+    -------
+    FpsLod
+        ``indices`` in farthest-point order; ``covering_radii[k]``, the covering radius of the first k + 1.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> p = np.random.default_rng(0).normal(size=(2000, 3))
+    >>> fps = gl.fps_lod(p, count=50)
+    >>> bool(np.all(np.diff(fps.covering_radii) <= 0))
+    True
+    """,
+    "lod_pyramid": f"""Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser
+    level a farthest-point prefix of it.
+
+    Parameters
+    ----------
+    {INPUTS}
+    levels : sequence of int or str, or str
+        The levels' counts, finest first, strictly decreasing: counts (5000) or percentages of the points
+        (``'10%'``), as a list or a comma-separated string. Default ``{_core.DEFAULT_LEVELS!r}``.
+    {FACES}
+    {METRIC}
+    {MESH_OUTPUT}
+    {RUN}
+
+    Returns
+    -------
+    LodPyramid
+        ``levels``: the index arrays, finest first, each a prefix of the finer ones.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> p = np.random.default_rng(0).normal(size=(2000, 3))
+    >>> [len(level) for level in gl.lod_pyramid(p, levels="10%,50").levels]
+    [200, 50]
+    """,
+    "normal_variation": f"""Curvature as normal variation (eq. 1) of every point, with the normals it used.
+
+    Parameters
+    ----------
+    {INPUTS}
+    normal_neighbors : int
+        k of the normals' plane fits and of eq. 1. Default {_D.normal_neighbors}.
+    recompute_normals : bool
+        Estimate every normal, ignoring ``normals``. Default {not _D.use_input_normals}.
+    threads, progress
+        As in ``poisson_lod``.
+
+    Returns
+    -------
+    NormalVariation
+        ``curvature`` and ``normals`` per point, in the input's order.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> x, y = np.meshgrid(np.linspace(0, 1, 30), np.linspace(0, 1, 30))
+    >>> flat = np.column_stack([x.ravel(), y.ravel(), np.zeros(900)])
+    >>> float(gl.normal_variation(flat).curvature.max()) < 1e-6
+    True
+    """,
+    "Domain.poisson_lod": f"""``poisson_lod`` on this domain: the same samples as the function gives for the
+    domain's inputs and these arguments.
+
+    Parameters
+    ----------
+    {POISSON_SIZE}
+    {MESH_OUTPUT}
+    regions, within
+        As in ``poisson_lod``.
+    {RUN}
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> p = np.random.default_rng(0).normal(size=(2000, 3))
+    >>> dom = gl.Domain(p)
+    >>> [len(dom.poisson_lod(rate=r).indices) for r in (10, 5)]
+    [200, 100]
+    """,
+    "Domain.fps_lod": f"""``fps_lod`` on this domain.
+
+    Parameters
+    ----------
+    count : int
+        The number of samples, 1 to the number of points.
+    {MESH_OUTPUT}
+    regions : {{None, 'voronoi'}}
+        As in ``fps_lod``.
+    {RUN}
+
+    {RAISES}
+    """,
+    "Domain.lod_pyramid": f"""``lod_pyramid`` on this domain.
+
+    Parameters
+    ----------
+    levels : sequence of int or str, or str
+        As in ``lod_pyramid``. Default ``{_core.DEFAULT_LEVELS!r}``.
+    {MESH_OUTPUT}
+    {RUN}
+
+    {RAISES}
+    """,
+    "lod_files": f"""Samples point files as one cloud on a Dask cluster and writes the LOD as tiles with an
+    ``index.json``: exactly ``poisson_lod`` on all the files' points together (ids in file order), for any
+    tiling and number of workers.
+
+    Parameters
+    ----------
+    inputs : sequence of str
+        Point files (.las, .laz, .ply, .npy of one format), folders of them, or globs.
+    out_dir : str or path
+        The output folder: new, empty, or one this function wrote before (its ``index.json`` lists what
+        it owns); anything else in it is refused. Each run writes a new ``run_N/`` and replaces the index
+        when complete.
+    radius : float or str, optional
+        As in ``poisson_lod`` (a percentage of the whole cloud's diagonal).
+    count, rate : optional
+        As in ``poisson_lod``: the same count search, each run over all tiles, from the same first
+        radius; no exact count (see ``tolerance``).
+    levels : sequence of int or str, or str, optional
+        Nested levels, finest first: each the Poisson set of its count among the finer level's samples,
+        written into ``run_N/level_.../``. Give exactly one of ``radius``, ``count``, ``rate`` and
+        ``levels``.
+    tolerance : float
+        The percentage a count may miss by, above 0 and below 100. Default 1.
+    max_runs : int, optional
+        Poisson runs of a count search at most. Default: one machine's, {_core.PoissonParam().max_iterations}.
+    seed : int
+        As in ``poisson_lod``. Default 0.
+    metric : str
+        As in ``poisson_lod`` (the point graph's geodesics). Default ``{_core.Metric(_D.metric).name}``.
+    adaptivity : float
+        As in ``poisson_lod``. Default {_D.adaptivity:g}.
+    tile_points : int
+        Points per tile, about, at least 1000. Default 2,000,000.
+    client : dask.distributed.Client
+        The cluster (see ``local_cluster``).
+    threads : int, optional
+        Threads per task (default: all the worker machine's cores).
+    progress : callable, optional
+        Called with (tasks done, tasks so far).
+
+    Returns
+    -------
+    dict
+        The index: tiles (paths relative to it), counts, bounds, radius, point format, CRS, parameters.
+
+    Raises
+    ------
+    InputError
+        A bad argument, input file or output folder (PointFileError names the file).
+    ClusterJobError
+        Workers too small for their tiles.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib, geodesic_lod as gl
+    >>> from dask.distributed import Client
+    >>> from geodesic_lod.distributed import local_cluster, lod_files
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> p = np.random.default_rng(0).normal(size=(5000, 3))
+    >>> np.save(d / "cloud.npy", p / np.linalg.norm(p, axis=1)[:, None])
+    >>> with local_cluster(1) as cluster, Client(cluster) as client:
+    ...     index = lod_files([str(d / "cloud.npy")], d / "lod", radius=0.1, client=client, tile_points=2000)
+    >>> index["samples"] == len(gl.poisson_lod(np.load(d / "cloud.npy"), radius=0.1).indices)
+    True
+    """,
+    "Domain": f"""One input's normals, curvature (eq. 1) and geodesic structure, built once for several LODs.
+
+    The arrays are copied: changing them afterwards changes nothing here. The domain holds its memory
+    (``nbytes``, a few hundred bytes a point) until it is dropped.
+
+    Parameters
+    ----------
+    {INPUTS}
+    {FACES}
+    {METRIC}
+    threads, progress
+        As in ``poisson_lod``.
+
+    {RAISES}
+    """,
+}
+
+
+def documented(fn, name: str = ""):
+    """fn with its docstring from TEXTS (by `name`, else fn's own name)."""
+    fn.__doc__ = TEXTS[name or fn.__name__]
+    return fn
