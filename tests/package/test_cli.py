@@ -140,7 +140,8 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, make, problem):
     assert names(tmp_path) == before  # no output, no partial file
 
 
-def test_ctrl_c_stops_and_writes_nothing(tmp_path):
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_ctrl_c_and_sigterm_stop_and_write_nothing(tmp_path, sig):
     p = bumpy_sphere(1_500_000)
     np.save(tmp_path / "big.npy", p)
     proc = subprocess.Popen(COMMAND + [str(tmp_path / "big.npy"), "-o", str(tmp_path / "lod.npy"), "--count",
@@ -154,7 +155,7 @@ def test_ctrl_c_stops_and_writes_nothing(tmp_path):
                 started.set()
     threading.Thread(target=read, daemon=True).start()
     assert started.wait(120), "".join(seen)
-    proc.send_signal(signal.SIGINT)
+    proc.send_signal(sig)
     assert proc.wait(60) == 130
     assert "geodesic-lod: stopped" in "".join(seen) and "Traceback" not in "".join(seen)
     assert names(tmp_path) == ["big.npy"]

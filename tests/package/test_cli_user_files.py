@@ -1,10 +1,7 @@
 """The command on one machine never loses a user's file: no output, derived level name or link may be an
 input, an existing file is replaced only when asked, everything about the outputs is checked before the
-input is read, and SIGTERM, like Ctrl-C, leaves no partial file."""
+input is read (SIGTERM, like Ctrl-C, leaving no partial file: test_cli.py)."""
 import os
-import signal
-import subprocess
-import threading
 
 import laspy
 import numpy as np
@@ -12,9 +9,8 @@ import pytest
 
 import geodesic_lod as gl
 from geodesic_lod import point_files as pf
-from conftest import bumpy_sphere
 from point_file_inputs import las_cloud, ply_cloud
-from test_cli import COMMAND, digest, names, run
+from test_cli import digest, run
 
 
 def contents(folder):
@@ -70,25 +66,6 @@ def test_a_poisson_lod_keeps_the_inputs_order(tmp_path):
     expected = np.sort(gl.poisson_lod(pf.read(src).points, rate=10).indices)
     records = laspy.read(str(src)).points.array
     assert laspy.read(str(tmp_path / "lod.laz")).points.array.tobytes() == records[expected].tobytes()
-
-
-def test_sigterm_stops_and_writes_nothing(tmp_path):
-    np.save(tmp_path / "big.npy", bumpy_sphere(1_500_000))
-    proc = subprocess.Popen(COMMAND + [str(tmp_path / "big.npy"), "-o", str(tmp_path / "lod.npy"), "--count",
-                                       "100000"], stderr=subprocess.PIPE, text=True)
-    seen, started = [], threading.Event()
-
-    def read():
-        while ch := proc.stderr.read(1):
-            seen.append(ch)
-            if "sampling" in "".join(seen[-40:]):
-                started.set()
-    threading.Thread(target=read, daemon=True).start()
-    assert started.wait(120), "".join(seen)
-    proc.send_signal(signal.SIGTERM)
-    assert proc.wait(60) == 130
-    assert "geodesic-lod: stopped" in "".join(seen) and "Traceback" not in "".join(seen)
-    assert names(tmp_path) == ["big.npy"]
 
 
 def test_version():
