@@ -18,5 +18,6 @@ from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVar
 from .domain import Domain
 from .errors import ClusterJobError, InputError, PointFileError
 
-__all__ = ["InputError", "PointFileError", "ClusterJobError", "poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "Domain", "PoissonLod",
+__all__ = ["InputError", "PointFileError", "ClusterJobError",
+           "poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "Domain", "PoissonLod",
            "FpsLod", "LodPyramid", "NormalVariation", "Lod", "METRICS", "DEFAULT_METRIC"]

@@ -62,7 +62,8 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     candidates = None
     if job.within is not None:
         candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
-    return tiles.decide_widening(lambda halo: cloud_files.read_region(job.srcs, outer.lo - halo, outer.hi + halo), box=box,
+    return tiles.decide_widening(lambda halo: cloud_files.read_region(job.srcs, outer.lo - halo, outer.hi + halo),
+                                 box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads)
 
@@ -304,7 +305,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
+             "adaptivity": adaptivity, "tiles_per_axis": list(shape),
+             "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
     if size["levels"] is not None:
         index["levels"] = made

@@ -7,8 +7,8 @@ from typing import Optional, Sequence, Union
 from . import _core
 from .docstrings import documented
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress,
-                     _DOMAIN, _common, _diagonal, _domain, _fps_param, _inputs, _lod, _poisson_param, _pyramid_param, _run,
-                     level_counts)
+                     _DOMAIN, _common, _diagonal, _domain, _fps_param, _inputs, _lod, _poisson_param,
+                     _pyramid_param, _run, level_counts)
 
 
 @functools.partial(documented, name="Domain")
