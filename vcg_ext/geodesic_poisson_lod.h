@@ -96,9 +96,9 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     PoissonTargetCount::Result r;
-    // Its runs compute each edge's length as they go, as one run does: kept
-    // weights (4 bytes an arc) measured no faster now that disks skip edges by
-    // their straight length, and its peak at 14M points fell 0.6 GB without them.
+    // Its runs compute each edge's length as they go, as one run does: disks
+    // skip most edges by their straight length, so kept weights (4 bytes an
+    // arc) would cost memory and save no time.
     d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
     return r;
   }
