@@ -18,7 +18,7 @@ from .docstrings import documented
 from .errors import InputError
 
 # The product defaults live in vcg_ext's Param structs; these read them.
-_DOMAIN = _core.DomainParam()
+DOMAIN_DEFAULTS = _core.DomainParam()
 
 METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
            "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean}
@@ -31,8 +31,8 @@ def _name_of(table, value):
     return next(k for k, v in table.items() if v == value)
 
 
-DEFAULT_METRIC = _name_of(METRICS, _DOMAIN.metric)
-DEFAULT_GEODESICS = _name_of(GEODESICS, _DOMAIN.mode)
+DEFAULT_METRIC = _name_of(METRICS, DOMAIN_DEFAULTS.metric)
+DEFAULT_GEODESICS = _name_of(GEODESICS, DOMAIN_DEFAULTS.mode)
 
 
 @dataclass
@@ -101,7 +101,7 @@ def _float_array(a, name: str, allow_none: bool = False):
     return a
 
 
-def _points(points, normals):
+def point_arrays(points, normals):
     p = _float_array(points, "points")
     if p.shape[0] < 2:
         raise InputError(f"points holds {p.shape[0]} point{'s' if p.shape[0] != 1 else ''}: "
@@ -112,9 +112,9 @@ def _points(points, normals):
     return p, n
 
 
-def _inputs(points, normals, faces):
+def input_arrays(points, normals, faces):
     """The arrays checked, and whether there are faces to run mesh geodesics on."""
-    p, n = _points(points, normals)
+    p, n = point_arrays(points, normals)
     f = _faces(faces)
     return p, n, f, f is not None and f.shape[0] > 0
 
@@ -133,7 +133,7 @@ def _faces(faces):
     return np.ascontiguousarray(f)
 
 
-def _integer(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "") -> int:
+def whole_number(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "") -> int:
     if isinstance(x, bool) or not isinstance(x, numbers.Integral):
         raise InputError(f"{name} must be an integer, not {type(x).__name__} ({x!r})")
     x = int(x)
@@ -143,7 +143,7 @@ def _integer(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str = "")
     return x
 
 
-def _real(x, name: str, positive: bool) -> float:
+def real_number(x, name: str, positive: bool) -> float:
     if isinstance(x, bool) or not isinstance(x, numbers.Real):
         raise InputError(f"{name} must be a number, not {type(x).__name__} ({x!r})")
     x = float(x)
@@ -183,7 +183,7 @@ def percent(value, name: str) -> float:
         except ValueError:
             x = math.nan
     else:
-        x = _real(value, name, positive=False)
+        x = real_number(value, name, positive=False)
     if not (math.isfinite(x) and 0 < x <= 100):
         raise InputError(f"{name} must be a percentage from above 0 to 100 such as 10 or '10%', got {value!r}")
     return x
@@ -214,31 +214,45 @@ def _choice(x, table: dict, name: str):
     return table[x]
 
 
-def _domain(n: int, has_faces: bool, metric, geodesics, curvature_exponent, adaptivity, normal_neighbors,
-            graph_neighbors, recompute_normals):
-    d = _core.DomainParam()
-    d.metric = _choice(metric, METRICS, "metric")
-    d.mode = _choice(geodesics, GEODESICS, "geodesics")
-    if d.mode == _core.GeodesicMode.Mesh and not has_faces and d.metric != _core.Metric.Euclidean:
-        raise InputError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
-    d.curvature_exponent = _real(curvature_exponent, "curvature_exponent", positive=True)
-    d.adaptivity = _real(adaptivity, "adaptivity", positive=False)
-    below_n = f" (below the number of points, {n})"
-    d.normal_neighbors = _integer(normal_neighbors, "normal_neighbors", 1, n - 1, below_n)
-    point_graph = d.metric != _core.Metric.Euclidean and (
-        d.mode == _core.GeodesicMode.PointGraph or (d.mode == _core.GeodesicMode.Auto and not has_faces))
-    d.graph_neighbors = (_integer(graph_neighbors, "graph_neighbors", 1, n - 1, below_n) if point_graph
-                         else _integer(graph_neighbors, "graph_neighbors", 1))
-    if not isinstance(recompute_normals, (bool, np.bool_)):
-        raise InputError(f"recompute_normals must be True or False, not {recompute_normals!r}")
-    d.use_input_normals = not recompute_normals
-    return d
+@dataclass(frozen=True)
+class DomainOptions:
+    """The metric's and the geodesics' arguments, as every sampler takes them (see poisson_lod); ``param``
+    checks them into the core's DomainParam."""
+    metric: str = DEFAULT_METRIC
+    geodesics: str = DEFAULT_GEODESICS
+    adaptivity: float = DOMAIN_DEFAULTS.adaptivity
+    curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent
+    normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors
+    graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors
+    recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals
+
+    def param(self, n: Optional[int] = None, has_faces: bool = False):
+        """The checked DomainParam for n points (None: a cloud of any size, such as a cluster's) with or
+        without faces."""
+        d = _core.DomainParam()
+        d.metric = _choice(self.metric, METRICS, "metric")
+        d.mode = _choice(self.geodesics, GEODESICS, "geodesics")
+        if d.mode == _core.GeodesicMode.Mesh and not has_faces and d.metric != _core.Metric.Euclidean:
+            raise InputError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
+        d.curvature_exponent = real_number(self.curvature_exponent, "curvature_exponent", positive=True)
+        d.adaptivity = real_number(self.adaptivity, "adaptivity", positive=False)
+        most = None if n is None else n - 1
+        below_n = "" if n is None else f" (below the number of points, {n})"
+        d.normal_neighbors = whole_number(self.normal_neighbors, "normal_neighbors", 1, most, below_n)
+        point_graph = d.metric != _core.Metric.Euclidean and (
+            d.mode == _core.GeodesicMode.PointGraph or (d.mode == _core.GeodesicMode.Auto and not has_faces))
+        d.graph_neighbors = whole_number(self.graph_neighbors, "graph_neighbors", 1, most if point_graph else None,
+                                         below_n)
+        if not isinstance(self.recompute_normals, (bool, np.bool_)):
+            raise InputError(f"recompute_normals must be True or False, not {self.recompute_normals!r}")
+        d.use_input_normals = not self.recompute_normals
+        return d
 
 
-def _common(seed, threads, progress, mesh_output, has_faces):
-    seed = _integer(seed, "seed", 0, 2**64 - 1)
+def run_options(seed, threads, progress, mesh_output, has_faces):
+    seed = whole_number(seed, "seed", 0, 2**64 - 1)
     if threads is not None:
-        threads = _integer(threads, "threads", 1)
+        threads = whole_number(threads, "threads", 1)
     if progress is not None and not callable(progress):
         raise InputError(f"progress must be None or a callable taking a fraction, not {type(progress).__name__}")
     if not isinstance(mesh_output, (bool, np.bool_)):
@@ -256,7 +270,7 @@ _FIELD_WORDS = {"Points": "points", "Coordinates": "points", "Radius": "radius",
                 "Within": "within"}
 
 
-def _run(fn, *args):
+def call_core(fn, *args):
     """Calls the core, turning its ValueError(field id, problem) into a message naming the argument."""
     try:
         return fn(*args)
@@ -283,7 +297,7 @@ def _indices(values, n: int, name: str) -> np.ndarray:
     return a
 
 
-def _lod(cls, d: dict, **extra):
+def result_of(cls, d: dict, **extra):
     names = {f for f in cls.__dataclass_fields__}
     return cls(**{k: v for k, v in d.items() if k in names}, **extra)
 
@@ -295,26 +309,26 @@ Progress = Optional[Callable[[float], object]]
 def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: Optional[int] = None,
                 rate: Optional[float] = None, faces=None, tolerance: float = 0.0,
                 metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
-                adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
-                normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
-                recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+                adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
+                normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
+                recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
                 regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                 progress: Progress = None) -> PoissonLod:
-    p, n, f, has_faces = _inputs(points, normals, faces)
-    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                     normal_neighbors, graph_neighbors, recompute_normals)
-    param, threads = _poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
-                                    seed, within, threads, progress, lambda: _diagonal(p))
+    p, n, f, has_faces = input_arrays(points, normals, faces)
+    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
+                           recompute_normals).param(p.shape[0], has_faces)
+    param, threads = poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
+                                    seed, within, threads, progress, lambda: diagonal_of(p))
     param.domain = domain
-    return _lod(PoissonLod, _run(_core.poisson_lod, p, n, f, param, threads, progress))
+    return result_of(PoissonLod, call_core(_core.poisson_lod, p, n, f, param, threads, progress))
 
 
-def _diagonal(p: np.ndarray) -> float:
+def diagonal_of(p: np.ndarray) -> float:
     """The bounding box diagonal of (n, 3) points."""
     return float(np.linalg.norm(p.max(axis=0).astype(np.float64) - p.min(axis=0).astype(np.float64)))
 
 
-def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
+def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
                    progress, diagonal: Callable[[], float]):
     """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
     param = _core.PoissonParam()
@@ -330,20 +344,20 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
     if isinstance(radius, str):  # '1%': of the bounding box diagonal
         param.radius = radius_from(radius, diagonal)
     elif radius is not None:
-        param.radius = _real(radius, "radius", positive=True)
+        param.radius = real_number(radius, "radius", positive=True)
     elif count is not None:
-        param.sample_num = _integer(count, "count", 1, pool,
+        param.sample_num = whole_number(count, "count", 1, pool,
                                     " (the number of points)" if within is None else " (the points in within)")
     else:
         r = percent(rate, "rate")
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
         if param.sample_num > pool:
             raise InputError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
-    t = _real(tolerance, "tolerance", positive=False)
+    t = real_number(tolerance, "tolerance", positive=False)
     if t >= 100:
         raise InputError(f"tolerance is a percentage below 100, got {t}")
     param.tolerance = t / 100
-    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.regions = _choice(regions, REGIONS, "regions")
     return param, threads
@@ -352,24 +366,24 @@ def _poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_out
 @documented
 def fps_lod(points, normals=None, *, count: int, faces=None,
             metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
-            adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
-            normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
-            recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+            adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
+            normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
+            recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
             regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
             progress: Progress = None) -> FpsLod:
-    p, n, f, has_faces = _inputs(points, normals, faces)
-    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                     normal_neighbors, graph_neighbors, recompute_normals)
-    param, threads = _fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
+    p, n, f, has_faces = input_arrays(points, normals, faces)
+    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
+                           recompute_normals).param(p.shape[0], has_faces)
+    param, threads = fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
     param.domain = domain
-    return _lod(FpsLod, _run(_core.fps_lod, p, n, f, param, threads, progress))
+    return result_of(FpsLod, call_core(_core.fps_lod, p, n, f, param, threads, progress))
 
 
-def _fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, progress):
+def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, progress):
     """fps_lod's sampling arguments checked, as an FpsParam without its domain; and the threads."""
     param = _core.FpsParam()
-    param.sample_num = _integer(count, "count", 1, n_points, " (the number of points)")
-    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.sample_num = whole_number(count, "count", 1, n_points, " (the number of points)")
+    param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     if regions == "disk":
         raise InputError("regions for fps_lod must be None or 'voronoi' (farthest-point regions are Voronoi regions)")
@@ -399,7 +413,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
                 raise InputError(f"levels: {item!r} of {n} points gives no samples")
             counts.append(int(c))
         else:
-            counts.append(_integer(item, "levels", 1, n, " (the number of points)"))
+            counts.append(whole_number(item, "levels", 1, n, " (the number of points)"))
     for k in range(1, len(counts)):
         if counts[k] >= counts[k - 1]:
             raise InputError(f"levels must get strictly coarser: level {k + 1} has {counts[k]} samples, "
@@ -413,33 +427,33 @@ DEFAULT_LEVELS = tuple(_core.DEFAULT_LEVELS.split(","))  # the pyramid filter's
 @documented
 def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                 faces=None, metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
-                adaptivity: float = _DOMAIN.adaptivity, curvature_exponent: float = _DOMAIN.curvature_exponent,
-                normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
-                recompute_normals: bool = not _DOMAIN.use_input_normals, mesh_output: bool = False,
+                adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
+                normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
+                recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
                 seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
-    p, n, f, has_faces = _inputs(points, normals, faces)
+    p, n, f, has_faces = input_arrays(points, normals, faces)
     counts = level_counts(levels, p.shape[0])
-    domain = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                     normal_neighbors, graph_neighbors, recompute_normals)
-    param, threads = _pyramid_param(counts, has_faces, mesh_output, seed, threads, progress)
+    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
+                           recompute_normals).param(p.shape[0], has_faces)
+    param, threads = pyramid_param(counts, has_faces, mesh_output, seed, threads, progress)
     param.domain = domain
-    return _lod(LodPyramid, _run(_core.lod_pyramid, p, n, f, param, threads, progress))
+    return result_of(LodPyramid, call_core(_core.lod_pyramid, p, n, f, param, threads, progress))
 
 
-def _pyramid_param(counts, has_faces, mesh_output, seed, threads, progress):
+def pyramid_param(counts, has_faces, mesh_output, seed, threads, progress):
     """lod_pyramid's sampling arguments checked, as a PyramidParam without its domain; and the threads."""
     param = _core.PyramidParam()
     param.counts = counts
-    param.seed, threads = _common(seed, threads, progress, mesh_output, has_faces)
+    param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     return param, threads
 
 
 @documented
-def normal_variation(points, normals=None, *, normal_neighbors: int = _DOMAIN.normal_neighbors,
-                     recompute_normals: bool = not _DOMAIN.use_input_normals, threads: Optional[int] = None,
+def normal_variation(points, normals=None, *, normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors,
+                     recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, threads: Optional[int] = None,
                      progress: Progress = None) -> NormalVariation:
-    p, n = _points(points, normals)
-    d = _domain(p.shape[0], False, "euclidean", "auto", 1.0, 0.0, normal_neighbors, 1, recompute_normals)
-    _, threads = _common(0, threads, progress, False, False)
-    return NormalVariation(**_run(_core.normal_variation, p, n, d, threads, progress))
+    p, n = point_arrays(points, normals)
+    d = DomainOptions("euclidean", "auto", 0.0, 1.0, normal_neighbors, 1, recompute_normals).param(p.shape[0])
+    _, threads = run_options(0, threads, progress, False, False)
+    return NormalVariation(**call_core(_core.normal_variation, p, n, d, threads, progress))

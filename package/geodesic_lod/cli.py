@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from . import arrays, point_files
+from . import _core, arrays, point_files
 from .errors import ClusterJobError
 
 PROG = "geodesic-lod"
@@ -73,7 +73,7 @@ def parser() -> argparse.ArgumentParser:
                    "or --count): the file's first k points are the k-sample LOD")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in (default: %(default)s)")
-    p.add_argument("--adaptivity", type=float, default=arrays._DOMAIN.adaptivity,
+    p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
                    help="curvature-density metric: how much denser rugged parts get (default: %(default)s)")
     p.add_argument("--recompute-normals", action="store_true", help="estimate normals even where the file has them")
     p.add_argument("--seed", type=int, default=0, help="the seed of the sampling order (default: %(default)s)")
@@ -210,10 +210,10 @@ def _request(args) -> dict:
         raise ValueError("--tolerance goes with --count, --rate or --levels (Poisson-disk)")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
         raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
-    arrays._real(args.adaptivity, "--adaptivity", positive=False)
+    arrays.real_number(args.adaptivity, "--adaptivity", positive=False)
     if args.threads is not None:
-        arrays._integer(args.threads, "--threads", 1)
-    arrays._integer(args.seed, "--seed", 0, 2 ** 64 - 1)
+        arrays.whole_number(args.threads, "--threads", 1)
+    arrays.whole_number(args.seed, "--seed", 0, 2 ** 64 - 1)
     if args.levels is not None:
         return {"levels": arrays.level_items(args.levels, "--levels")}
     if args.rate is not None:
@@ -243,7 +243,7 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
     if "radius" in request:
         return [np.sort(arrays.poisson_lod(source.points, source.normals,
                                            radius=_radius(request["radius"], source.points), **common).indices)]
-    count = request.get("count") or max(1, int(arrays._core.percent_of(request["rate"], n)))
+    count = request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))
     if count > n:
         raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
     if args.fps:
@@ -273,7 +273,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
 
 def _needed_points() -> int:
     """Points an input must hold: more than the neighbours its normals and geodesics are computed from."""
-    return max(arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors) + 1
+    return max(arrays.DOMAIN_DEFAULTS.normal_neighbors, arrays.DOMAIN_DEFAULTS.graph_neighbors) + 1
 
 
 def _stop_on_sigterm():

@@ -28,7 +28,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, cloud_files, core_diagonal, point_files, tiles
+from . import _core, arrays, cloud_files, core_diagonal, point_files, tiles
 from .cloud_files import Source
 from .docstrings import documented
 from .errors import ClusterJobError, InputError
@@ -50,7 +50,7 @@ class Job:
     within: Optional[tuple] = None  #: (folder, boxes): the finer level's samples, one .npy of ids per tile
 
     def domain_param(self):
-        d = arrays._core.DomainParam()
+        d = _core.DomainParam()
         for k, v in self.domain.items():
             setattr(d, k, v)
         return d
@@ -114,9 +114,7 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
 
 
 def domain_fields(metric: str, adaptivity: float) -> dict:
-    d = arrays._domain(10 ** 9, False, metric, "point-graph", arrays._DOMAIN.curvature_exponent, adaptivity,
-                       arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors,
-                       not arrays._DOMAIN.use_input_normals)
+    d = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param()
     return {k: getattr(d, k) for k in ("metric", "mode", "curvature_exponent", "adaptivity", "normal_neighbors",
                                        "graph_neighbors", "use_input_normals")}
 
@@ -134,7 +132,7 @@ def local_cluster(workers: int, memory_limit="auto"):
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
               rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
               max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
-              adaptivity: float = arrays._DOMAIN.adaptivity, tile_points: int = 2_000_000, client=None,
+              adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = 2_000_000, client=None,
               threads: Optional[int] = None, progress=None) -> dict:
     from dask.distributed import KilledWorker
 
@@ -146,9 +144,9 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         raise InputError("give exactly one of radius, count, rate or levels" +
                          (f" (got {' and '.join(given)})" if given else ""))
     tolerance = cluster_tolerance(tolerance)
-    max_runs = arrays._integer(arrays._core.PoissonParam().max_iterations if max_runs is None else max_runs,
+    max_runs = arrays.whole_number(_core.PoissonParam().max_iterations if max_runs is None else max_runs,
                                "max_runs", 1)
-    seed = arrays._integer(seed, "seed", 0, 2 ** 64 - 1)
+    seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     if not isinstance(tile_points, int) or tile_points < 1000:
         raise InputError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
@@ -164,7 +162,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
     """A count's tolerance as a cluster run takes it: a percentage above 0 (the tiles make no exact count)."""
-    tolerance = arrays._real(tolerance, name, positive=False)
+    tolerance = arrays.real_number(tolerance, name, positive=False)
     if not 0 < tolerance < 100:
         raise InputError(f"{name} must be a percentage above 0 and below 100 on a cluster, got {tolerance} (an "
                          "exact count, tolerance 0, runs on one machine)")
@@ -223,14 +221,14 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
                   spacing: float, pool: int, first_radius: float) -> tuple:
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
     run over all tiles, among `pool` points that may be samples: (the accepted or nearest run, runs made)."""
-    steps = arrays._core.RadiusSearch(target, tolerance / 100, pool, first_radius, max_runs)
+    steps = _core.RadiusSearch(target, tolerance / 100, pool, first_radius, max_runs)
     best, spent = None, {"tiles": 0.0, "seams": 0.0}
     while not steps.done:
         r = steps.radius
         run = _poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
                            ticks)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
-        if steps.report(run.count) == arrays._core.SearchRole.Accepted:
+        if steps.report(run.count) == _core.SearchRole.Accepted:
             best = run
         elif best is None or abs(run.count - target) < abs(best.count - target):
             best = run
@@ -291,10 +289,10 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         if size["radius"] is not None:
             targets = [("radius", _radius(size["radius"], cloud))]
         elif size["count"] is not None:
-            targets = [("count", arrays._integer(size["count"], "count", 1, total, " (the number of points)"))]
+            targets = [("count", arrays.whole_number(size["count"], "count", 1, total, " (the number of points)"))]
         else:
             pct = arrays.percent(size["rate"], "rate")
-            targets = [("count", int(max(1, arrays._core.percent_of(pct, total))))]
+            targets = [("count", int(max(1, _core.percent_of(pct, total))))]
         folders = [None]
     run_dir = out.begin()
     try:
@@ -334,7 +332,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
             run = _poisson_run(client, job, boxes, ticks)
         else:
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool, arrays._core.RadiusSearch.first_radius(diagonal, value))
+                                      pool, _core.RadiusSearch.first_radius(diagonal, value))
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None

@@ -6,25 +6,25 @@ from typing import Optional, Sequence, Union
 
 from . import _core
 from .docstrings import documented
-from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, FpsLod, LodPyramid, PoissonLod, Progress,
-                     _DOMAIN, _common, _diagonal, _domain, _fps_param, _inputs, _lod, _poisson_param,
-                     _pyramid_param, _run, level_counts)
+from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, FpsLod,
+                     LodPyramid, PoissonLod, Progress, call_core, diagonal_of, fps_param, input_arrays, level_counts,
+                     poisson_param, pyramid_param, result_of, run_options)
 
 
 @functools.partial(documented, name="Domain")
 class Domain:
     def __init__(self, points, normals=None, *, faces=None, metric: str = DEFAULT_METRIC,
-                 geodesics: str = DEFAULT_GEODESICS, adaptivity: float = _DOMAIN.adaptivity,
-                 curvature_exponent: float = _DOMAIN.curvature_exponent,
-                 normal_neighbors: int = _DOMAIN.normal_neighbors, graph_neighbors: int = _DOMAIN.graph_neighbors,
-                 recompute_normals: bool = not _DOMAIN.use_input_normals, threads: Optional[int] = None,
+                 geodesics: str = DEFAULT_GEODESICS, adaptivity: float = DOMAIN_DEFAULTS.adaptivity,
+                 curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
+                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
+                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, threads: Optional[int] = None,
                  progress: Progress = None):
-        p, n, f, has_faces = _inputs(points, normals, faces)
-        param = _domain(p.shape[0], has_faces, metric, geodesics, curvature_exponent, adaptivity,
-                        normal_neighbors, graph_neighbors, recompute_normals)
-        _, threads = _common(0, threads, progress, False, has_faces)
-        self._built = _run(_core.build_domain, p, n, f, param, threads, progress)
-        self._diagonal = _diagonal(p)
+        p, n, f, has_faces = input_arrays(points, normals, faces)
+        param = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
+                              recompute_normals).param(p.shape[0], has_faces)
+        _, threads = run_options(0, threads, progress, False, has_faces)
+        self._built = call_core(_core.build_domain, p, n, f, param, threads, progress)
+        self._diagonal = diagonal_of(p)
 
     @property
     def point_count(self) -> int:
@@ -46,22 +46,22 @@ class Domain:
                     rate: Optional[float] = None, tolerance: float = 0.0, mesh_output: bool = False,
                     regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
                     progress: Progress = None) -> PoissonLod:
-        param, threads = _poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
+        param, threads = poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
                                         mesh_output, regions, seed, within, threads, progress,
                                         lambda: self._diagonal)
-        return _lod(PoissonLod, _run(_core.poisson_on, self._built, param, threads, progress))
+        return result_of(PoissonLod, call_core(_core.poisson_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.fps_lod")
     def fps_lod(self, *, count: int, mesh_output: bool = False, regions: Optional[str] = None, seed: int = 0,
                 threads: Optional[int] = None, progress: Progress = None) -> FpsLod:
-        param, threads = _fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
+        param, threads = fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
                                     threads, progress)
-        return _lod(FpsLod, _run(_core.fps_on, self._built, param, threads, progress))
+        return result_of(FpsLod, call_core(_core.fps_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.lod_pyramid")
     def lod_pyramid(self, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                     mesh_output: bool = False, seed: int = 0, threads: Optional[int] = None,
                     progress: Progress = None) -> LodPyramid:
-        param, threads = _pyramid_param(level_counts(levels, self.point_count), self._built.has_faces,
+        param, threads = pyramid_param(level_counts(levels, self.point_count), self._built.has_faces,
                                         mesh_output, seed, threads, progress)
-        return _lod(LodPyramid, _run(_core.pyramid_on, self._built, param, threads, progress))
+        return result_of(LodPyramid, call_core(_core.pyramid_on, self._built, param, threads, progress))

@@ -190,17 +190,15 @@ def spacing_of(box: Box, n: int) -> float:
 
 
 def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
-                      metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays._DOMAIN.adaptivity,
+                      metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity,
                       halo: Optional[float] = None, within: Optional[np.ndarray] = None,
                       threads: Optional[int] = None,
                       on_tile: Optional[Callable[[int, Decision], None]] = None) -> np.ndarray:
     """poisson_lod(points, normals, radius=radius, seed=seed, within=within).indices, computed tile by tile in
     one process (shape: tiles per axis). For tests and for seeing what the tiling costs; the Dask pipeline
     runs the same steps on workers."""
-    p, n = arrays._points(points, normals)
-    domain = arrays._domain(len(p), False, metric, "point-graph", arrays._DOMAIN.curvature_exponent, adaptivity,
-                            arrays._DOMAIN.normal_neighbors, arrays._DOMAIN.graph_neighbors,
-                            not arrays._DOMAIN.use_input_normals)
+    p, n = arrays.point_arrays(points, normals)
+    domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
     cloud = Box(p.min(axis=0), p.max(axis=0))
     ids = np.arange(len(p), dtype=np.uint64)
     width = halo if halo is not None else first_halo(radius, spacing_of(cloud, len(p)))

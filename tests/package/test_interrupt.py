@@ -36,5 +36,5 @@ def test_ctrl_c_stops_a_run_from_inside():
     finally:
         child.kill()
     lines = out.splitlines()
-    assert lines[0] == "stopped in _run", out   # raised from the call into the sampler
+    assert lines[0] == "stopped in call_core", out   # raised from the call into the sampler
     assert lines[1] == "then sampled 100"
