@@ -214,6 +214,15 @@ def _choice(x, table: dict, name: str):
     return table[x]
 
 
+def too_few_points(n: int, neighbours: int) -> Optional[str]:
+    """What is wrong with n points where each needs `neighbours` others (its normal's plane fit, eq. 1, the
+    point graph), or None: the one wording of it on every front end."""
+    if n > neighbours:
+        return None
+    return (f"holds {n} points: at least {neighbours + 1} are needed (the neighbours each normal and the "
+            "geodesics are built from)")
+
+
 @dataclass(frozen=True)
 class DomainOptions:
     """The metric's and the geodesics' arguments, as every sampler takes them (see poisson_lod); ``param``

@@ -271,11 +271,6 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
     return levels
 
 
-def _needed_points() -> int:
-    """Points an input must hold: more than the neighbours its normals and geodesics are computed from."""
-    return max(arrays.DOMAIN_DEFAULTS.normal_neighbors, arrays.DOMAIN_DEFAULTS.graph_neighbors) + 1
-
-
 def _stop_on_sigterm():
     """SIGTERM stops a run as Ctrl-C does: files being written are removed."""
     import signal
@@ -301,9 +296,10 @@ def main(argv=None) -> int:
         point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
         source = point_files.read(args.input[0])
         n = source.points.shape[0]
-        if n < _needed_points():
-            raise point_files.PointFileError(source.path, f"holds {n} points: at least {_needed_points()} are "
-                                             "needed (the neighbours each normal and the geodesics are built from)")
+        problem = arrays.too_few_points(n, max(arrays.DOMAIN_DEFAULTS.normal_neighbors,
+                                               arrays.DOMAIN_DEFAULTS.graph_neighbors))
+        if problem:
+            raise point_files.PointFileError(source.path, problem)
         point_files.check_writable(source, paths)
         bar = _Bar(args.quiet, "sampling")
         try:

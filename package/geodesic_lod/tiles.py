@@ -130,10 +130,10 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
         core = box.core_mask(points, cloud)
         if not core.any():
             return None
-        if len(points) <= neighbours:  # a stray point far from the rest: read as far as its neighbours
+        problem = arrays.too_few_points(len(points), neighbours)
+        if problem:  # a stray point far from the rest: read as far as its neighbours
             if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
-                raise InputError(f"the cloud holds {len(points)} points: at least {neighbours + 1} are needed (the "
-                                 "neighbours each normal and the geodesics are built from)")
+                raise InputError(f"the cloud {problem}")
             halo *= 4
             continue
         may = None if candidates is None else candidates(ids, halo)
