@@ -1,0 +1,195 @@
+"""Height-field benchmark: LODs of DEM grids as a GIS user judges them. Each method picks n of the grid's
+nodes (or, for Quadric Edge Collapse, places n vertices); the LOD's surface is its own triangulation
+where it makes one (greedy insertion, quadric edge collapse), else the samples triangulated in x, y by
+Delaunay with the grid's four corners added, as in Hou et al.'s Fig. 7. The error is |z - LOD(x, y)|
+at every grid node, in metres: RMS and maximum.
+
+usage: bench/height_field.py [--plugin PATH] [--quick]   (writes docs/height_field.json and .md)
+"""
+import argparse
+import pathlib
+import sys
+import time
+
+import numpy as np
+from scipy.spatial import Delaunay
+
+import radius_search
+from host import SHARED_DATA, add_plugin_option, load_plugin
+from results import DOCS, publish
+
+TILE = "terrain_n44w072_1201x1201.ply"
+# (file, first row, first column, size): the crop the tables report, and another part of the tile that
+# chose the defaults (the same as the quality benchmark's).
+MODELS = {
+    "terrain crop (Mt Washington)": ("terrain_n44w072_crop301x301.ply", 0, 0, 301),
+    "terrain, NW crop (tuning)": (TILE, 100, 100, 301),
+}
+RATES = [0.01, 0.02, 0.05, 0.25]
+QUICK_RATES = [0.02, 0.05]
+COUNT_TOLERANCE = 0.02  # MeshLab's simplification reaches the count by a radius search
+
+
+class Grid:
+    """A DEM as a size x size grid of nodes (rows from north), its points in metres and a MeshSet
+    holding it as a mesh (two triangles per cell)."""
+
+    def __init__(self, pymeshlab, name, row, col, size):
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(SHARED_DATA / name))
+        m = ms.current_mesh()
+        width = int(round(np.sqrt(m.vertex_number())))
+        rows, cols = np.meshgrid(np.arange(row, row + size), np.arange(col, col + size), indexing="ij")
+        self.points = m.vertex_matrix()[(rows * width + cols).ravel()]
+        self.size = size
+        self.heights = self.points[:, 2].reshape(size, size)
+        base = (np.arange(size - 1)[:, None] * size + np.arange(size - 1)[None, :]).ravel()
+        # the source's winding: (r+1, c), (r+1, c+1), (r, c+1) and (r+1, c), (r, c+1), (r, c)
+        self.faces = np.concatenate([np.stack([base + size, base + size + 1, base + 1], 1),
+                                     np.stack([base + size, base + 1, base], 1)])
+        self.ms = pymeshlab.MeshSet()
+        self.ms.add_mesh(pymeshlab.Mesh(vertex_matrix=self.points, face_matrix=self.faces))
+        self.corners = np.array([0, size - 1, size * (size - 1), size * size - 1])
+        self.spacing = (self.points[1, 0] - self.points[0, 0], self.points[0, 1] - self.points[size, 1])
+
+
+def vertical_error(grid, vertices, triangles):
+    """|z - LOD(x, y)| at every grid node, the LOD being triangles over vertices (seen from above)."""
+    lod = np.full(grid.size * grid.size, np.nan)
+    x0, y_top = grid.points[0, 0], grid.points[0, 1]
+    dx, dy = grid.spacing
+    for tri in triangles:
+        a, b, c = vertices[tri]
+        cols = np.arange(int(np.ceil((min(a[0], b[0], c[0]) - x0) / dx - 1e-6)),
+                         int(np.floor((max(a[0], b[0], c[0]) - x0) / dx + 1e-6)) + 1)
+        rows = np.arange(int(np.ceil((y_top - max(a[1], b[1], c[1])) / dy - 1e-6)),
+                         int(np.floor((y_top - min(a[1], b[1], c[1])) / dy + 1e-6)) + 1)
+        cols, rows = cols[(cols >= 0) & (cols < grid.size)], rows[(rows >= 0) & (rows < grid.size)]
+        if not len(cols) or not len(rows):
+            continue
+        px, py = np.meshgrid(x0 + cols * dx, y_top - rows * dy)
+        det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+        if det == 0:
+            continue
+        wb = ((px - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (py - a[1])) / det
+        wc = ((b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1])) / det
+        wa = 1 - wb - wc
+        inside = (wa >= -1e-6) & (wb >= -1e-6) & (wc >= -1e-6)
+        idx = (rows[:, None] * grid.size + cols[None, :])[inside]
+        lod[idx] = (wa * a[2] + wb * b[2] + wc * c[2])[inside]
+    err = np.abs(grid.points[:, 2] - lod)
+    return err, int(np.isnan(lod).sum())
+
+
+def delaunay_tin(grid, idx):
+    """The nodes idx plus the grid's corners, triangulated in x, y by Delaunay."""
+    idx = np.union1d(idx, grid.corners)
+    pts = grid.points[idx]
+    return pts, Delaunay(pts[:, :2]).simplices
+
+
+# --- methods: each returns (vertices, triangles) -----------------------------------------------
+def greedy_insertion(grid, n, _):
+    """pydelatin (Fogleman's hmm/delatin): greedy insertion to n vertices, its own triangulation."""
+    from pydelatin import Delatin
+    tin = Delatin(grid.heights.astype(np.float32), max_error=0.0, max_points=n)
+    # pydelatin's x is the column and its y runs up from the last row
+    cols = tin.vertices[:, 0].round().astype(int)
+    rows = grid.size - 1 - tin.vertices[:, 1].round().astype(int)
+    return grid.points[rows * grid.size + cols], tin.triangles
+
+
+def quadric_edge_collapse(grid, n, pymeshlab):
+    """MeshLab's Quadric Edge Collapse Decimation, its defaults but the boundary kept, to n vertices
+    (within COUNT_TOLERANCE): it takes a face count, stepped by twice the vertices missing."""
+    faces = 2 * n
+    for _ in range(8):
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=grid.points, face_matrix=grid.faces))
+        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=faces, preserveboundary=True)
+        ms.meshing_remove_unreferenced_vertices()
+        m = ms.current_mesh()
+        if abs(m.vertex_number() - n) <= COUNT_TOLERANCE * n:
+            break
+        faces += 2 * (n - m.vertex_number())
+    return m.vertex_matrix(), m.face_matrix()
+
+
+def uniform_random(grid, n, _):
+    return delaunay_tin(grid, np.random.default_rng(0).choice(len(grid.points), n, replace=False))
+
+
+def nodes_of(grid, points):
+    """The grid nodes at the given points (every sampler here keeps input points)."""
+    x0, y_top = grid.points[0, 0], grid.points[0, 1]
+    cols = np.round((points[:, 0] - x0) / grid.spacing[0]).astype(int)
+    rows = np.round((y_top - points[:, 1]) / grid.spacing[1]).astype(int)
+    return rows * grid.size + cols
+
+
+def layer_points(grid, apply):
+    grid.ms.set_current_mesh(0)
+    apply()
+    points = grid.ms.current_mesh().vertex_matrix()
+    grid.ms.delete_current_mesh()
+    return points
+
+
+def meshlab_simplify(grid, n, pymeshlab):
+    """MeshLab's Point Cloud Simplification (Euclidean Poisson-disk pruning), radius searched to n."""
+    diag = np.linalg.norm(grid.points.max(0) - grid.points.min(0))
+    found = {}
+
+    def count_at(r):
+        found[r] = layer_points(grid, lambda: grid.ms.generate_simplified_point_cloud(
+            radius=pymeshlab.PureValue(r)))
+        return len(found[r])
+    r, _, _ = radius_search.search(n, count_at, diag * 0.6 / np.sqrt(n), COUNT_TOLERANCE)
+    return delaunay_tin(grid, nodes_of(grid, found[r]))
+
+
+def ours_poisson(grid, n, pymeshlab):
+    """The Poisson LOD filter with its defaults (curvature-density metric, mesh geodesics)."""
+    return delaunay_tin(grid, nodes_of(grid, layer_points(
+        grid, lambda: grid.ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n))))
+
+
+METHODS = {
+    "ours, Poisson LOD (defaults)": ours_poisson,
+    "MeshLab point cloud simplification": meshlab_simplify,
+    "uniform random": uniform_random,
+    "greedy insertion (pydelatin, its own TIN)": greedy_insertion,
+    "MeshLab quadric edge collapse (boundary kept)": quadric_edge_collapse,
+}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    add_plugin_option(ap)
+    ap.add_argument("--quick", action="store_true", help=f"rates {QUICK_RATES} only")
+    args = ap.parse_args()
+    if not SHARED_DATA.is_dir():
+        sys.exit(f"needs {SHARED_DATA} (the shared DEM)")
+    pymeshlab = load_plugin(args.plugin)
+    rows = []
+    for model, source in MODELS.items():
+        grid = Grid(pymeshlab, *source)
+        for rate in QUICK_RATES if args.quick else RATES:
+            n = int(round(rate * len(grid.points)))
+            for method, make in METHODS.items():
+                t = time.perf_counter()
+                vertices, triangles = make(grid, n, pymeshlab)
+                seconds = time.perf_counter() - t
+                err, uncovered = vertical_error(grid, vertices, triangles)
+                rows.append(dict(model=model, rate=rate, method=method, vertices=len(vertices),
+                                 rms=float(np.sqrt(np.nanmean(err ** 2))), max=float(np.nanmax(err)),
+                                 uncovered=uncovered, seconds=seconds))
+                print(rows[-1], file=sys.stderr)
+    publish("height_field", rows, [
+        ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"), ("method", lambda r: r["method"]),
+        ("vertices", lambda r: str(r["vertices"])), ("RMS (m)", lambda r: f"{r['rms']:.1f}"),
+        ("max (m)", lambda r: f"{r['max']:.0f}"), ("time", lambda r: f"{r['seconds']:.2f} s")])
+
+
+if __name__ == "__main__":
+    main()
