@@ -29,6 +29,7 @@ inline QString Worded(const vcg_ext::InputError& e) {
     case Field::ReferencePoints: return "the reference layer " + problem;
     case Field::Surface: return "the surface layer " + problem;
     case Field::Within: return "the finer level's samples " + problem;
+    case Field::Separation: return "separation " + problem;
   }
   return problem;
 }

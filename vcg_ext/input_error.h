@@ -26,7 +26,8 @@ enum class Field {
   MaxDistance,
   ReferencePoints,    ///< the normal projection's measured points
   Surface,            ///< the normal projection's triangles
-  Within              ///< the points that may become samples (nested levels)
+  Within,             ///< the points that may become samples (nested levels)
+  Separation          ///< the height-field LOD's disk size
 };
 
 /// A std::invalid_argument whose what() is a predicate: written after the
@@ -56,6 +57,7 @@ inline const char* FieldId(Field f) {
     case Field::ReferencePoints: return "ReferencePoints";
     case Field::Surface: return "Surface";
     case Field::Within: return "Within";
+    case Field::Separation: return "Separation";
   }
   return "Unknown";
 }

@@ -7,7 +7,8 @@ rugged, sparse where it is smooth. Arrays in, indices out::
     lod = gl.poisson_lod(points, count=10_000)     # points: an (n, 3) float array
     small = points[lod.indices]
 
-``Domain`` keeps the normals, curvature and geodesic structure of one input for several LODs.
+``height_field_lod`` makes nested TIN LODs of terrain by error-driven insertion under a Poisson-disk
+constraint. ``Domain`` keeps the normals, curvature and geodesic structure of one input for several LODs.
 
 ``geodesic_lod.pymeshlab`` adds the MeshLab filters to pymeshlab; the command ``geodesic-lod``
 samples PLY, LAS/LAZ and .npy files; ``geodesic_lod.distributed`` samples files larger than one
@@ -16,8 +17,10 @@ machine on a Dask cluster, with the same samples (``geodesic_lod.tiles`` holds t
 from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVariation, PoissonLod, fps_lod,
                      level_counts, lod_pyramid, normal_variation, poisson_lod)
 from .domain import Domain
+from .height_field import HeightFieldLod, height_field_lod
 from .errors import ClusterJobError, InputError, PointFileError
 
 __all__ = ["InputError", "PointFileError", "ClusterJobError",
-           "poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "level_counts", "Domain", "PoissonLod",
-           "FpsLod", "LodPyramid", "NormalVariation", "Lod", "METRICS", "DEFAULT_METRIC"]
+           "poisson_lod", "fps_lod", "lod_pyramid", "normal_variation", "height_field_lod", "level_counts", "Domain",
+           "PoissonLod", "FpsLod", "LodPyramid", "NormalVariation", "HeightFieldLod", "Lod", "METRICS",
+           "DEFAULT_METRIC"]

@@ -276,7 +276,7 @@ _FIELD_WORDS = {"Points": "points", "Coordinates": "points", "Radius": "radius",
                 "Tolerance": "tolerance", "Levels": "levels", "NormalNeighbours": "normal_neighbors",
                 "GraphNeighbours": "graph_neighbors", "CurvatureExponent": "curvature_exponent",
                 "Adaptivity": "adaptivity", "GeodesicMode": "geodesics", "MeshOutput": "mesh_output",
-                "Within": "within"}
+                "Within": "within", "Separation": "separation"}
 
 
 def call_core(fn, *args):

@@ -71,6 +71,9 @@ def parser() -> argparse.ArgumentParser:
     size.add_argument("--levels", help="nested levels, finest first, such as 50%%,10%%,2%%: one file each")
     p.add_argument("--fps", action="store_true", help="farthest-point order instead of Poisson-disk (with --rate "
                    "or --count): the file's first k points are the k-sample LOD")
+    p.add_argument("--height-field", action="store_true", help="terrain: greedy insertion (each sample the point "
+                   "farthest in height from the TIN of those before it) under a Poisson-disk constraint, with "
+                   "--rate, --count or --levels (nested prefixes of one run)")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in (default: %(default)s)")
     p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
@@ -112,8 +115,9 @@ def _on_cluster(args) -> bool:
 def _run_on_cluster(args, request: dict) -> int:
     """Many files, or a cloud too large for one machine: tiles on Dask workers."""
     from . import distributed
-    if args.fps:
-        raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps runs on one machine)")
+    if args.fps or args.height_field:
+        raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
+                         "one machine)")
     if "levels" in request:  # what can be checked before the cluster starts: levels of one kind get coarser
         for kind in (str, int):
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
@@ -206,6 +210,10 @@ def _request(args) -> dict:
         raise ValueError("--fps takes --rate or --count" + (": --levels are nested Poisson-disk sets"
                                                             if args.levels is not None else ""))
     counted = args.rate is not None or args.count is not None or args.levels is not None
+    if args.height_field and (args.fps or not counted):
+        raise ValueError("--height-field takes --rate, --count or --levels" + (", not --fps" if args.fps else ""))
+    if args.height_field and args.tolerance is not None:
+        raise ValueError("--tolerance goes with Poisson-disk sets; --height-field counts are exact")
     if args.tolerance is not None and (args.fps or not counted):
         raise ValueError("--tolerance goes with --count, --rate or --levels (Poisson-disk)")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
@@ -238,6 +246,8 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
     n = source.points.shape[0]
+    if args.height_field:
+        return _height_field_levels(request, source, progress)
     if "levels" in request:
         return _nested_levels(args, request["levels"], source, progress)
     if "radius" in request:
@@ -269,6 +279,20 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
         finer = np.sort(lod.indices)
         levels.append(finer)
     return levels
+
+
+def _height_field_levels(request: dict, source: point_files.PointFile, progress) -> list:
+    """Each level (or the one count) a prefix of one height-field LOD of the finest count."""
+    from .height_field import height_field_lod
+    n = source.points.shape[0]
+    if "levels" in request:
+        counts = arrays.level_counts(request["levels"], n)
+    else:
+        counts = [request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))]
+        if counts[0] > n:
+            raise ValueError(f"--count must be at most the number of points ({n}), got {counts[0]}")
+    indices = height_field_lod(source.points, count=max(counts), progress=progress).indices
+    return [np.sort(indices[:c]) for c in counts]
 
 
 def _stop_on_sigterm():

@@ -294,6 +294,47 @@ TEXTS = {
     >>> index["samples"] == len(gl.poisson_lod(np.load(d / "cloud.npy"), radius=0.1).indices)
     True
     """,
+    "height_field_lod": f"""Height-field LOD (terrain, a DEM's nodes, an airborne cloud): greedy insertion, each new
+    sample the point farthest in height from the Delaunay TIN of the samples before it (Garland and
+    Heckbert's error-driven insertion), among the points at least ``separation * sqrt(A / k)`` from every
+    sample (A: the area of the points' convex hull in x, y; k: the samples so far). The samples
+    start with the hull's corners and are nested: every prefix from ``hull_size`` on is the LOD of its
+    count, with its TIN from ``tin(k)``.
+
+    Parameters
+    ----------
+    points : (n, 3) array of float32 or float64
+        The points, z up; rows with the same x, y give at most one sample. Never modified.
+    count : int, optional
+        Exactly this many samples: at least the hull's corners, at most the distinct points in x, y.
+    rate : float or str, optional
+        A percentage of the points as a count: 10 or ``'10%'``. Give exactly one of ``count`` and ``rate``.
+    separation : float
+        beta, >= 0: the disks' size relative to an even spread of k samples over the hull; 0 is plain
+        greedy insertion. Default {_core.HeightFieldParam().separation:g}.
+    separation_in : {{'xyz', 'xy'}}
+        Where the disks' distance is measured: in x, y, z, so that a cliff's top and foot may both be
+        samples (the default), or in x, y.
+    progress : callable, optional
+        Called with the fraction done, 0 to 1. Ctrl-C stops a run with KeyboardInterrupt.
+
+    Returns
+    -------
+    HeightFieldLod
+        ``indices`` (the hull's corners, then in insertion order), ``errors``, ``faces`` (the TIN of
+        all samples), ``hull_size``, ``separated_prefix``, ``tin(k)``.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> y, x = np.mgrid[0:50, 0:50] * 30.0
+    >>> dem = np.column_stack([x.ravel(), y.ravel(), (100 * np.sin(x / 300) * np.cos(y / 400)).ravel()])
+    >>> lod = gl.height_field_lod(dem, rate=5)
+    >>> len(lod.indices), lod.hull_size, int(lod.tin(10).max())  # the TIN of the first 10 samples
+    (125, 4, 9)
+    """,
     "Domain": f"""One input's normals, curvature (eq. 1) and geodesic structure, built once for several LODs.
 
     The arrays are copied: changing them afterwards changes nothing here. The domain holds its memory

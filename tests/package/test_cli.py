@@ -80,6 +80,20 @@ def test_levels_give_one_nested_file_each(tmp_path):
     assert "1,500 of 3,000 points" in r.stderr  # the summary, without --quiet
 
 
+def test_height_field_levels_are_prefixes_of_one_lod(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    r = run(src, "-o", tmp_path / "tin.laz", "--height-field", "--levels", "20%,5%", "-q")
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    points = pf.read(src).points
+    lod = gl.height_field_lod(points, count=600).indices
+    records = laspy.read(str(src)).points.array
+    for label, k in (("20pct", 600), ("5pct", 150)):
+        out = laspy.read(str(tmp_path / f"tin_{label}.laz")).points.array
+        assert out.tobytes() == records[np.sort(lod[:k])].tobytes()
+    assert run(src, "-o", tmp_path / "one.laz", "--height-field", "--count", 150, "-q").returncode == 0
+    assert laspy.read(str(tmp_path / "one.laz")).points.array.tobytes() == records[np.sort(lod[:150])].tobytes()
+
+
 def test_npy_with_normals(tmp_path):
     p = bumpy_sphere(2000)
     np.save(tmp_path / "in.npy", np.hstack([p, p]))
@@ -119,6 +133,12 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,10%", "--fps"], "--fps takes"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--fps"], "--fps takes --rate or --count"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "one of the arguments --rate --count --radius --levels"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--height-field"],
+     "--height-field takes --rate, --count or --levels"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "9", "--height-field", "--tolerance", "1"],
+     "--height-field counts are exact"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "3001", "--height-field"],
+     "at most the number of points (3000)"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--count", "9"], "not allowed with"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--seed", "-1"], "seed must be from 0"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--threads", "0"], "threads must be at least 1"),

@@ -6,10 +6,10 @@ import inspect
 import pytest
 
 import geodesic_lod as gl
-from geodesic_lod import arrays, distributed, domain
+from geodesic_lod import arrays, distributed, domain, height_field
 
 DOCUMENTED = [gl.poisson_lod, gl.fps_lod, gl.lod_pyramid, gl.normal_variation, gl.Domain, gl.Domain.poisson_lod,
-              gl.Domain.fps_lod, gl.Domain.lod_pyramid, distributed.lod_files]
+              gl.Domain.fps_lod, gl.Domain.lod_pyramid, distributed.lod_files, gl.height_field_lod]
 
 
 @pytest.mark.parametrize("fn", DOCUMENTED, ids=lambda f: f.__qualname__)
@@ -24,7 +24,7 @@ def test_every_parameter_is_named_in_a_parameters_section(fn):
     assert not missing, f"{fn.__qualname__}: {missing} not in its Parameters section"
 
 
-@pytest.mark.parametrize("module", [arrays, domain, distributed], ids=lambda m: m.__name__)
+@pytest.mark.parametrize("module", [arrays, domain, distributed, height_field], ids=lambda m: m.__name__)
 def test_the_examples_run(module):
     finder = doctest.DocTestFinder()
     tests = [t for t in finder.find(module) if t.examples]
