@@ -4,7 +4,8 @@ where it makes one (greedy insertion, quadric edge collapse), else the samples t
 Delaunay with the grid's four corners added, as in Hou et al.'s Fig. 7. The error is |z - LOD(x, y)|
 at every grid node, in metres: RMS and maximum.
 
-usage: bench/height_field.py [--plugin PATH] [--quick]   (writes docs/height_field.json and .md)
+usage: PYTHONPATH=build/python bench/height_field.py [--plugin PATH] [--quick]   (writes docs/height_field.json)
+       PYTHONPATH=build/python bench/height_field.py --tune   (the separation swept on the tuning crop only)
 """
 import argparse
 import pathlib
@@ -27,6 +28,7 @@ MODELS = {
 }
 RATES = [0.01, 0.02, 0.05, 0.25]
 QUICK_RATES = [0.02, 0.05]
+SEPARATIONS = [0, 0.2, 0.3, 0.4, 0.5]
 COUNT_TOLERANCE = 0.02  # MeshLab's simplification reaches the count by a radius search
 
 
@@ -60,14 +62,17 @@ def vertical_error(grid, vertices, triangles):
     dx, dy = grid.spacing
     for tri in triangles:
         a, b, c = vertices[tri]
-        cols = np.arange(int(np.ceil((min(a[0], b[0], c[0]) - x0) / dx - 1e-6)),
-                         int(np.floor((max(a[0], b[0], c[0]) - x0) / dx + 1e-6)) + 1)
-        rows = np.arange(int(np.ceil((y_top - max(a[1], b[1], c[1])) / dy - 1e-6)),
-                         int(np.floor((y_top - min(a[1], b[1], c[1])) / dy + 1e-6)) + 1)
+        # the nodes near the triangle's box (a thousandth of a cell of slack for the float32 spacing),
+        # at their own coordinates
+        cols = np.arange(int(np.ceil((min(a[0], b[0], c[0]) - x0) / dx - 1e-3)),
+                         int(np.floor((max(a[0], b[0], c[0]) - x0) / dx + 1e-3)) + 1)
+        rows = np.arange(int(np.ceil((y_top - max(a[1], b[1], c[1])) / dy - 1e-3)),
+                         int(np.floor((y_top - min(a[1], b[1], c[1])) / dy + 1e-3)) + 1)
         cols, rows = cols[(cols >= 0) & (cols < grid.size)], rows[(rows >= 0) & (rows < grid.size)]
         if not len(cols) or not len(rows):
             continue
-        px, py = np.meshgrid(x0 + cols * dx, y_top - rows * dy)
+        nodes = rows[:, None] * grid.size + cols[None, :]
+        px, py = grid.points[nodes, 0], grid.points[nodes, 1]
         det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
         if det == 0:
             continue
@@ -75,7 +80,7 @@ def vertical_error(grid, vertices, triangles):
         wc = ((b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1])) / det
         wa = 1 - wb - wc
         inside = (wa >= -1e-6) & (wb >= -1e-6) & (wc >= -1e-6)
-        idx = (rows[:, None] * grid.size + cols[None, :])[inside]
+        idx = nodes[inside]
         lod[idx] = (wa * a[2] + wb * b[2] + wc * c[2])[inside]
     err = np.abs(grid.points[:, 2] - lod)
     return err, int(np.isnan(lod).sum())
@@ -148,6 +153,13 @@ def meshlab_simplify(grid, n, pymeshlab):
     return delaunay_tin(grid, nodes_of(grid, found[r]))
 
 
+def ours_height_field(grid, n, _, **options):
+    """geodesic_lod.height_field_lod: greedy insertion under the Poisson-disk constraint, its own TIN."""
+    import geodesic_lod as gl
+    lod = gl.height_field_lod(grid.points, count=n, **options)
+    return grid.points[lod.indices], lod.faces
+
+
 def ours_poisson(grid, n, pymeshlab):
     """The Poisson LOD filter with its defaults (curvature-density metric, mesh geodesics)."""
     return delaunay_tin(grid, nodes_of(grid, layer_points(
@@ -155,6 +167,7 @@ def ours_poisson(grid, n, pymeshlab):
 
 
 METHODS = {
+    "ours, height-field LOD (defaults)": ours_height_field,
     "ours, Poisson LOD (defaults)": ours_poisson,
     "MeshLab point cloud simplification": meshlab_simplify,
     "uniform random": uniform_random,
@@ -167,16 +180,26 @@ def main():
     ap = argparse.ArgumentParser()
     add_plugin_option(ap)
     ap.add_argument("--quick", action="store_true", help=f"rates {QUICK_RATES} only")
+    ap.add_argument("--tune", action="store_true", help=f"height_field_lod's separation {SEPARATIONS} on the "
+                    "tuning crop, greedy insertion beside it (writes docs/height_field_tuning.json)")
     args = ap.parse_args()
     if not SHARED_DATA.is_dir():
         sys.exit(f"needs {SHARED_DATA} (the shared DEM)")
     pymeshlab = load_plugin(args.plugin)
+    models, methods, name = MODELS, METHODS, "height_field"
+    if args.tune:
+        models = {m: s for m, s in MODELS.items() if "tuning" in m}
+        methods = {f"ours, height-field LOD, separation {b:g} in {space}": (
+            lambda grid, n, _, b=b, space=space: ours_height_field(grid, n, _, separation=b, separation_in=space))
+            for space in ("xyz", "xy") for b in SEPARATIONS}
+        methods["greedy insertion (pydelatin, its own TIN)"] = greedy_insertion
+        name = "height_field_tuning"
     rows = []
-    for model, source in MODELS.items():
+    for model, source in models.items():
         grid = Grid(pymeshlab, *source)
         for rate in QUICK_RATES if args.quick else RATES:
             n = int(round(rate * len(grid.points)))
-            for method, make in METHODS.items():
+            for method, make in methods.items():
                 t = time.perf_counter()
                 vertices, triangles = make(grid, n, pymeshlab)
                 seconds = time.perf_counter() - t
@@ -185,7 +208,7 @@ def main():
                                  rms=float(np.sqrt(np.nanmean(err ** 2))), max=float(np.nanmax(err)),
                                  uncovered=uncovered, seconds=seconds))
                 print(rows[-1], file=sys.stderr)
-    publish("height_field", rows, [
+    publish(name, rows, [
         ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"), ("method", lambda r: r["method"]),
         ("vertices", lambda r: str(r["vertices"])), ("RMS (m)", lambda r: f"{r['rms']:.1f}"),
         ("max (m)", lambda r: f"{r['max']:.0f}"), ("time", lambda r: f"{r['seconds']:.2f} s")])
