@@ -129,13 +129,14 @@ class HeightFieldLod {
    public:
     template <class Scalar>
     Sampler(const Scalar* xyz, size_t n, const Param& p) : n_(n), p_(p) {
-      if (n < 3) throw InputError(Field::Points, "needs at least 3 points, got " + std::to_string(n));
+      if (n < 3) throw InputError(Field::Points, "holds " + std::to_string(n) + " points: a TIN needs at least 3");
       x_.resize(n), y_.resize(n), z_.resize(n);
+      size_t bad = 0;
       for (size_t i = 0; i < n; ++i) {
         x_[i] = double(xyz[3 * i]), y_[i] = double(xyz[3 * i + 1]), z_[i] = double(xyz[3 * i + 2]);
-        if (!std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(z_[i]))
-          throw InputError(Field::Coordinates, "point " + std::to_string(i) + " is not finite");
+        bad += !std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(z_[i]);
       }
+      if (bad) throw NonFiniteCoordinates(bad);
       // Coordinates from the box's corner: UTM eastings and northings keep their centimetres.
       const double ox = *std::min_element(x_.begin(), x_.end()), oy = *std::min_element(y_.begin(), y_.end());
       for (size_t i = 0; i < n; ++i) x_[i] -= ox, y_[i] -= oy;
@@ -246,7 +247,7 @@ class HeightFieldLod {
       using Traits = CGAL::Convex_hull_traits_adapter_2<K, CGAL::Pointer_property_map<Point>::type>;
       CGAL::convex_hull_2(idx.begin(), idx.end(), std::back_inserter(out),
                           Traits(CGAL::make_property_map(pts)));
-      if (out.size() < 3) throw InputError(Field::Points, "lie on one line in x, y: they span no area");
+      if (out.size() < 3) throw InputError(Field::Points, "holds only points on one line in x, y (no area to triangulate)");
       return out;
     }
 

@@ -38,6 +38,12 @@ struct InputError : std::invalid_argument {
   InputError(Field f, const std::string& problem) : std::invalid_argument(problem), field(f) {}
 };
 
+/// The one wording of points with NaN or infinite coordinates.
+inline InputError NonFiniteCoordinates(size_t bad) {
+  return InputError(Field::Coordinates, "holds " + std::to_string(bad) + (bad == 1 ? " point" : " points") +
+                                            " with NaN or infinite coordinates");
+}
+
 /// The field's identifier, for front ends that pass the error on by name.
 inline const char* FieldId(Field f) {
   switch (f) {

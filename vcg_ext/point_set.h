@@ -93,8 +93,7 @@ class PointSetFromMesh {
     }
     const size_t bad = std::accumulate(nonFinite.begin(), nonFinite.end(), size_t(0));
     if (bad)
-      throw InputError(Field::Coordinates,
-                       "holds " + std::to_string(bad) + (bad == 1 ? " point" : " points") + " with NaN or infinite coordinates");
+      throw NonFiniteCoordinates(bad);
     std::partial_sum(start.begin(), start.end(), start.begin());
     const bool copyNormals = std::find(someNormal.begin(), someNormal.end(), 1) != someNormal.end();
     PointSet<Scalar> ps;

@@ -94,7 +94,7 @@ def test_bad_arguments_are_named(dem, kwargs, words):
 
 def test_bad_points_are_named(dem):
     line = np.column_stack([np.arange(10.0), np.arange(10.0), np.zeros(10)])
-    with pytest.raises(gl.InputError, match="points lie on one line in x, y"):
+    with pytest.raises(gl.InputError, match="points holds only points on one line in x, y"):
         gl.height_field_lod(line, count=5)
     bad = dem.copy()
     bad[7, 2] = np.nan
