@@ -71,5 +71,17 @@ inline QString NormalProjectionInfo() {
          "Hausdorff distance filter." + PaperReference();
 }
 
+inline QString HeightFieldName() { return "Height-field LOD (greedy TIN)"; }
+inline QString HeightFieldPythonName() { return kHeightFieldPythonName; }
+inline QString HeightFieldInfo() {
+  return "For terrain and other height fields (z up): adds one layer per level of a list such as 10%,5%,2%, each "
+         "a TIN of current-layer vertices. Each new vertex is the one farthest in height from the Delaunay TIN "
+         "of those before it (Garland and Heckbert's greedy insertion), among the vertices at least "
+         "<i>separation</i> sqrt(A / k) from every one chosen (A: the area of the hull in x, y; k: the vertices "
+         "so far), so the levels nest and no two vertices crowd. The finest layer's attribute <i>lod_level</i> "
+         "gives the coarsest level of each vertex. Returns <i>level_num</i>, <i>sample_num</i> and "
+         "<i>max_error</i> (the height the finest level's last vertex removed)." + SeeAlso();
+}
+
 }  // namespace geodesic_lod
 #endif

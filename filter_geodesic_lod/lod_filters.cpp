@@ -9,6 +9,7 @@
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/height_field_lod.h>
 #include <vcg_ext/normal_projection.h>
 #include <vcg_ext/sample_counts.h>
 
@@ -382,6 +383,100 @@ LodRun RunNormalProjection(const CMeshO&, const ParamSource& src, vcg::CallBackP
   });
 }
 
+namespace {
+const vcg_ext::HeightFieldLod::Param kHeightFieldDefaults;
+const Choices<bool> kSeparationSpaces{{{true, "x, y, z"}, {false, "x, y"}}};  // inHeight
+const Choices<bool> kTinOutputs{{{true, "Triangle mesh (TIN)"}, {false, "Points"}}};
+}  // namespace
+
+std::vector<ParamSpec> HeightFieldParams(const CMeshO&) {
+  std::vector<ParamSpec> p;
+  ParamSpec levels{ParamKind::String, "levels", "Levels",
+                   "Vertex counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
+                   "(10%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
+                   "finer ones."};
+  levels.text = vcg_ext::kDefaultPyramidLevels;
+  p.push_back(levels);
+  p.push_back({ParamKind::Float, "separation", "Separation",
+               "beta, at least 0: the first k vertices are at least beta sqrt(A / k) apart (A: the area of the "
+               "hull in x, y), relative to an even spread of k over the hull. 0 is plain greedy insertion; "
+               "larger values keep vertices off steep ground, where the largest errors are.",
+               kHeightFieldDefaults.separation});
+  p.push_back({ParamKind::Enum, "separationspace", "Separation measured in",
+               "x, y, z: a cliff's top and foot may both be vertices; x, y: the map distance.",
+               kSeparationSpaces.IndexOf(kHeightFieldDefaults.inHeight), 0, 0, kSeparationSpaces.Names()});
+  p.push_back({ParamKind::Enum, "output", "Output",
+               "Triangle mesh: each level's Delaunay TIN in x, y. Points: the chosen vertices only.",
+               kTinOutputs.IndexOf(true), 0, 0, kTinOutputs.Names()});
+  return p;
+}
+
+LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
+  return Guarded([&] {
+    RequireVertices(in);
+    std::vector<LodLevel> levels = ParseLevels(src.text("levels"), size_t(in.vn));
+    std::vector<size_t> counts;
+    for (const LodLevel& l : levels) counts.push_back(l.count);
+    vcg_ext::GeodesicLodPyramid<CMeshO>::CheckCounts(counts);
+    vcg_ext::HeightFieldLod::Param p;
+    p.sampleNum = levels.front().count;
+    p.separation = src.number("separation");
+    p.inHeight = kSeparationSpaces.Read(src, "separationspace");
+    const bool tin = kTinOutputs.Read(src, "output");
+    // The live vertices' coordinates; the result's indices are into these, mapped back to m.vert.
+    std::vector<double> xyz;
+    std::vector<int> vertOf;
+    for (size_t v = 0; v < in.vert.size(); ++v) {
+      if (in.vert[v].IsD()) continue;
+      for (int c = 0; c < 3; ++c) xyz.push_back(double(in.vert[v].cP()[c]));
+      vertOf.push_back(int(v));
+    }
+    const auto r = [&] {
+      try {
+        return vcg_ext::HeightFieldLod::Compute(xyz.data(), vertOf.size(), p, vcg_ext::Progress(cb));
+      } catch (const vcg_ext::InputError& e) {  // the count is the finest level's
+        if (e.field != vcg_ext::Field::SampleNum) throw;
+        throw vcg_ext::InputError(vcg_ext::Field::Levels, std::string("(the finest) ") + e.what());
+      }
+    }();
+    LodRun run;
+    auto& res = run.result;
+    res.pointCount = vertOf.size();
+    for (int s : r.samples) res.vertIndex.push_back(vertOf[size_t(s)]);
+    // Normals where the layer has none: the TIN's, area-weighted, of the finest level.
+    res.normal.assign(r.samples.size(), vcg::Point3<Scalarm>(0, 0, 0));
+    for (const auto& t : r.triangles) {
+      vcg::Point3d q[3];
+      for (int c = 0; c < 3; ++c) q[c] = vcg::Point3d(&xyz[3 * size_t(r.samples[size_t(t[c])])]);
+      const vcg::Point3d n = (q[1] - q[0]) ^ (q[2] - q[0]);
+      for (int c = 0; c < 3; ++c) res.normal[size_t(t[c])] += vcg::Point3<Scalarm>::Construct(n);
+    }
+    for (auto& n : res.normal) n.Normalize();
+    res.curvature.assign(r.samples.size(), 0);
+    run.coarsest.assign(r.samples.size(), 0);
+    for (size_t k = 0; k < levels.size(); ++k) {
+      for (size_t s = 0; s < levels[k].count; ++s) run.coarsest[s] = int(k);
+      if (!tin) continue;
+      const std::vector<int> prefix(r.samples.begin(), r.samples.begin() + long(levels[k].count));
+      levels[k].faces = k == 0 ? r.triangles : vcg_ext::HeightFieldLod::Triangulate(xyz.data(), prefix);
+    }
+    run.levels = std::move(levels);
+    QStringList sizes;
+    for (const LodLevel& l : run.levels) sizes << QString::number(l.count);
+    const double maxError = r.error.back();
+    run.summary = QString("Height-field LOD: levels of %1 of %2 vertices, each a subset of the finer ones; the finest "
+                          "level's last vertex was %3 from its TIN; separation %4 in %5")
+                      .arg(sizes.join(", ")).arg(vertOf.size()).arg(maxError).arg(p.separation)
+                      .arg(kSeparationSpaces.NameOf(p.inHeight));
+    if (r.separatedPrefix < r.samples.size())
+      run.summary += QString(" (kept up to %1 vertices: the points cover too little of their hull)")
+                         .arg(r.separatedPrefix);
+    run.values = {{"level_num", QVariant(int(run.levels.size()))}, {"sample_num", QVariant(int(p.sampleNum))},
+                  {"max_error", QVariant(maxError)}};
+    return run;
+  });
+}
+
 const std::vector<FilterDef>& Filters() {
   static const std::vector<FilterDef> filters = {
       {PoissonLodName, PoissonLodPythonName, PoissonLodInfo, PoissonLodParams, RunPoissonLod,
@@ -394,6 +489,8 @@ const std::vector<FilterDef>& Filters() {
        Output::NewLayers, kAritySingle},
       {NormalProjectionName, NormalProjectionPythonName, NormalProjectionInfo, NormalProjectionParams,
        RunNormalProjection, kClassMeasure, Output::Values, kArityFixed},
+      {HeightFieldName, HeightFieldPythonName, HeightFieldInfo, HeightFieldParams, RunHeightField,
+       kClassSampling | kClassPointSet, Output::NewLayers, kAritySingle},
   };
   return filters;
 }

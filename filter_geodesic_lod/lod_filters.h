@@ -94,6 +94,8 @@ std::vector<ParamSpec> PyramidParams(const CMeshO& m);
 LodRun RunPyramid(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 std::vector<ParamSpec> NormalProjectionParams(const CMeshO& m);
 LodRun RunNormalProjection(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
+std::vector<ParamSpec> HeightFieldParams(const CMeshO& m);
+LodRun RunHeightField(const CMeshO& in, const ParamSource& p, vcg::CallBackPos* cb);
 
 /// Sample counts of a level list such as "50%,25%,10%" or "5000,1000" for a
 /// layer of n vertices, finest first, with the layer-name suffix of each.

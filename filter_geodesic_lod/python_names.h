@@ -10,8 +10,9 @@ constexpr const char* kFpsLodPythonName = "generate_geodesic_fps_lod";
 constexpr const char* kNormalVariationPythonName = "compute_scalar_by_normal_variation";
 constexpr const char* kPyramidPythonName = "generate_geodesic_lod_pyramid";
 constexpr const char* kNormalProjectionPythonName = "get_normal_projection_deviation";
+constexpr const char* kHeightFieldPythonName = "generate_height_field_lod";
 constexpr const char* kPythonNames[] = {kPoissonLodPythonName, kFpsLodPythonName, kNormalVariationPythonName,
-                                        kPyramidPythonName, kNormalProjectionPythonName};
+                                        kPyramidPythonName, kNormalProjectionPythonName, kHeightFieldPythonName};
 
 }  // namespace geodesic_lod
 #endif

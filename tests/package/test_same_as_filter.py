@@ -97,3 +97,17 @@ def test_shared_scan(shared):
     lod = gl.poisson_lod(points, normals, faces=faces, count=2000, seed=5)
     assert len(lod.indices) == 2000
     np.testing.assert_array_equal(filter_rows(ms, points), lod.indices)
+
+
+def test_height_field():
+    y, x = np.mgrid[0:40, 0:50] * 25.0
+    dem = np.column_stack([x.ravel(), y.ravel(), (80 * np.sin(x / 200) * np.cos(y / 150) + x / 10).ravel()])
+    ms = layer(dem)
+    res = ms.generate_height_field_lod(levels="10%,2%")
+    lod = gl.height_field_lod(dem, count=200)
+    for layer_id, k in ((1, 200), (2, 40)):
+        m = ms.mesh(layer_id)
+        rows = rows_of(dem, m.vertex_matrix())
+        np.testing.assert_array_equal(rows, lod.indices[:k])  # the layer in insertion order
+        np.testing.assert_array_equal(m.face_matrix(), lod.tin(k))
+    assert res["sample_num"] == 200 and res["max_error"] == lod.errors[-1]

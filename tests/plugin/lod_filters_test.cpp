@@ -410,3 +410,69 @@ TEST(LodFilters, NormalProjectionMeasuresBetweenTwoLayers) {
   noNormals.set("surfacemesh", 1);
   EXPECT_NE(error(noNormals).find("the reference layer holds no points with valid normals"), std::string::npos);
 }
+
+TEST(LodFilters, HeightFieldMakesNestedTinLayersOfInputVertices) {
+  Mesh in;
+  Bumpy(in, 30);
+  MapSource p(in, HeightFieldParams);
+  p.set("levels", "20%,5%,30");
+  const LodRun run = RunHeightField(in, p, nullptr);
+  const auto levels = OutputLevels(run);
+  ASSERT_EQ(levels.size(), 3u);
+  std::vector<Mesh> out(3);
+  for (size_t k = 0; k < 3; ++k) FillLodLayer(in, run, levels[k], k == 0, out[k]);
+  EXPECT_EQ(out[0].vn, 180);
+  EXPECT_EQ(out[1].vn, 45);
+  EXPECT_EQ(out[2].vn, 30);
+  for (size_t k = 0; k < 3; ++k) {
+    // Each layer is a TIN over the unit square (seen from above, counter-clockwise) of input vertices
+    // with their colour and quality.
+    double area = 0;
+    for (const auto& f : out[k].face) {
+      const Point3m a = f.cP(0), b = f.cP(1), c = f.cP(2);
+      const double signedArea = ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2;
+      EXPECT_GT(signedArea, 0);
+      area += signedArea;
+    }
+    EXPECT_NEAR(area, 1.0, 1e-6) << k;
+    for (const auto& v : out[k].vert) {
+      const int i = int(std::lround(v.cP()[0] * 29)), j = int(std::lround(v.cP()[1] * 29));
+      EXPECT_EQ(v.cP(), in.vert[size_t(i) * 30 + j].cP());
+      EXPECT_EQ(v.cC(), in.vert[size_t(i) * 30 + j].cC());
+      EXPECT_EQ(v.cQ(), in.vert[size_t(i) * 30 + j].cQ());
+      EXPECT_NEAR(v.cN().Norm(), 1.0, 1e-6);  // the input has none: the TIN's
+    }
+    if (k > 0)  // the coarser level is the finer one's first vertices
+      for (int v = 0; v < out[k].vn; ++v) EXPECT_EQ(out[k].vert[size_t(v)].cP(), out[0].vert[size_t(v)].cP());
+  }
+  auto lod = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Scalarm>(out[0], "lod_level");
+  ASSERT_TRUE(vcg::tri::Allocator<CMeshO>::IsValidHandle(out[0], lod));
+  size_t coarsest = 0;
+  for (int i = 0; i < out[0].vn; ++i) coarsest += lod[i] == 2;
+  EXPECT_EQ(coarsest, 30u);
+  EXPECT_EQ(run.values.at("sample_num").toInt(), 180);
+  // Points only: no faces.
+  p.set("output", 1);
+  EXPECT_TRUE(OutputLevels(RunHeightField(in, p, nullptr)).front().faces.empty());
+}
+
+TEST(LodFilters, HeightFieldNamesBadParameters) {
+  Mesh in;
+  Bumpy(in, 10);
+  auto error = [&](const char* name, double x, const QString& levels = "10%") {
+    MapSource p(in, HeightFieldParams);
+    p.set("levels", levels);
+    if (name) p.set(name, x);
+    try {
+      RunHeightField(in, p, nullptr);
+    } catch (const MLException& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("separation", -1).find("separation must be a number at least 0"), std::string::npos);
+  EXPECT_NE(error(nullptr, 0, "3").find("levels (the finest) must be between the 4 points on the hull"),
+            std::string::npos) << error(nullptr, 0, "3");
+  EXPECT_NE(error(nullptr, 0, "10,20").find("levels must get strictly coarser"), std::string::npos);
+  EXPECT_NE(error("separationspace", 5).find("separationspace must be one of"), std::string::npos);
+}

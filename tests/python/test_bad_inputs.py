@@ -13,6 +13,7 @@ from conftest import bumpy_points
 POISSON, FPS = "generate_geodesic_poisson_lod", "generate_geodesic_fps_lod"
 CURVATURE = "compute_scalar_by_normal_variation"
 PYRAMID, DEVIATION = "generate_geodesic_lod_pyramid", "get_normal_projection_deviation"
+HEIGHT_FIELD = "generate_height_field_lod"
 MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
 TRIANGLES = "Triangle mesh (geodesic Delaunay)"
 
@@ -192,6 +193,20 @@ CASES = [
     ("levels getting finer", lambda: layer(bumpy_points(10)), PYRAMID, {"levels": "10%,20%"},
      "levels must get strictly coarser"),
     ("pyramid of an empty layer", empty, PYRAMID, {"levels": "1"}, "the layer holds no points"),
+    ("height field of an empty layer", empty, HEIGHT_FIELD, {"levels": "1"}, "the layer holds no points"),
+    ("height field with a NaN vertex", lambda: layer(np.vstack([bumpy_points(10), [[np.nan, 0, 0]]])), HEIGHT_FIELD,
+     {"levels": "10"}, "the layer holds 1 point with NaN or infinite coordinates"),
+    ("height field of points on a line", lambda: layer(np.column_stack([np.arange(9.0)] * 3)), HEIGHT_FIELD,
+     {"levels": "5"}, "the layer holds only points on one line in x, y"),
+    ("height field finer than the hull", lambda: layer(bumpy_points(10)), HEIGHT_FIELD, {"levels": "3"},
+     "levels (the finest) must be between the 4 points on the hull in x, y and the 100 distinct points"),
+    ("height field levels getting finer", lambda: layer(bumpy_points(10)), HEIGHT_FIELD, {"levels": "10,20"},
+     "levels must get strictly coarser"),
+    ("height field separation negative", lambda: layer(bumpy_points(10)), HEIGHT_FIELD,
+     {"levels": "10", "separation": -0.5}, "separation must be a number at least 0"),
+    ("height field of a cloud with two points per place", lambda: layer(np.vstack([bumpy_points(10),
+                                                                                 bumpy_points(10) + [0, 0, 1]])),
+     HEIGHT_FIELD, {"levels": "100"}, lambda ms: n_of(ms) == 100 or pytest.fail()),
     ("deviation onto a layer without faces", lambda: layer(bumpy_points(10), normals=np.tile([0, 0, 1.0], (100, 1))),
      DEVIATION, {"referencemesh": 0, "surfacemesh": 0}, "the surface layer holds no triangles to project onto"),
     ("deviation of points without normals", cloud_and_surface, DEVIATION,

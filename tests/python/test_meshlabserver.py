@@ -94,6 +94,27 @@ def test_pyramid_script(meshlabserver, plugin, tmp_path):
     assert [ms.mesh(i).vertex_number() for i in range(1, 4)] == [round(r * n) for r in (0.10, 0.05, 0.02)]
 
 
+def test_height_field_script(meshlabserver, plugin, tmp_path):
+    """The height-field example in both hosts on a generated DEM: meshlabserver saves the coarsest TIN."""
+    y, x = np.mgrid[0:60, 0:70] * 30.0
+    dem = np.column_stack([x.ravel(), y.ravel(), (90 * np.sin(x / 300) * np.cos(y / 200) + x / 20).ravel()])
+    inp = tmp_path / "dem.ply"
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=dem))
+    ms.save_current_mesh(str(inp), binary=True)
+    out = tmp_path / "coarsest.ply"
+    r = meshlabserver(inp, out, EXAMPLES / "height_field_lod.mlx")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert check_output(inp, out, faces=True).vertex_number() == round(0.02 * len(dem))
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(inp))
+    ms.load_filter_script(str(EXAMPLES / "height_field_lod.mlx"))
+    ms.apply_filter_script()
+    assert [ms.mesh(i).vertex_number() for i in range(1, 4)] == [round(r * len(dem)) for r in (0.10, 0.05, 0.02)]
+    # float (2020.09) and double (2025.07) coordinates: the same DEM, the same coarsest TIN's vertices
+    assert np.allclose(np.sort(load(out).vertex_matrix(), axis=0), np.sort(ms.mesh(3).vertex_matrix(), axis=0))
+
+
 @pytest.mark.parametrize("script,data,faces", [
     ("poisson_lod.mlx", "bunny_scans_362k.ply", False),
     ("fps_lod.mlx", "dragon_scans_469k.ply", False),

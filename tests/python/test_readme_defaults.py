@@ -11,7 +11,7 @@ import pytest
 from conftest import ROOT, PLUGIN, bumpy_points, mesh_set
 
 FILTERS = {"Poisson": "generate_geodesic_poisson_lod", "FPS": "generate_geodesic_fps_lod",
-           "pyramid": "generate_geodesic_lod_pyramid"}
+           "pyramid": "generate_geodesic_lod_pyramid", "height field": "generate_height_field_lod"}
 
 
 def readme_table():
@@ -85,5 +85,6 @@ def test_example_scripts_keep_the_default_metric_settings(plugin, script):
 
 def pymeshlab_name(filter_name):
     names = {"Geodesic Poisson-disk LOD": FILTERS["Poisson"], "Geodesic Farthest Point LOD": FILTERS["FPS"],
-             "Geodesic LOD pyramid": FILTERS["pyramid"], "Normal variation curvature": "compute_scalar_by_normal_variation"}
+             "Geodesic LOD pyramid": FILTERS["pyramid"], "Normal variation curvature": "compute_scalar_by_normal_variation",
+             "Height-field LOD (greedy TIN)": FILTERS["height field"]}
     return names[filter_name]
