@@ -309,14 +309,20 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
   return levels;
 }
 
-std::vector<ParamSpec> PyramidParams(const CMeshO&) {
-  std::vector<ParamSpec> p;
+namespace {
+// The nested filters' level list (the pyramid's and the height field's).
+ParamSpec LevelsParam() {
   ParamSpec levels{ParamKind::String, "levels", "Levels",
                    "Sample counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
                    "(50%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
                    "finer ones."};
   levels.text = vcg_ext::kDefaultPyramidLevels;
-  p.push_back(levels);
+  return levels;
+}
+}  // namespace
+
+std::vector<ParamSpec> PyramidParams(const CMeshO&) {
+  std::vector<ParamSpec> p{LevelsParam()};
   AddDomainParams(p);
   return p;
 }
@@ -390,13 +396,7 @@ const Choices<bool> kTinOutputs{{{true, "Triangle mesh (TIN)"}, {false, "Points"
 }  // namespace
 
 std::vector<ParamSpec> HeightFieldParams(const CMeshO&) {
-  std::vector<ParamSpec> p;
-  ParamSpec levels{ParamKind::String, "levels", "Levels",
-                   "Vertex counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
-                   "(10%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
-                   "finer ones."};
-  levels.text = vcg_ext::kDefaultPyramidLevels;
-  p.push_back(levels);
+  std::vector<ParamSpec> p{LevelsParam()};
   p.push_back({ParamKind::Float, "separation", "Separation",
                "beta, at least 0: the first k vertices are at least beta sqrt(A / k) apart (A: the area of the "
                "hull in x, y), relative to an even spread of k over the hull. 0 is plain greedy insertion; "

@@ -53,6 +53,13 @@ class MapSource : public ParamSource {
   std::vector<const CMeshO*> layers_;
 };
 
+// Every output layer of a run, in `out` (one Mesh per level).
+void FillAll(const CMeshO& in, const LodRun& run, std::vector<Mesh>& out) {
+  const auto levels = OutputLevels(run);
+  ASSERT_EQ(levels.size(), out.size());
+  for (size_t k = 0; k < levels.size(); ++k) FillLodLayer(in, run, levels[k], k == 0, out[k]);
+}
+
 // The run's first output layer.
 QStringList Fill(const CMeshO& in, const LodRun& run, CMeshO& out) {
   return FillLodLayer(in, run, OutputLevels(run).front(), true, out);
@@ -349,10 +356,8 @@ TEST(LodFilters, PyramidMakesOneNestedLayerPerLevelAndLabelsTheFinest) {
   EXPECT_EQ(p.text("levels"), "50%,25%,10%,5%,2%");
   p.set("levels", "40%,10%,20");
   const LodRun run = RunPyramid(in, p, nullptr);
-  const auto levels = OutputLevels(run);
-  ASSERT_EQ(levels.size(), 3u);
   std::vector<Mesh> out(3);
-  for (size_t k = 0; k < 3; ++k) FillLodLayer(in, run, levels[k], k == 0, out[k]);
+  FillAll(in, run, out);
   EXPECT_EQ(out[0].vn, 360);
   EXPECT_EQ(out[1].vn, 90);
   EXPECT_EQ(out[2].vn, 20);
@@ -417,10 +422,8 @@ TEST(LodFilters, HeightFieldMakesNestedTinLayersOfInputVertices) {
   MapSource p(in, HeightFieldParams);
   p.set("levels", "20%,5%,30");
   const LodRun run = RunHeightField(in, p, nullptr);
-  const auto levels = OutputLevels(run);
-  ASSERT_EQ(levels.size(), 3u);
   std::vector<Mesh> out(3);
-  for (size_t k = 0; k < 3; ++k) FillLodLayer(in, run, levels[k], k == 0, out[k]);
+  FillAll(in, run, out);
   EXPECT_EQ(out[0].vn, 180);
   EXPECT_EQ(out[1].vn, 45);
   EXPECT_EQ(out[2].vn, 30);
