@@ -5,6 +5,7 @@
 #include <new>
 #include <stdexcept>
 #include "filter_info.h"
+#include "param_names.h"
 #include "python_names.h"
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
@@ -75,19 +76,19 @@ const vcg_ext::GeodesicDomain<Scalarm>::Param kDomainDefaults;
 
 // The normals and eq. 1, as every filter asks for them.
 ParamSpec NormalNeighboursParam() {
-  return {ParamKind::Int, "normalneighbors", "Normal neighbours k",
+  return {ParamKind::Int, kNormalNeighbors, "Normal neighbours k",
           "Neighbours used to estimate normals and the curvature v_i of eq. 1.",
           double(kDomainDefaults.normalNeighbours)};
 }
 ParamSpec RecomputeNormalsParam() {
-  return {ParamKind::Bool, "recomputenormals", "Recompute normals",
+  return {ParamKind::Bool, kRecomputeNormals, "Recompute normals",
           "Estimate normals from the points even where the layer has valid (finite, non-zero) normals. "
           "When off, the layer's valid normals are used and only missing ones are estimated.",
           kDomainDefaults.useInputNormals ? 0.0 : 1.0};
 }
 
 ParamSpec RegionsParam(const Choices<Regions>& regions, const QString& disk) {
-  return {ParamKind::Enum, "regions", "Colour the input by region",
+  return {ParamKind::Enum, kRegions, "Colour the input by region",
           "Colours each vertex of the current layer with the colour of its sample's region (the paper's Fig. 3), to "
           "see what the metric does. " + disk + "Voronoi regions: the nearest sample in the metric. Only the "
           "vertex colours of the current layer change (colours are enabled if it had none); the new layer keeps "
@@ -97,49 +98,49 @@ ParamSpec RegionsParam(const Choices<Regions>& regions, const QString& disk) {
 
 // Parameters shared by every sampling filter, after the filter's own.
 void AddDomainParams(std::vector<ParamSpec>& p) {
-  p.push_back({ParamKind::Enum, "metric", "Metric",
+  p.push_back({ParamKind::Enum, kMetric, "Metric",
                "Distance the samples are spread by. Weighted geodesic: paper eq. 3, edges weighted by "
                "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
                "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
                "Euclidean: straight-line distance (for comparison). The default is the one with the lowest "
                "reconstruction error in the quality benchmark (docs/benchmarks.md).",
                kMetrics.IndexOf(kDomainDefaults.metric), 0, 0, kMetrics.Names()});
-  p.push_back({ParamKind::Enum, "geodesicmode", "Geodesics",
+  p.push_back({ParamKind::Enum, kGeodesicMode, "Geodesics",
                "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
                "faces, else Dijkstra on the k-nearest-neighbour graph of the points. Mesh mode leaves out "
                "vertices that are in no triangle (their number is logged); the point graph keeps every vertex.",
                kModes.IndexOf(kDomainDefaults.mode), 0, 0, kModes.Names()});
-  p.push_back({ParamKind::Float, "curvatureexponent", "Curvature exponent c",
+  p.push_back({ParamKind::Float, kCurvatureExponent, "Curvature exponent c",
                "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.",
                kDomainDefaults.curvatureExponent});
-  p.push_back({ParamKind::Float, "adaptivity", "Adaptivity a",
+  p.push_back({ParamKind::Float, kAdaptivity, "Adaptivity a",
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
                "only by that metric. 0 gives the unweighted geodesic; 3 did best in the quality benchmark, "
                "10 and more over-sample noisy scans.", kDomainDefaults.adaptivity});
   p.push_back(NormalNeighboursParam());
-  p.push_back({ParamKind::Int, "graphneighbors", "Graph neighbours k",
+  p.push_back({ParamKind::Int, kGraphNeighbors, "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
                "run on.", double(kDomainDefaults.graphNeighbours)});
   p.push_back(RecomputeNormalsParam());
-  p.push_back({ParamKind::Enum, "output", "Output",
+  p.push_back({ParamKind::Enum, kOutput, "Output",
                "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
                "(dual of their geodesic Voronoi regions), for layers with faces.",
                kOutputs.IndexOf(false), 0, 0, kOutputs.Names()});
-  p.push_back({ParamKind::Int, "seed", "Random seed", "The same seed gives the same LOD.", 0});
+  p.push_back({ParamKind::Int, kSeed, "Random seed", "The same seed gives the same LOD.", 0});
 }
 
 template <class DomainParam>
 void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bool& meshOutput) {
-  d.metric = kMetrics.Read(src, "metric");
-  d.mode = kModes.Read(src, "geodesicmode");
-  d.curvatureExponent = src.number("curvatureexponent");
-  d.adaptivity = src.number("adaptivity");
-  d.normalNeighbours = int(src.number("normalneighbors"));
-  d.graphNeighbours = int(src.number("graphneighbors"));
-  d.useInputNormals = !src.flag("recomputenormals");
-  meshOutput = kOutputs.Read(src, "output");
-  const double s = src.number("seed");
-  if (s < 0) throw std::invalid_argument("seed must be zero or positive");
+  d.metric = kMetrics.Read(src, kMetric);
+  d.mode = kModes.Read(src, kGeodesicMode);
+  d.curvatureExponent = src.number(kCurvatureExponent);
+  d.adaptivity = src.number(kAdaptivity);
+  d.normalNeighbours = int(src.number(kNormalNeighbors));
+  d.graphNeighbours = int(src.number(kGraphNeighbors));
+  d.useInputNormals = !src.flag(kRecomputeNormals);
+  meshOutput = kOutputs.Read(src, kOutput);
+  const double s = src.number(kSeed);
+  if (s < 0) throw std::invalid_argument(std::string(kSeed) + " must be zero or positive");
   seed = uint64_t(s);
 }
 
@@ -162,18 +163,18 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
 std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
   const double diag = m.bbox.Diag();
   std::vector<ParamSpec> p;
-  p.push_back({ParamKind::Percentage, "radius", "Disk radius",
+  p.push_back({ParamKind::Percentage, kRadius, "Disk radius",
                "Radius of the Poisson disks in the chosen metric: an absolute value or a percentage of the "
                "bounding-box diagonal. Larger radius, fewer samples.",
                diag * 0.01, 0, diag});
-  p.push_back({ParamKind::Int, "samplenum", "Number of samples",
+  p.push_back({ParamKind::Int, kSampleNum, "Number of samples",
                "Wanted number of samples (0: use the sample rate, or else the radius). The radius is searched for "
                "(at most 24 Poisson runs) and a slightly denser Poisson set is thinned to the exact count, the "
                "samples nearest to others first; the radius used is reported.", 0});
-  p.push_back({ParamKind::Float, "samplerate", "Sample rate (%)",
+  p.push_back({ParamKind::Float, kSampleRate, "Sample rate (%)",
                "Wanted number of samples as a percentage of the layer's vertices, instead of a count (0: unused).",
                0});
-  p.push_back({ParamKind::Float, "tolerance", "Sample count tolerance (%)",
+  p.push_back({ParamKind::Float, kTolerance, "Sample count tolerance (%)",
                "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
                "it. 0 gives the exact count.", 0});
   AddDomainParams(p);
@@ -183,7 +184,7 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
 
 std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
   std::vector<ParamSpec> p;
-  p.push_back({ParamKind::Int, "samplenum", "Number of samples",
+  p.push_back({ParamKind::Int, kSampleNum, "Number of samples",
                "Exact number of samples, from 1 to the number of vertices. The output is in farthest-point order: "
                "its first k vertices are the k-sample LOD.",
                double(std::max(1, m.vn / 10))});
@@ -195,25 +196,26 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
 LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
     vcg_ext::GeodesicPoissonLod<CMeshO>::Param p;
-    p.radius = src.number("radius");
-    const double count = src.number("samplenum"), rate = src.number("samplerate");
+    p.radius = src.number(kRadius);
+    const double count = src.number(kSampleNum), rate = src.number(kSampleRate);
     if (!(count >= 0) || !std::isfinite(count))
-      throw std::invalid_argument("samplenum must be 0 (use the radius) or a positive count (got " +
+      throw std::invalid_argument(std::string(kSampleNum) + " must be 0 (use the radius) or a positive count (got " +
                                   QString::number(count).toStdString() + ")");
     if (!(rate >= 0 && rate <= 100))
-      throw std::invalid_argument("samplerate must be a percentage from 0 to 100 (got " +
+      throw std::invalid_argument(std::string(kSampleRate) + " must be a percentage from 0 to 100 (got " +
                                   QString::number(rate).toStdString() + ")");
     if (count > 0 && rate > 0)
-      throw std::invalid_argument("give samplenum or samplerate, not both (got " + QString::number(count).toStdString() +
-                                  " and " + QString::number(rate).toStdString() + "%)");
-    if (rate > 0) p.sampleNum = Count("samplerate", std::max(1.0, vcg_ext::PercentOf(rate, size_t(in.vn))), in);
-    else p.sampleNum = count > 0 ? Count("samplenum", std::max(1.0, std::round(count)), in) : 0;
-    p.tolerance = src.number("tolerance") / 100;
+      throw std::invalid_argument("give " + std::string(kSampleNum) + " or " + kSampleRate + ", not both (got " +
+                                  QString::number(count).toStdString() + " and " + QString::number(rate).toStdString() +
+                                  "%)");
+    if (rate > 0) p.sampleNum = Count(kSampleRate, std::max(1.0, vcg_ext::PercentOf(rate, size_t(in.vn))), in);
+    else p.sampleNum = count > 0 ? Count(kSampleNum, std::max(1.0, std::round(count)), in) : 0;
+    p.tolerance = src.number(kTolerance) / 100;
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
       throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
-                                  QString::number(src.number("tolerance")).toStdString() + "%)");
+                                  QString::number(src.number(kTolerance)).toStdString() + "%)");
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
-    p.regions = kPoissonRegions.Read(src, "regions");
+    p.regions = kPoissonRegions.Read(src, kRegions);
     const auto r = vcg_ext::GeodesicPoissonLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
@@ -233,11 +235,11 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
     vcg_ext::GeodesicFpsLod<CMeshO>::Param p;
-    const double n = src.number("samplenum");
-    if (!(n >= 1)) throw std::invalid_argument("samplenum must be at least 1 (got " + std::to_string(n) + ")");
-    p.sampleNum = Count("samplenum", n, in);
+    const double n = src.number(kSampleNum);
+    if (!(n >= 1)) throw std::invalid_argument(std::string(kSampleNum) + " must be at least 1 (got " + std::to_string(n) + ")");
+    p.sampleNum = Count(kSampleNum, n, in);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
-    p.regions = kFpsRegions.Read(src, "regions");
+    p.regions = kFpsRegions.Read(src, kRegions);
     auto r = vcg_ext::GeodesicFpsLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
@@ -262,8 +264,8 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
   return Guarded([&] {
     vcg_ext::GeodesicDomain<Scalarm>::Param d;
     d.metric = vcg_ext::Metric::Euclidean;  // eq. 1 needs no geodesics
-    d.normalNeighbours = int(src.number("normalneighbors"));
-    d.useInputNormals = !src.flag("recomputenormals");
+    d.normalNeighbours = int(src.number(kNormalNeighbors));
+    d.useInputNormals = !src.flag(kRecomputeNormals);
     const auto domain = vcg_ext::GeodesicDomain<Scalarm>::FromMesh(in, d, vcg_ext::Progress(cb));
     std::vector<int> all(domain.size());
     for (size_t i = 0; i < all.size(); ++i) all[i] = int(i);
@@ -293,12 +295,12 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
     bool ok = false;
     const double x = (percent ? item.left(item.size() - 1).trimmed() : item).toDouble(&ok);
     if (!ok || !std::isfinite(x) || !(x > 0) || (!percent && x != std::floor(x)))
-      throw std::invalid_argument("levels: '" + item.toStdString() + "' is not a positive percentage or count" +
+      throw std::invalid_argument(std::string(kLevels) + ": '" + item.toStdString() + "' is not a positive percentage or count" +
                                   example);
-    if (percent && x > 100) throw std::invalid_argument("levels: " + item.toStdString() + " is above 100%");
+    if (percent && x > 100) throw std::invalid_argument(std::string(kLevels) + ": " + item.toStdString() + " is above 100%");
     const double count = percent ? vcg_ext::PercentOf(x, n) : x;  // at most n or x: no overflow here
     if (count < 1 || count > double(n))  // compared as doubles, converted only once in range
-      throw std::invalid_argument("levels: " + item.toStdString() + " gives " +
+      throw std::invalid_argument(std::string(kLevels) + ": " + item.toStdString() + " gives " +
                                   (count < 1 ? std::string("no") : "more than " + std::to_string(n)) +
                                   " samples; a level needs 1 to " + std::to_string(n) + " (the layer's vertices)");
     LodLevel l;
@@ -312,7 +314,7 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
 namespace {
 // The nested filters' level list (the pyramid's and the height field's).
 ParamSpec LevelsParam() {
-  ParamSpec levels{ParamKind::String, "levels", "Levels",
+  ParamSpec levels{ParamKind::String, kLevels, "Levels",
                    "Sample counts of the levels, finest first, comma-separated: percentages of the layer's vertices "
                    "(50%) or counts (5000). Each level becomes a new layer; every coarser level is a subset of the "
                    "finer ones."};
@@ -331,7 +333,7 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
   return Guarded([&] {
     vcg_ext::GeodesicLodPyramid<CMeshO>::Param p;
     RequireVertices(in);
-    std::vector<LodLevel> levels = ParseLevels(src.text("levels"), size_t(in.vn));
+    std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     for (const LodLevel& l : levels) p.counts.push_back(l.count);
     ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
     const auto r = vcg_ext::GeodesicLodPyramid<CMeshO>::Compute(in, p, cb);
@@ -355,13 +357,13 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
 std::vector<ParamSpec> NormalProjectionParams(const CMeshO& m) {
   const double diag = m.bbox.Diag();
   return {
-      {ParamKind::Mesh, "referencemesh", "Reference points",
+      {ParamKind::Mesh, kReferenceMesh, "Reference points",
        "The layer whose vertices and normals are measured (for the paper's measure: the original scan).",
        kCurrentLayer},
-      {ParamKind::Mesh, "surfacemesh", "Surface",
+      {ParamKind::Mesh, kSurfaceMesh, "Surface",
        "The triangle mesh the normal lines are intersected with (for the paper's measure: the surface "
        "reconstructed from a LOD).", kOtherLayer},
-      {ParamKind::Percentage, "maxdist", "Max distance",
+      {ParamKind::Percentage, kMaxDist, "Max distance",
        "Crossings farther than this from the point count as misses: an absolute value or a percentage of the "
        "current layer's bounding-box diagonal.", diag * 0.05, 0, diag},
   };
@@ -369,12 +371,12 @@ std::vector<ParamSpec> NormalProjectionParams(const CMeshO& m) {
 
 LodRun RunNormalProjection(const CMeshO&, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    const CMeshO* ref = src.mesh("referencemesh");
-    const CMeshO* surf = src.mesh("surfacemesh");
-    if (ref == nullptr) throw std::invalid_argument("referencemesh: there is no such layer");
-    if (surf == nullptr) throw std::invalid_argument("surfacemesh: there is no such layer");
+    const CMeshO* ref = src.mesh(kReferenceMesh);
+    const CMeshO* surf = src.mesh(kSurfaceMesh);
+    if (ref == nullptr) throw std::invalid_argument(std::string(kReferenceMesh) + ": there is no such layer");
+    if (surf == nullptr) throw std::invalid_argument(std::string(kSurfaceMesh) + ": there is no such layer");
     vcg_ext::NormalProjection<CMeshO>::Param p;
-    p.maxDistance = src.number("maxdist");
+    p.maxDistance = src.number(kMaxDist);
     const auto r = vcg_ext::NormalProjection<CMeshO>::Compute(*ref, *surf, p, cb);
     LodRun run;
     run.summary = QString("Normal projection deviation of %1 points: mean %2, RMS %3, max %4; %5% of the normal lines "
@@ -397,15 +399,15 @@ const Choices<bool> kTinOutputs{{{true, "Triangle mesh (TIN)"}, {false, "Points"
 
 std::vector<ParamSpec> HeightFieldParams(const CMeshO&) {
   std::vector<ParamSpec> p{LevelsParam()};
-  p.push_back({ParamKind::Float, "separation", "Separation",
+  p.push_back({ParamKind::Float, kSeparation, "Separation",
                "beta, at least 0: the first k vertices are at least beta sqrt(A / k) apart (A: the area of the "
                "hull in x, y), relative to an even spread of k over the hull. 0 is plain greedy insertion; "
                "larger values keep vertices off steep ground, where the largest errors are.",
                kHeightFieldDefaults.separation});
-  p.push_back({ParamKind::Enum, "separationspace", "Separation measured in",
+  p.push_back({ParamKind::Enum, kSeparationSpace, "Separation measured in",
                "x, y, z: a cliff's top and foot may both be vertices; x, y: the map distance.",
                kSeparationSpaces.IndexOf(kHeightFieldDefaults.inHeight), 0, 0, kSeparationSpaces.Names()});
-  p.push_back({ParamKind::Enum, "output", "Output",
+  p.push_back({ParamKind::Enum, kOutput, "Output",
                "Triangle mesh: each level's Delaunay TIN in x, y. Points: the chosen vertices only.",
                kTinOutputs.IndexOf(true), 0, 0, kTinOutputs.Names()});
   return p;
@@ -414,15 +416,15 @@ std::vector<ParamSpec> HeightFieldParams(const CMeshO&) {
 LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
     RequireVertices(in);
-    std::vector<LodLevel> levels = ParseLevels(src.text("levels"), size_t(in.vn));
+    std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     std::vector<size_t> counts;
     for (const LodLevel& l : levels) counts.push_back(l.count);
     vcg_ext::GeodesicLodPyramid<CMeshO>::CheckCounts(counts);
     vcg_ext::HeightFieldLod::Param p;
     p.sampleNum = levels.front().count;
-    p.separation = src.number("separation");
-    p.inHeight = kSeparationSpaces.Read(src, "separationspace");
-    const bool tin = kTinOutputs.Read(src, "output");
+    p.separation = src.number(kSeparation);
+    p.inHeight = kSeparationSpaces.Read(src, kSeparationSpace);
+    const bool tin = kTinOutputs.Read(src, kOutput);
     // The live vertices' coordinates; the result's indices are into these, mapped back to m.vert.
     std::vector<double> xyz;
     std::vector<int> vertOf;
