@@ -1,0 +1,168 @@
+// vcg_ext/poisson_tile.h: tiles that each read their core and a halo, decided
+// and then settled at the seams, give exactly the whole cloud's Poisson samples;
+// a halo too narrow is refused with a wider one to try; Settle's rule.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/poisson_tile.h>
+#include "test_mesh.h"
+
+namespace {
+
+typedef vcg_ext::PoissonTile<double> Tile;
+typedef vcg_ext::GeodesicDomain<double> Domain;
+
+// The whole-cloud sampler takes its scalar from a mesh type: one of doubles, as the tiles'.
+class DVertex;
+struct DTypes : vcg::UsedTypes<vcg::Use<DVertex>::AsVertexType> {};
+class DVertex : public vcg::Vertex<DTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
+class DMesh : public vcg::tri::TriMesh<std::vector<DVertex>> {};
+typedef vcg_ext::GeodesicPoissonLod<DMesh> Whole;
+
+/// A bumpy 40 x 40 height field on [0,1]^2, jittered so no two distances tie.
+std::vector<vcg::Point3d> Cloud() {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  std::vector<vcg::Point3d> p;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) {
+      const double x = i / 39.0 + jitter(rng), y = j / 39.0 + jitter(rng);
+      p.emplace_back(x, y, test::HalfBumpy(float(x), float(y), 0.08f));
+    }
+  return p;
+}
+
+Domain::Param Graph(bool keepReach) {
+  Domain::Param d;
+  d.mode = vcg_ext::GeodesicMode::PointGraph;
+  d.keepReach = keepReach;
+  return d;
+}
+
+Domain DomainOf(const std::vector<vcg::Point3d>& pos, const Domain::Param& d) {
+  vcg_ext::PointSet<double> ps;
+  ps.pos = pos;
+  for (size_t i = 0; i < pos.size(); ++i) ps.vertIndex.push_back(int(i));
+  return Domain::Build(std::move(ps), {}, d);
+}
+
+double Outside(const vcg::Box3d& b, const vcg::Point3d& x) {
+  double s = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double e = std::max({b.min[a] - x[a], 0.0, x[a] - b.max[a]});
+    s += e * e;
+  }
+  return std::sqrt(s);
+}
+
+struct TileRun {
+  Tile::Result result;
+  std::vector<uint64_t> id;  // per row of the tile: the cloud's index
+};
+
+/// One tile: its core (x below or from `split`) and every point within `halo` of the core's box.
+TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, double halo, const Tile::Param& base) {
+  vcg::Box3d all;
+  for (const auto& p : cloud) all.Add(p);
+  Tile::Param p = base;
+  p.cloud = all;
+  p.core = all;
+  (left ? p.core.max[0] : p.core.min[0]) = split;
+  p.halo = halo;
+  TileRun t;
+  std::vector<vcg::Point3d> pos;
+  std::vector<char> core;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (Outside(p.core, cloud[i]) <= halo) {
+      t.id.push_back(i);
+      pos.push_back(cloud[i]);
+      core.push_back((cloud[i][0] < split) == left);
+    }
+  t.result = Tile::Compute(DomainOf(pos, Graph(true)), t.id, core, p);
+  return t;
+}
+
+}  // namespace
+
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
+  const auto cloud = Cloud();
+  Tile::Param p;
+  p.radius = 0.09;
+  p.seed = 5;
+  Whole::Param whole;
+  whole.domain = Graph(false);
+  whole.radius = p.radius;
+  whole.seed = p.seed;
+  const auto w = Whole::ComputeOn(DomainOf(cloud, Graph(false)), false, cloud.size(), whole, vcg_ext::Progress(nullptr));
+  const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
+  ASSERT_GT(expected.size(), 20u);
+
+  // Each tile decides its core, widening the halo until it is certified.
+  std::vector<int8_t> status(cloud.size(), Tile::Out);
+  std::vector<std::vector<uint64_t>> coverers(cloud.size());
+  size_t open = 0;
+  for (bool left : {true, false}) {
+    double halo = p.radius;
+    TileRun t = Decide(cloud, left, 0.5, halo, p);
+    while (!t.result.certified) {
+      ASSERT_GT(t.result.neededHalo, halo);
+      halo = t.result.neededHalo * 1.01;
+      t = Decide(cloud, left, 0.5, halo, p);
+    }
+    for (size_t row = 0; row < t.id.size(); ++row) {
+      const bool core = (cloud[t.id[row]][0] < 0.5) == left;
+      if (!core) continue;
+      status[t.id[row]] = t.result.status[row];
+      open += t.result.status[row] == Tile::Open;
+      for (int64_t c = t.result.coverOffset[row]; c < t.result.coverOffset[row + 1]; ++c)
+        coverers[t.id[row]].push_back(t.result.coverers[size_t(c)]);
+    }
+  }
+  EXPECT_GT(open, 0u) << "the seam must leave points open, or Settle is not tested";
+
+  // Settle the open points in visiting order.
+  std::vector<uint64_t> ids(cloud.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  std::vector<int64_t> order, offset{0}, cover;
+  for (int i : vcg_ext::PriorityOrder(ids, p.seed))
+    if (status[size_t(i)] == Tile::Open) {
+      order.push_back(i);
+      for (uint64_t c : coverers[size_t(i)]) cover.push_back(int64_t(c));
+      offset.push_back(int64_t(cover.size()));
+    }
+  Tile::Settle(order, offset, cover, status);
+  std::set<int> tiled;
+  for (size_t i = 0; i < status.size(); ++i)
+    if (status[i] == Tile::In) tiled.insert(int(i));
+  EXPECT_EQ(tiled, expected);
+}
+
+TEST(PoissonTile, AHaloTooNarrowIsRefusedWithAWiderOneToTry) {
+  const auto cloud = Cloud();
+  Tile::Param p;
+  p.radius = 0.09;
+  const TileRun narrow = Decide(cloud, true, 0.5, 0.5 * p.radius, p);
+  ASSERT_FALSE(narrow.result.certified);
+  EXPECT_GT(narrow.result.neededHalo, p.radius);  // the disks reach at least r beyond the core
+  EXPECT_TRUE(narrow.result.status.empty() || std::all_of(narrow.result.status.begin(), narrow.result.status.end(),
+                                                          [](int8_t s) { return s == Tile::Out; }));
+  // The needed halo is a lower bound (what a wider read holds may reach further): widening to it
+  // again and again ends certified.
+  double halo = narrow.result.neededHalo * 1.01;
+  int widenings = 1;
+  for (TileRun t = Decide(cloud, true, 0.5, halo, p); !t.result.certified; t = Decide(cloud, true, 0.5, halo, p)) {
+    ASSERT_GT(t.result.neededHalo, halo * 0.99);
+    halo = t.result.neededHalo * 1.01;
+    ASSERT_LT(++widenings, 6);
+  }
+}
+
+TEST(PoissonTile, SettleTakesAnOpenPointIffNoneOfItsCoverersIsASample) {
+  // Points 0 (a sample) and 1 (not) are settled; 2 is covered by 0, 3 by 1 only, 4 by 3 (decided just before).
+  std::vector<int8_t> status{Tile::In, Tile::Out, Tile::Open, Tile::Open, Tile::Open};
+  Tile::Settle({2, 3, 4}, {0, 1, 2, 3}, {0, 1, 3}, status);
+  EXPECT_EQ(status, (std::vector<int8_t>{Tile::In, Tile::Out, Tile::Out, Tile::In, Tile::Out}));
+}
