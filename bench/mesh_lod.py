@@ -1,0 +1,123 @@
+"""Mesh benchmark: LODs of triangle meshes as a MeshLab user judges them, against Quadric Edge
+Collapse Decimation at the same vertex count. The error is the symmetric Hausdorff distance
+between the LOD and the input (MeshLab's, both ways, sampling vertices and faces), mean and
+maximum, in per mille of the input's bounding-box diagonal; the LOD's own faces (non-manifold and
+boundary edges counted). Two rows split our gap to Quadric Edge Collapse into the vertices chosen
+and the triangulation: QEC restricted to input vertices (optimalplacement off), and that
+restricted QEC's vertices triangulated by our geodesic Delaunay.
+
+usage: PYTHONPATH=build/python bench/mesh_lod.py [--plugin PATH]   (writes docs/mesh_lod.json)
+"""
+import argparse
+import sys
+import time
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from host import SHARED_DATA, add_plugin_option, load_plugin
+from results import publish
+
+MODELS = {"dragon (100k vertices)": "dragon_100k.ply", "bunny (35k vertices)": "bunny_35k.ply"}
+RATES = [0.10, 0.05, 0.02]
+COUNT_TOLERANCE = 0.01
+
+
+def load(pymeshlab, name):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(SHARED_DATA / name))
+    return ms
+
+
+def qec(pymeshlab, name, n, optimal):
+    """Quadric Edge Collapse to n vertices (within COUNT_TOLERANCE): it takes a face count, stepped by
+    twice the vertices missing (a mesh with boundaries keeps more vertices per face)."""
+    faces = 2 * n
+    for _ in range(8):
+        ms = load(pymeshlab, name)
+        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=faces, optimalplacement=optimal)
+        ms.meshing_remove_unreferenced_vertices()
+        m = ms.current_mesh()
+        if abs(m.vertex_number() - n) <= COUNT_TOLERANCE * n:
+            break
+        faces += 2 * (n - m.vertex_number())
+    return m.vertex_matrix(), m.face_matrix()
+
+
+def ours(pymeshlab, name, n):
+    """The Poisson LOD filter with its defaults and triangle-mesh output (geodesic Delaunay)."""
+    ms = load(pymeshlab, name)
+    ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n, output="Triangle mesh (geodesic Delaunay)")
+    m = ms.current_mesh()
+    return m.vertex_matrix(), m.face_matrix()
+
+
+def restricted_vertices_our_triangles(pymeshlab, name, n):
+    """QEC's input-vertex choice, triangulated by our geodesic Delaunay over the input's faces."""
+    import geodesic_lod as gl
+    src = load(pymeshlab, name)  # a Mesh is a view into its MeshSet: keep the set
+    points, faces = src.current_mesh().vertex_matrix(), src.current_mesh().face_matrix()
+    chosen, _ = qec(pymeshlab, name, n, optimal=False)
+    dist, idx = cKDTree(points).query(chosen)
+    assert dist.max() == 0, "restricted QEC moved a vertex"
+    lod = gl.poisson_lod(points, faces=faces, within=idx, radius=1e-9 * np.ptp(points, axis=0).max(),
+                         mesh_output=True)  # every chosen vertex a sample
+    return points[lod.indices], lod.faces
+
+
+METHODS = {
+    "ours, Poisson LOD (defaults, geodesic Delaunay)": ours,
+    "MeshLab quadric edge collapse (defaults)": lambda pm, name, n: qec(pm, name, n, optimal=True),
+    "quadric edge collapse on input vertices": lambda pm, name, n: qec(pm, name, n, optimal=False),
+    "its vertices, our geodesic Delaunay": restricted_vertices_our_triangles,
+}
+
+
+def hausdorff(pymeshlab, name, vertices, faces):
+    """Symmetric mean and max Hausdorff distance, per mille of the input's diagonal."""
+    ms = load(pymeshlab, name)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=vertices, face_matrix=faces))
+    diag = ms.mesh(0).bounding_box().diagonal()
+    ab = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True,
+                                   samplenum=ms.mesh(0).vertex_number())
+    ba = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=True, sampleface=True,
+                                   samplenum=ms.mesh(0).vertex_number())
+    topo = ms.get_topological_measures()
+    return (1000 * max(ab["mean"], ba["mean"]) / diag, 1000 * max(ab["max"], ba["max"]) / diag,
+            topo["non_two_manifold_edges"], topo["boundary_edges"])
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    add_plugin_option(ap)
+    args = ap.parse_args()
+    if not SHARED_DATA.is_dir():
+        sys.exit(f"needs {SHARED_DATA} (the shared meshes)")
+    pymeshlab = load_plugin(args.plugin)
+    rows = []
+    for model, name in MODELS.items():
+        src = load(pymeshlab, name)
+        n_input = src.current_mesh().vertex_number()
+        topo = src.get_topological_measures()
+        rows.append(dict(model=model, rate=1.0, method="input", vertices=n_input, mean=0.0, max=0.0,
+                         non_manifold_edges=topo["non_two_manifold_edges"], boundary_edges=topo["boundary_edges"],
+                         seconds=0.0))
+        for rate in RATES:
+            n = int(round(rate * n_input))
+            for method, make in METHODS.items():
+                t = time.perf_counter()
+                vertices, faces = make(pymeshlab, name, n)
+                seconds = time.perf_counter() - t
+                mean, mx, nm, boundary = hausdorff(pymeshlab, name, vertices, faces)
+                rows.append(dict(model=model, rate=rate, method=method, vertices=len(vertices), mean=mean, max=mx,
+                                 non_manifold_edges=nm, boundary_edges=boundary, seconds=seconds))
+                print(rows[-1], file=sys.stderr)
+    publish("mesh_lod", rows, [
+        ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"), ("method", lambda r: r["method"]),
+        ("vertices", lambda r: str(r["vertices"])), ("mean (‰ diag)", lambda r: f"{r['mean']:.3f}"),
+        ("max (‰ diag)", lambda r: f"{r['max']:.2f}"), ("non-manifold edges", lambda r: str(r["non_manifold_edges"])),
+        ("boundary edges", lambda r: str(r["boundary_edges"])), ("time", lambda r: f"{r['seconds']:.1f} s")])
+
+
+if __name__ == "__main__":
+    main()
