@@ -17,6 +17,7 @@ from scipy.spatial import Delaunay
 
 import radius_search
 from host import SHARED_DATA, add_plugin_option, load_plugin
+from quadric_count import quadric_to_count
 from results import DOCS, publish
 
 TILE = "terrain_n44w072_1201x1201.ply"
@@ -105,19 +106,12 @@ def greedy_insertion(grid, n, _):
 
 
 def quadric_edge_collapse(grid, n, pymeshlab):
-    """MeshLab's Quadric Edge Collapse Decimation, its defaults but the boundary kept, to n vertices
-    (within COUNT_TOLERANCE): it takes a face count, stepped by twice the vertices missing."""
-    faces = 2 * n
-    for _ in range(8):
+    """MeshLab's Quadric Edge Collapse Decimation, its defaults but the boundary kept, to n vertices."""
+    def grid_set():
         ms = pymeshlab.MeshSet()
         ms.add_mesh(pymeshlab.Mesh(vertex_matrix=grid.points, face_matrix=grid.faces))
-        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=faces, preserveboundary=True)
-        ms.meshing_remove_unreferenced_vertices()
-        m = ms.current_mesh()
-        if abs(m.vertex_number() - n) <= COUNT_TOLERANCE * n:
-            break
-        faces += 2 * (n - m.vertex_number())
-    return m.vertex_matrix(), m.face_matrix()
+        return ms
+    return quadric_to_count(grid_set, n, COUNT_TOLERANCE, preserveboundary=True)
 
 
 def uniform_random(grid, n, _):

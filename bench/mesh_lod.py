@@ -16,6 +16,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from host import SHARED_DATA, add_plugin_option, load_plugin
+from quadric_count import quadric_to_count
 from results import publish
 
 MODELS = {"dragon (100k vertices)": "dragon_100k.ply", "bunny (35k vertices)": "bunny_35k.ply"}
@@ -30,18 +31,7 @@ def load(pymeshlab, name):
 
 
 def qec(pymeshlab, name, n, optimal):
-    """Quadric Edge Collapse to n vertices (within COUNT_TOLERANCE): it takes a face count, stepped by
-    twice the vertices missing (a mesh with boundaries keeps more vertices per face)."""
-    faces = 2 * n
-    for _ in range(8):
-        ms = load(pymeshlab, name)
-        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=faces, optimalplacement=optimal)
-        ms.meshing_remove_unreferenced_vertices()
-        m = ms.current_mesh()
-        if abs(m.vertex_number() - n) <= COUNT_TOLERANCE * n:
-            break
-        faces += 2 * (n - m.vertex_number())
-    return m.vertex_matrix(), m.face_matrix()
+    return quadric_to_count(lambda: load(pymeshlab, name), n, COUNT_TOLERANCE, optimalplacement=optimal)
 
 
 def ours(pymeshlab, name, n):
