@@ -51,10 +51,28 @@ const Choices<Metric> kMetrics{{{Metric::WeightedEq3, "Weighted geodesic (eq. 3)
 const Choices<GeodesicMode> kModes{{{GeodesicMode::Auto, "Auto"},
                                     {GeodesicMode::Mesh, "Mesh (fast marching)"},
                                     {GeodesicMode::PointGraph, "Point graph (Dijkstra)"}}};
-const Choices<bool> kOutputs{{{false, "Points"}, {true, "Triangle mesh (geodesic Delaunay)"}}};  // meshOutput
+// The output: points, or a triangle mesh whose vertices are placed as `placement` says.
+struct OutputKind {
+  bool mesh;
+  vcg_ext::Placement placement;
+  bool operator==(const OutputKind& o) const { return mesh == o.mesh && placement == o.placement; }
+};
 const Choices<Regions> kPoissonRegions{
     {{Regions::None, "None"}, {Regions::Disk, "Disk regions"}, {Regions::Voronoi, "Voronoi regions"}}};
 const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, "Voronoi regions"}}};
+using vcg_ext::Placement;
+// The pyramid's: its levels' vertices are input vertices. The samplers' add the placement other than their
+// default (vcg_ext's), as a third choice, so scripts written before it still name every parameter.
+const Choices<OutputKind> kOutputs{{{{false, Placement::InputVertices}, "Points"},
+                                    {{true, Placement::InputVertices}, "Triangle mesh (geodesic Delaunay)"}}};
+Choices<OutputKind> PlacedOutputs(Placement byDefault) {
+  const Placement other = byDefault == Placement::Quadric ? Placement::InputVertices : Placement::Quadric;
+  return {{{{false, byDefault}, "Points"},
+           {{true, byDefault}, "Triangle mesh (geodesic Delaunay)"},
+           {{true, other},
+            other == Placement::Quadric ? "Triangle mesh, vertices fitted" : "Triangle mesh on input vertices"}}};
+}
+const Choices<OutputKind> kPlacedOutputs = PlacedOutputs(vcg_ext::GeodesicPoissonLod<CMeshO>::Param().placement);
 
 // An empty layer is named as such before any count is read.
 void RequireVertices(const CMeshO& in) {
@@ -97,7 +115,7 @@ ParamSpec RegionsParam(const Choices<Regions>& regions, const QString& disk) {
 }
 
 // Parameters shared by every sampling filter, after the filter's own.
-void AddDomainParams(std::vector<ParamSpec>& p) {
+void AddDomainParams(std::vector<ParamSpec>& p, const Choices<OutputKind>& outputs) {
   p.push_back({ParamKind::Enum, kMetric, "Metric",
                "Distance the samples are spread by. Weighted geodesic: paper eq. 3, edges weighted by "
                "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
@@ -122,15 +140,22 @@ void AddDomainParams(std::vector<ParamSpec>& p) {
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "
                "run on.", double(kDomainDefaults.graphNeighbours)});
   p.push_back(RecomputeNormalsParam());
+  const bool placed = outputs.items.size() > 2;
   p.push_back({ParamKind::Enum, kOutput, "Output",
-               "Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the samples "
-               "(dual of their geodesic Voronoi regions), for layers with faces.",
-               kOutputs.IndexOf(false), 0, 0, kOutputs.Names()});
+               QString("Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the "
+                       "samples (dual of their geodesic Voronoi regions), for layers with faces.") +
+                   (placed ? " Its vertices are fitted: each moved to the point nearest (in least squares) to the "
+                             "planes of the input's triangles in its geodesic Voronoi region, never across a border, "
+                             "so the flat LOD triangles pass through the surface instead of lying under it (the "
+                             "vertex data stay the input vertex's); or, on request, the input's vertices."
+                           : ""),
+               outputs.IndexOf(outputs.items.front().first), 0, 0, outputs.Names()});
   p.push_back({ParamKind::Int, kSeed, "Random seed", "The same seed gives the same LOD.", 0});
 }
 
 template <class DomainParam>
-void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bool& meshOutput) {
+void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, const Choices<OutputKind>& outputs,
+                      OutputKind& output) {
   d.metric = kMetrics.Read(src, kMetric);
   d.mode = kModes.Read(src, kGeodesicMode);
   d.curvatureExponent = src.number(kCurvatureExponent);
@@ -138,7 +163,7 @@ void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, bo
   d.normalNeighbours = int(src.number(kNormalNeighbors));
   d.graphNeighbours = int(src.number(kGraphNeighbors));
   d.useInputNormals = !src.flag(kRecomputeNormals);
-  meshOutput = kOutputs.Read(src, kOutput);
+  output = outputs.Read(src, kOutput);
   const double s = src.number(kSeed);
   if (s < 0) throw std::invalid_argument(std::string(kSeed) + " must be zero or positive");
   seed = uint64_t(s);
@@ -177,7 +202,7 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
   p.push_back({ParamKind::Float, kTolerance, "Sample count tolerance (%)",
                "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
                "it. 0 gives the exact count.", 0});
-  AddDomainParams(p);
+  AddDomainParams(p, kPlacedOutputs);
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
   return p;
 }
@@ -188,7 +213,7 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
                "Exact number of samples, from 1 to the number of vertices. The output is in farthest-point order: "
                "its first k vertices are the k-sample LOD.",
                double(std::max(1, m.vn / 10))});
-  AddDomainParams(p);
+  AddDomainParams(p, kPlacedOutputs);
   p.push_back(RegionsParam(kFpsRegions, ""));
   return p;
 }
@@ -214,7 +239,9 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
       throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
                                   QString::number(src.number(kTolerance)).toStdString() + "%)");
-    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    OutputKind output;
+    ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
+    p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kPoissonRegions.Read(src, kRegions);
     const auto r = vcg_ext::GeodesicPoissonLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
@@ -238,7 +265,9 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     const double n = src.number(kSampleNum);
     if (!(n >= 1)) throw std::invalid_argument(std::string(kSampleNum) + " must be at least 1 (got " + std::to_string(n) + ")");
     p.sampleNum = Count(kSampleNum, n, in);
-    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    OutputKind output;
+    ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
+    p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kFpsRegions.Read(src, kRegions);
     auto r = vcg_ext::GeodesicFpsLod<CMeshO>::Compute(in, p, cb);
     LodRun run;
@@ -325,7 +354,7 @@ ParamSpec LevelsParam() {
 
 std::vector<ParamSpec> PyramidParams(const CMeshO&) {
   std::vector<ParamSpec> p{LevelsParam()};
-  AddDomainParams(p);
+  AddDomainParams(p, kOutputs);
   return p;
 }
 
@@ -335,7 +364,9 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     RequireVertices(in);
     std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     for (const LodLevel& l : levels) p.counts.push_back(l.count);
-    ReadDomainParams(src, p.domain, p.seed, p.meshOutput);
+    OutputKind output;
+    ReadDomainParams(src, p.domain, p.seed, kOutputs, output);
+    p.meshOutput = output.mesh;
     const auto r = vcg_ext::GeodesicLodPyramid<CMeshO>::Compute(in, p, cb);
     LodRun run;
     run.result = r;
@@ -444,7 +475,10 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
     LodRun run;
     auto& res = run.result;
     res.pointCount = vertOf.size();
-    for (int s : r.samples) res.vertIndex.push_back(vertOf[size_t(s)]);
+    for (int s : r.samples) {
+      res.vertIndex.push_back(vertOf[size_t(s)]);
+      res.position.push_back(in.vert[size_t(vertOf[size_t(s)])].cP());
+    }
     // Normals where the layer has none: the TIN's, area-weighted, of the finest level.
     res.normal.assign(r.samples.size(), vcg::Point3<Scalarm>(0, 0, 0));
     for (const auto& t : r.triangles) {

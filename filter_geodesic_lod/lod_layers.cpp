@@ -1,6 +1,7 @@
 #include "lod_layers.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
 #include <vcg_ext/point_normals.h>
@@ -29,12 +30,15 @@ std::vector<LodLevel> OutputLevels(const LodRun& run) {
 QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& level, bool first, CMeshO& out) {
   return Guarded([&] {
     const auto& r = run.result;
+    if (r.position.size() < level.count || r.normal.size() < level.count)
+      throw std::logic_error("a LOD run without the positions or normals of its samples");
     const size_t base = out.vert.size();
     const std::vector<int> chosen(r.vertIndex.begin(), r.vertIndex.begin() + level.count);
     const auto skipped = vcg_ext::VertexSubset<CMeshO>::Compute(in, chosen, out);
     for (size_t k = 0; k < level.count; ++k) {
       auto& n = out.vert[base + k].N();
       if (!run.useInputNormals || !vcg_ext::PointNormals<Scalarm>::IsValid(n)) n = r.normal[k];
+      out.vert[base + k].P() = r.position[k];  // the input's, or placed to fit the surface
     }
     if (run.fpsOrder) {
       auto order = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(out, "fps_order");

@@ -22,6 +22,7 @@ class GeodesicFpsLod {
     size_t sampleNum = 0;     ///< exact number of samples, 1..number of points
     uint64_t seed = 0;        ///< chooses the first sample
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
+    Placement placement = Placement::Quadric;  ///< where the triangle mesh's vertices go (as Poisson's)
     Regions regions = Regions::None;  ///< fill Result::regionOf; FPS regions are Voronoi regions
   };
   struct Result : LodResult<Scalar> {
@@ -63,7 +64,7 @@ class GeodesicFpsLod {
     const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress);
     Result r;
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
-        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, vertCount);
+        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, vertCount, p.placement);
     r.coveringRadius = s.coveringRadius;
     return r;
   }

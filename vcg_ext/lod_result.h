@@ -6,6 +6,7 @@
 #include <vector>
 #include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
+#include "quadric_placement.h"
 
 namespace vcg_ext {
 
@@ -22,6 +23,7 @@ struct LodResult {
   std::vector<vcg::Point3<Scalar>> normal;    ///< n_i of each chosen vertex
   std::vector<Scalar> curvature;              ///< v_i (eq. 1) of each chosen vertex
   std::vector<std::array<int, 3>> faces;      ///< triangle-mesh output, indices into vertIndex; empty for points
+  std::vector<vcg::Point3<Scalar>> position;  ///< each chosen vertex's position: the input's, or placed (Placement)
   size_t pointCount = 0;                      ///< points sampled from
   size_t estimatedNormals = 0;
   size_t leftOut = 0;                         ///< vertices in no triangle, not sampled (mesh geodesics)
@@ -37,12 +39,16 @@ struct LodResult {
 
   /// The ending every sampler shares: the data of `samples` (point indices of
   /// `d`); with `meshOutput` their geodesic Delaunay triangles, read from
-  /// `voronoi` (per point, the rank of its nearest sample); with `regionOwner`
-  /// (per point, a rank) regionOf for the mesh's `vertCount` vertices.
+  /// `voronoi` (per point, the rank of its nearest sample), their vertices
+  /// placed as `placement` says; with `regionOwner` (per point, a rank)
+  /// regionOf for the mesh's `vertCount` vertices.
   static LodResult Finish(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, bool meshOutput,
-                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, size_t vertCount) {
+                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, size_t vertCount,
+                          Placement placement) {
     LodResult r = Collect(d, samples);
     if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
+    if (meshOutput && placement == Placement::Quadric)
+      r.position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
     if (regionOwner) r.SetRegions(d, *regionOwner, vertCount);
     return r;
   }
@@ -57,6 +63,7 @@ struct LodResult {
     r.meshGeodesics = d.meshGeodesics;
     for (int i : samples) {
       r.vertIndex.push_back(d.points.vertIndex[i]);
+      r.position.push_back(d.points.pos[i]);
       r.normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[i]));
       r.curvature.push_back(d.curvature[i]);
     }

@@ -69,6 +69,7 @@ nb::dict Common(const LodResult& r) {
   d["normals"] = Rows3(r.normal);
   d["curvature"] = ToNumpy(std::vector<double>(r.curvature), {r.curvature.size()});
   d["faces"] = Faces(r.faces);
+  d["positions"] = Rows3(r.position);
   d["region_of"] = Int64(r.regionOf);
   d["point_count"] = r.pointCount;
   d["estimated_normals"] = r.estimatedNormals;
@@ -245,6 +246,9 @@ NB_MODULE(_core, m) {
       .value("Auto", vcg_ext::GeodesicMode::Auto)
       .value("Mesh", vcg_ext::GeodesicMode::Mesh)
       .value("PointGraph", vcg_ext::GeodesicMode::PointGraph);
+  nb::enum_<vcg_ext::Placement>(m, "Placement")
+      .value("InputVertices", vcg_ext::Placement::InputVertices)
+      .value("Quadric", vcg_ext::Placement::Quadric);
   nb::enum_<vcg_ext::Regions>(m, "Regions")
       .value("None_", vcg_ext::Regions::None)
       .value("Disk", vcg_ext::Regions::Disk)
@@ -269,6 +273,7 @@ NB_MODULE(_core, m) {
       .def_rw("max_iterations", &Poisson::Param::maxIterations)
       .def_rw("seed", &Poisson::Param::seed)
       .def_rw("mesh_output", &Poisson::Param::meshOutput)
+      .def_rw("placement", &Poisson::Param::placement)
       .def_rw("regions", &Poisson::Param::regions)
       .def_prop_rw(
           "within", [](const Poisson::Param& p) { return p.within; },
@@ -285,6 +290,7 @@ NB_MODULE(_core, m) {
       .def_rw("sample_num", &Fps::Param::sampleNum)
       .def_rw("seed", &Fps::Param::seed)
       .def_rw("mesh_output", &Fps::Param::meshOutput)
+      .def_rw("placement", &Fps::Param::placement)
       .def_rw("regions", &Fps::Param::regions);
   nb::class_<Pyramid::Param>(m, "PyramidParam")
       .def(nb::init<>())

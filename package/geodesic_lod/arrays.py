@@ -25,6 +25,7 @@ METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metr
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
+PLACEMENTS = {"input": _core.Placement.InputVertices, "fitted": _core.Placement.Quadric}
 
 
 def _name_of(table, value):
@@ -42,6 +43,7 @@ class Lod:
     normals: np.ndarray            #: (k, 3) n_i of each sample (the input's, or estimated)
     curvature: np.ndarray          #: v_i (eq. 1) of each sample
     faces: np.ndarray              #: (f, 3) triangles over the samples (mesh_output), else empty
+    positions: np.ndarray          #: (k, 3) each sample's position: the input's, or fitted (placement)
     region_of: np.ndarray          #: per input row, the rank of its sample's region (-1: none); empty unless asked
     point_count: int               #: points sampled from
     estimated_normals: int         #: normals estimated from the points
@@ -258,6 +260,17 @@ class DomainOptions:
         return d
 
 
+def placement_of(placement, mesh_output):
+    """The core's Placement for a triangle-mesh output's vertices (None: the product default; 'fitted'
+    needs mesh_output)."""
+    if placement is None:
+        return _core.PoissonParam().placement
+    value = _choice(placement, PLACEMENTS, "placement")
+    if value != _core.Placement.InputVertices and not mesh_output:
+        raise InputError(f"placement={placement!r} places a triangle mesh's vertices: it needs mesh_output=True")
+    return value
+
+
 def run_options(seed, threads, progress, mesh_output, has_faces):
     seed = whole_number(seed, "seed", 0, 2**64 - 1)
     if threads is not None:
@@ -321,14 +334,15 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-                regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
-                progress: Progress = None) -> PoissonLod:
+                placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0, within=None,
+                threads: Optional[int] = None, progress: Progress = None) -> PoissonLod:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
                            recompute_normals).param(p.shape[0], has_faces)
     param, threads = poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
                                     seed, within, threads, progress, lambda: diagonal_of(p))
     param.domain = domain
+    param.placement = placement_of(placement, mesh_output)
     return result_of(PoissonLod, call_core(_core.poisson_lod, p, n, f, param, threads, progress))
 
 
@@ -378,13 +392,14 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
             adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
             normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
             recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-            regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
-            progress: Progress = None) -> FpsLod:
+            placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0,
+            threads: Optional[int] = None, progress: Progress = None) -> FpsLod:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
                            recompute_normals).param(p.shape[0], has_faces)
     param, threads = fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
     param.domain = domain
+    param.placement = placement_of(placement, mesh_output)
     return result_of(FpsLod, call_core(_core.fps_lod, p, n, f, param, threads, progress))
 
 

@@ -45,6 +45,13 @@ MESH_OUTPUT = """mesh_output : bool
         Triangulate the samples over the faces (geodesic Delaunay), in ``faces`` of the result; needs
         ``faces``. Default False."""
 
+PLACEMENT = f"""placement : {{'input', 'fitted'}}, optional
+        With ``mesh_output``: where the mesh's vertices go, in ``positions`` of the result: the input's
+        points, or fitted, each moved to the point nearest (in least squares) to the planes of the input's
+        triangles in its geodesic Voronoi region, never across a border. Default (None):
+        ``'{'input' if _core.PoissonParam().placement == _core.Placement.InputVertices else 'fitted'}'`` with
+        ``mesh_output``; without it the positions are the input's."""
+
 RAISES = """Raises
     ------
     InputError
@@ -83,6 +90,7 @@ TEXTS = {
     {FACES}
     {METRIC}
     {MESH_OUTPUT}
+    {PLACEMENT}
     regions : {{None, 'disk', 'voronoi'}}
         Fill ``region_of`` with each point's sample: its disk's or its nearest. Default None.
     within : array of int or bool, optional
@@ -110,6 +118,7 @@ TEXTS = {
     {FACES}
     {METRIC}
     {MESH_OUTPUT}
+    {PLACEMENT}
     regions : {{None, 'voronoi'}}
         Fill ``region_of`` with each point's nearest sample. Default None.
     {RUN}
@@ -191,6 +200,7 @@ TEXTS = {
     ----------
     {POISSON_SIZE}
     {MESH_OUTPUT}
+    {PLACEMENT}
     regions, within
         As in ``poisson_lod``.
     {RUN}
@@ -212,6 +222,7 @@ TEXTS = {
     count : int
         The number of samples, 1 to the number of points.
     {MESH_OUTPUT}
+    {PLACEMENT}
     regions : {{None, 'voronoi'}}
         As in ``fps_lod``.
     {RUN}

@@ -8,7 +8,8 @@ from . import _core
 from .docstrings import documented
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, FpsLod,
                      LodPyramid, PoissonLod, Progress, call_core, diagonal_of, fps_param, input_arrays, level_counts,
-                     poisson_param, pyramid_param, result_of, run_options)
+                     poisson_param, pyramid_param, result_of, run_options,
+                     placement_of)
 
 
 @functools.partial(documented, name="Domain")
@@ -44,18 +45,21 @@ class Domain:
     @functools.partial(documented, name="Domain.poisson_lod")
     def poisson_lod(self, *, radius: Optional[float] = None, count: Optional[int] = None,
                     rate: Optional[float] = None, tolerance: float = 0.0, mesh_output: bool = False,
-                    regions: Optional[str] = None, seed: int = 0, within=None, threads: Optional[int] = None,
-                    progress: Progress = None) -> PoissonLod:
+                    placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0, within=None,
+                    threads: Optional[int] = None, progress: Progress = None) -> PoissonLod:
         param, threads = poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
                                         mesh_output, regions, seed, within, threads, progress,
                                         lambda: self._diagonal)
+        param.placement = placement_of(placement, mesh_output)
         return result_of(PoissonLod, call_core(_core.poisson_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.fps_lod")
-    def fps_lod(self, *, count: int, mesh_output: bool = False, regions: Optional[str] = None, seed: int = 0,
-                threads: Optional[int] = None, progress: Progress = None) -> FpsLod:
+    def fps_lod(self, *, count: int, mesh_output: bool = False, placement: Optional[str] = None,
+                regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
+                progress: Progress = None) -> FpsLod:
         param, threads = fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
                                     threads, progress)
+        param.placement = placement_of(placement, mesh_output)
         return result_of(FpsLod, call_core(_core.fps_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.lod_pyramid")

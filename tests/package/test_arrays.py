@@ -207,3 +207,30 @@ def test_the_gil_is_released_while_sampling():
     assert end - start > 0.2, "the run is too short to tell"
     gaps = np.diff(np.concatenate([[start], during, [end]]))
     assert gaps.max() < 0.5 * (end - start)
+
+
+def test_mesh_vertices_are_fitted_by_default_and_input_points_on_request():
+    pts, faces = grid_mesh(40)
+    fitted = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True)
+    kept = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True, placement="input")
+    np.testing.assert_array_equal(fitted.indices, kept.indices)  # the same samples and triangles
+    np.testing.assert_array_equal(fitted.faces, kept.faces)
+    np.testing.assert_array_equal(kept.positions, pts[kept.indices])
+    moved = np.linalg.norm(fitted.positions - pts[fitted.indices], axis=1)
+    assert 0 < moved.max() < np.sqrt(1 / 150)  # on the bumps, by less than the LOD's spacing
+    flat = pts[fitted.indices][:, 0] < 0.45  # the flat half: nothing to fit
+    np.testing.assert_allclose(fitted.positions[flat], pts[fitted.indices][flat], atol=1e-12)
+
+    def rms_height_error(lod):  # the grid is a height field: the LOD's height under every input point
+        import matplotlib.tri as mtri
+        tin = mtri.Triangulation(lod.positions[:, 0], lod.positions[:, 1], lod.faces)
+        z = mtri.LinearTriInterpolator(tin, lod.positions[:, 2])(pts[:, 0], pts[:, 1])
+        inside = ~np.ma.getmaskarray(z)
+        return np.sqrt(np.mean((np.asarray(z)[inside] - pts[inside, 2]) ** 2))
+    assert rms_height_error(fitted) < 0.9 * rms_height_error(kept)
+    points_only = gl.poisson_lod(pts, faces=faces, count=150)
+    np.testing.assert_array_equal(points_only.positions, pts[points_only.indices])
+    with pytest.raises(gl.InputError, match="placement='fitted' .* needs mesh_output=True"):
+        gl.fps_lod(pts, faces=faces, count=50, placement="fitted")
+    with pytest.raises(gl.InputError, match="placement must be one of 'input', 'fitted'"):
+        gl.poisson_lod(pts, faces=faces, count=50, mesh_output=True, placement="moved")

@@ -274,7 +274,7 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
 @pytest.mark.parametrize("args, problem", [
     (["--levels", "10%,50%", "--workers", "2"], "--levels must get strictly coarser"),
     (["--levels", "50%,1e19", "--workers", "2"], "--levels"),
-    (["--count", "100", "--fps", "--workers", "2"], "--fps runs on one machine"),
+    (["--count", "100", "--fps", "--workers", "2"], "--fps and --height-field run on one machine"),
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count, --rate or --levels"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),

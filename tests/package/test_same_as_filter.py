@@ -76,8 +76,11 @@ def test_mesh_geodesics_and_triangles():
     ms.generate_geodesic_poisson_lod(samplenum=90, output="Triangle mesh (geodesic Delaunay)")
     lod = gl.poisson_lod(pts, normals, faces=faces, count=90, mesh_output=True)
     out = ms.current_mesh()
-    np.testing.assert_array_equal(filter_rows(ms, pts), lod.indices)
+    np.testing.assert_array_equal(out.vertex_matrix(), lod.positions)  # fitted alike
     np.testing.assert_array_equal(out.face_matrix(), lod.faces)
+    ms.set_current_mesh(0)
+    ms.generate_geodesic_poisson_lod(samplenum=90, output="Triangle mesh on input vertices")
+    np.testing.assert_array_equal(filter_rows(ms, pts), lod.indices)
 
 
 def test_normal_variation(cloud):

@@ -217,6 +217,26 @@ TEST(LodFilters, FpsGivesTheExactCountInOrderWithItsAttribute) {
   }
 }
 
+TEST(LodFilters, MeshVerticesAreFittedOrInputVertices) {
+  Mesh in;
+  Bumpy(in, 40, true);
+  MapSource p(in);
+  p.set("output", 1);
+  p.set("radius", 0.08);
+  const LodRun fitted = RunPoissonLod(in, p, nullptr);
+  p.set("output", 2);  // Triangle mesh on input vertices
+  const LodRun kept = RunPoissonLod(in, p, nullptr);
+  ASSERT_EQ(fitted.result.vertIndex, kept.result.vertIndex);
+  size_t moved = 0;
+  for (size_t k = 0; k < kept.result.vertIndex.size(); ++k) {
+    const Point3m at = in.vert[size_t(kept.result.vertIndex[k])].cP();
+    EXPECT_EQ(kept.result.position[k], at);
+    moved += fitted.result.position[k] != at;
+    if (at[0] < 0.45) EXPECT_NEAR((fitted.result.position[k] - at).Norm(), 0, 1e-12);  // flat: nothing to fit
+  }
+  EXPECT_GT(moved, 0u);
+}
+
 TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
   Mesh in;
   Bumpy(in, 40, true);
@@ -233,7 +253,8 @@ TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
       for (int c = 0; c < 3; ++c) {
         const size_t k = vcg::tri::Index(out, f.cV(c));
         ASSERT_LT(k, size_t(out.vn));
-        EXPECT_EQ(f.cP(c), in.vert[run.result.vertIndex[k]].cP());
+        EXPECT_EQ(f.cP(c), run.result.position[k]);  // fitted to the surface by default
+        EXPECT_EQ(out.vert[k].cC(), in.vert[run.result.vertIndex[k]].cC());  // the input vertex's data
       }
   }
   Mesh cloud;

@@ -16,6 +16,7 @@ PYRAMID, DEVIATION = "generate_geodesic_lod_pyramid", "get_normal_projection_dev
 HEIGHT_FIELD = "generate_height_field_lod"
 MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
 TRIANGLES = "Triangle mesh (geodesic Delaunay)"
+ON_INPUT = "Triangle mesh on input vertices"
 
 
 def grid(n=12, shift=(0.0, 0.0, 0.0)):

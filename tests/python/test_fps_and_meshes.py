@@ -6,10 +6,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from conftest import bumpy_points, mesh_set, parameter_defaults
-
-FPS = "generate_geodesic_fps_lod"
-POISSON = "generate_geodesic_poisson_lod"
-TRIANGLES = "Triangle mesh (geodesic Delaunay)"
+from test_bad_inputs import FPS, ON_INPUT, POISSON, TRIANGLES  # ON_INPUT: the mesh on input vertices (default: fitted)
 
 
 def grid_mesh(n=40):
@@ -64,18 +61,25 @@ def test_fps_exact_count_order_and_prefixes(plugin):
 def test_mesh_geodesics_and_triangle_output(plugin):
     for flt, kwargs in [(POISSON, {"radius": pymeshlab.PureValue(0.08)}), (FPS, {"samplenum": 120})]:
         ms = grid_mesh()
-        ms.apply_filter(flt, output=TRIANGLES, geodesicmode="Mesh (fast marching)", **kwargs)
+        ms.apply_filter(flt, output=ON_INPUT, geodesicmode="Mesh (fast marching)", **kwargs)
         lod = ms.current_mesh()
         assert_subset(ms.mesh(0), lod)
         assert_clean_faces(lod)
         assert ms.mesh(0).face_number() == 2 * 39 * 39  # input untouched
+        # Fitted (the default): the same triangles, each vertex moved by less than the LOD's spacing.
+        ms.set_current_mesh(0)
+        ms.apply_filter(flt, output=TRIANGLES, geodesicmode="Mesh (fast marching)", **kwargs)
+        fitted = ms.current_mesh()
+        np.testing.assert_array_equal(fitted.face_matrix(), lod.face_matrix())
+        moved = np.linalg.norm(fitted.vertex_matrix() - lod.vertex_matrix(), axis=1)
+        assert 0 < moved.max() < np.sqrt(1 / lod.vertex_number())
 
 
 def test_terrain_crop_both_modes(plugin, shared):
     for mode in ["Mesh (fast marching)", "Point graph (Dijkstra)"]:
         ms = pymeshlab.MeshSet()
         ms.load_new_mesh(shared("terrain_n44w072_crop301x301.ply"))
-        res = ms.apply_filter(FPS, samplenum=2000, geodesicmode=mode, output=TRIANGLES)
+        res = ms.apply_filter(FPS, samplenum=2000, geodesicmode=mode, output=ON_INPUT)
         lod = ms.current_mesh()
         assert res["sample_num"] == lod.vertex_number() == 2000
         assert_subset(ms.mesh(0), lod)
@@ -87,7 +91,7 @@ def test_dragon_mesh_lod(plugin, shared):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(shared("dragon_437k.ply"))
     before = ms.current_mesh().vertex_matrix().copy()
-    res = ms.apply_filter(POISSON, output=TRIANGLES)
+    res = ms.apply_filter(POISSON, output=ON_INPUT)
     lod = ms.current_mesh()
     assert res["sample_num"] == lod.vertex_number()
     idx = assert_subset(ms.mesh(0), lod)

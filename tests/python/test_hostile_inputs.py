@@ -13,7 +13,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from conftest import bumpy_points
-from test_bad_inputs import (CURVATURE, DEVIATION, FPS, GRAPH, MESH_MODE, POISSON, PYRAMID, TRIANGLES,
+from test_bad_inputs import (CURVATURE, DEVIATION, FPS, GRAPH, MESH_MODE, ON_INPUT, POISSON, PYRAMID, TRIANGLES,
                              degenerate_faces, empty, grid, layer, non_manifold, snapshot)
 
 
@@ -312,7 +312,7 @@ def test_int64_face_index_beyond_int32_wraps_in_pymeshlab(plugin):
     assert m.face_matrix()[5, 1] == 3
     ms = pymeshlab.MeshSet()
     ms.add_mesh(m, "input")
-    runs(ms, FPS, samplenum=30, geodesicmode=MESH_MODE, output=TRIANGLES)
+    runs(ms, FPS, samplenum=30, geodesicmode=MESH_MODE, output=ON_INPUT)
     assert_valid_faces(ms)
 
 
@@ -404,12 +404,22 @@ def test_fps_first_samples_in_different_parts(plugin, metric):
 @pytest.mark.parametrize("mode", [MESH_MODE, GRAPH])
 def test_triangle_output_on_bad_faces(plugin, make, flt, params, mode):
     """Triangle-mesh output of non-manifold or degenerate faces: every face corner indexes a vertex of the
-    LOD, and every LOD vertex is an input vertex."""
+    LOD, and every LOD vertex is an input vertex (on request, for the samplers); fitted vertices are finite
+    and near their input vertex."""
     ms = make()
-    runs(ms, flt, layers_added=2 if flt == PYRAMID else 1, output=TRIANGLES, geodesicmode=mode, **params)
+    output = TRIANGLES if flt == PYRAMID else ON_INPUT
+    runs(ms, flt, layers_added=2 if flt == PYRAMID else 1, output=output, geodesicmode=mode, **params)
     for k in range(1, ms.mesh_number()):
         assert_valid_faces(ms, ms.mesh(k))
         assert_valid_lod(ms, ms.mesh(k))
+    if flt != PYRAMID:
+        kept = ms.mesh(1).vertex_matrix()
+        ms.set_current_mesh(0)
+        runs(ms, flt, output=TRIANGLES, geodesicmode=mode, **params)
+        fitted = ms.current_mesh()
+        np.testing.assert_array_equal(fitted.face_matrix(), ms.mesh(1).face_matrix())
+        moved = np.linalg.norm(fitted.vertex_matrix() - kept, axis=1)
+        assert np.isfinite(moved).all() and moved.max() < 0.5 * np.ptp(kept, axis=0).max()
 
 
 def broken_normal_plane():
