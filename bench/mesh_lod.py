@@ -1,5 +1,6 @@
 """Mesh benchmark: LODs of triangle meshes as a MeshLab user judges them, against Quadric Edge
-Collapse Decimation at the same vertex count. The error is the symmetric Hausdorff distance
+Collapse Decimation at the same vertex count; ours with each vertex placement (--tune: on the mesh
+that chose the default). The error is the symmetric Hausdorff distance
 between the LOD and the input (MeshLab's, both ways, sampling vertices and faces), mean and
 maximum, in per mille of the input's bounding-box diagonal; the LOD's own faces (non-manifold and
 boundary edges counted). Two rows split our gap to Quadric Edge Collapse into the vertices chosen
@@ -20,6 +21,7 @@ from quadric_count import quadric_to_count
 from results import publish
 
 MODELS = {"dragon (100k vertices)": "dragon_100k.ply", "bunny (35k vertices)": "bunny_35k.ply"}
+TUNING_MODELS = {"dragon (437k vertices, tuning)": "dragon_437k.ply"}  # chose the default placement
 RATES = [0.10, 0.05, 0.02]
 COUNT_TOLERANCE = 0.01
 
@@ -34,10 +36,10 @@ def qec(pymeshlab, name, n, optimal):
     return quadric_to_count(lambda: load(pymeshlab, name), n, COUNT_TOLERANCE, optimalplacement=optimal)
 
 
-def ours(pymeshlab, name, n):
-    """The Poisson LOD filter with its defaults and triangle-mesh output (geodesic Delaunay)."""
+def ours(pymeshlab, name, n, output):
+    """The Poisson LOD filter with its defaults and a triangle-mesh output (geodesic Delaunay)."""
     ms = load(pymeshlab, name)
-    ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n, output="Triangle mesh (geodesic Delaunay)")
+    ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n, output=output)
     m = ms.current_mesh()
     return m.vertex_matrix(), m.face_matrix()
 
@@ -55,8 +57,10 @@ def restricted_vertices_our_triangles(pymeshlab, name, n):
     return points[lod.indices], lod.faces
 
 
+OUTPUTS = {"fitted vertices (default)": "Triangle mesh (geodesic Delaunay)",
+           "input vertices": "Triangle mesh on input vertices"}
 METHODS = {
-    "ours, Poisson LOD (defaults, geodesic Delaunay)": ours,
+    **{f"ours, Poisson LOD, {k}": (lambda pm, name, n, v=v: ours(pm, name, n, v)) for k, v in OUTPUTS.items()},
     "MeshLab quadric edge collapse (defaults)": lambda pm, name, n: qec(pm, name, n, optimal=True),
     "quadric edge collapse on input vertices": lambda pm, name, n: qec(pm, name, n, optimal=False),
     "its vertices, our geodesic Delaunay": restricted_vertices_our_triangles,
@@ -80,12 +84,18 @@ def hausdorff(pymeshlab, name, vertices, faces):
 def main():
     ap = argparse.ArgumentParser()
     add_plugin_option(ap)
+    ap.add_argument("--tune", action="store_true", help="our placements and quadric collapse on the tuning mesh "
+                    "only (writes docs/mesh_lod_tuning.json)")
     args = ap.parse_args()
     if not SHARED_DATA.is_dir():
         sys.exit(f"needs {SHARED_DATA} (the shared meshes)")
     pymeshlab = load_plugin(args.plugin)
+    models, methods, out = MODELS, METHODS, "mesh_lod"
+    if args.tune:
+        models, out = TUNING_MODELS, "mesh_lod_tuning"
+        methods = {k: v for k, v in METHODS.items() if k.startswith(("ours", "MeshLab"))}
     rows = []
-    for model, name in MODELS.items():
+    for model, name in models.items():
         src = load(pymeshlab, name)
         n_input = src.current_mesh().vertex_number()
         topo = src.get_topological_measures()
@@ -94,7 +104,7 @@ def main():
                          seconds=0.0))
         for rate in RATES:
             n = int(round(rate * n_input))
-            for method, make in METHODS.items():
+            for method, make in methods.items():
                 t = time.perf_counter()
                 vertices, faces = make(pymeshlab, name, n)
                 seconds = time.perf_counter() - t
@@ -102,7 +112,7 @@ def main():
                 rows.append(dict(model=model, rate=rate, method=method, vertices=len(vertices), mean=mean, max=mx,
                                  non_manifold_edges=nm, boundary_edges=boundary, seconds=seconds))
                 print(rows[-1], file=sys.stderr)
-    publish("mesh_lod", rows, [
+    publish(out, rows, [
         ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"), ("method", lambda r: r["method"]),
         ("vertices", lambda r: str(r["vertices"])), ("mean (‰ diag)", lambda r: f"{r['mean']:.3f}"),
         ("max (‰ diag)", lambda r: f"{r['max']:.2f}"), ("non-manifold edges", lambda r: str(r["non_manifold_edges"])),
