@@ -253,9 +253,7 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
     if "radius" in request:
         return [np.sort(arrays.poisson_lod(source.points, source.normals,
                                            radius=_radius(request["radius"], source.points), **common).indices)]
-    count = request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))
-    if count > n:
-        raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
+    count = _count_of(request, n)
     if args.fps:
         return [arrays.fps_lod(source.points, source.normals, count=count, **common).indices]
     return [np.sort(arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
@@ -281,6 +279,14 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
     return levels
 
 
+def _count_of(request: dict, n: int) -> int:
+    """The samples --count or --rate asks of n points."""
+    count = request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))
+    if count > n:
+        raise ValueError(f"--count must be at most the number of points ({n}), got {count}")
+    return count
+
+
 def _height_field_levels(request: dict, source: point_files.PointFile, progress) -> list:
     """Each level (or the one count) a prefix of one height-field LOD of the finest count."""
     from .height_field import height_field_lod
@@ -288,9 +294,7 @@ def _height_field_levels(request: dict, source: point_files.PointFile, progress)
     if "levels" in request:
         counts = arrays.level_counts(request["levels"], n)
     else:
-        counts = [request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))]
-        if counts[0] > n:
-            raise ValueError(f"--count must be at most the number of points ({n}), got {counts[0]}")
+        counts = [_count_of(request, n)]
     indices = height_field_lod(source.points, count=max(counts), progress=progress).indices
     return [np.sort(indices[:c]) for c in counts]
 
