@@ -22,6 +22,7 @@
 #include <vcg/complex/complex.h>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 
 namespace {
 
@@ -166,18 +167,18 @@ int main(int argc, char** argv) {
     if (!metric.empty()) dp.metric = metrics.at(metric);
     dp.useInputNormals = !recompute;
     if (fps) {
-      vcg_ext::GeodesicFpsLod<CMesh>::Param p;
+      vcg_ext::GeodesicFpsLod<CMesh::ScalarType>::Param p;
       p.domain = dp;
       p.sampleNum = fps;
       p.seed = seed;
-      samples = vcg_ext::GeodesicFpsLod<CMesh>::Compute(m, p, Callback).vertIndex;
+      samples = vcg_ext::MeshLod<vcg_ext::GeodesicFpsLod<CMesh::ScalarType>>(m, p, Callback).vertIndex;
     } else {
-      vcg_ext::GeodesicPoissonLod<CMesh>::Param p;
+      vcg_ext::GeodesicPoissonLod<CMesh::ScalarType>::Param p;
       p.domain = dp;
       p.radius = radius;
       p.sampleNum = count;
       p.seed = seed;
-      const auto r = vcg_ext::GeodesicPoissonLod<CMesh>::Compute(m, p, Callback);
+      const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<CMesh::ScalarType>>(m, p, Callback);
       samples = r.vertIndex;
       if (count) radius = r.radius;
     }

@@ -11,6 +11,7 @@
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/height_field_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/normal_projection.h>
 #include <vcg_ext/sample_counts.h>
 
@@ -72,7 +73,7 @@ Choices<OutputKind> PlacedOutputs(Placement byDefault) {
            {{true, other},
             other == Placement::Quadric ? "Triangle mesh, vertices fitted" : "Triangle mesh on input vertices"}}};
 }
-const Choices<OutputKind> kPlacedOutputs = PlacedOutputs(vcg_ext::GeodesicPoissonLod<CMeshO>::Param().placement);
+const Choices<OutputKind> kPlacedOutputs = PlacedOutputs(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().placement);
 
 // An empty layer is named as such before any count is read.
 void RequireVertices(const CMeshO& in) {
@@ -220,7 +221,7 @@ std::vector<ParamSpec> FpsLodParams(const CMeshO& m) {
 
 LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    vcg_ext::GeodesicPoissonLod<CMeshO>::Param p;
+    vcg_ext::GeodesicPoissonLod<Scalarm>::Param p;
     p.radius = src.number(kRadius);
     const double count = src.number(kSampleNum), rate = src.number(kSampleRate);
     if (!(count >= 0) || !std::isfinite(count))
@@ -243,7 +244,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
     p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kPoissonRegions.Read(src, kRegions);
-    const auto r = vcg_ext::GeodesicPoissonLod<CMeshO>::Compute(in, p, cb);
+    const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
@@ -261,7 +262,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
 
 LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    vcg_ext::GeodesicFpsLod<CMeshO>::Param p;
+    vcg_ext::GeodesicFpsLod<Scalarm>::Param p;
     const double n = src.number(kSampleNum);
     if (!(n >= 1)) throw std::invalid_argument(std::string(kSampleNum) + " must be at least 1 (got " + std::to_string(n) + ")");
     p.sampleNum = Count(kSampleNum, n, in);
@@ -269,7 +270,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
     ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
     p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kFpsRegions.Read(src, kRegions);
-    auto r = vcg_ext::GeodesicFpsLod<CMeshO>::Compute(in, p, cb);
+    auto r = vcg_ext::MeshLod<vcg_ext::GeodesicFpsLod<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
@@ -360,14 +361,14 @@ std::vector<ParamSpec> PyramidParams(const CMeshO&) {
 
 LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb) {
   return Guarded([&] {
-    vcg_ext::GeodesicLodPyramid<CMeshO>::Param p;
+    vcg_ext::GeodesicLodPyramid<Scalarm>::Param p;
     RequireVertices(in);
     std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     for (const LodLevel& l : levels) p.counts.push_back(l.count);
     OutputKind output;
     ReadDomainParams(src, p.domain, p.seed, kOutputs, output);
     p.meshOutput = output.mesh;
-    const auto r = vcg_ext::GeodesicLodPyramid<CMeshO>::Compute(in, p, cb);
+    const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
     for (size_t k = 0; k < r.levelFaces.size(); ++k) levels[k].faces = r.levelFaces[k];
@@ -450,7 +451,7 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
     std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     std::vector<size_t> counts;
     for (const LodLevel& l : levels) counts.push_back(l.count);
-    vcg_ext::GeodesicLodPyramid<CMeshO>::CheckCounts(counts);
+    vcg_ext::GeodesicLodPyramid<Scalarm>::CheckCounts(counts);
     vcg_ext::HeightFieldLod::Param p;
     p.sampleNum = levels.front().count;
     p.separation = src.number(kSeparation);

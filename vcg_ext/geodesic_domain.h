@@ -62,6 +62,10 @@ class GeodesicDomain {
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
+  bool hasFaces = false;            ///< the input had faces (usable or not): a triangle-mesh output needs them
+  /// The input's vertices, live or not (regions are reported for all of
+  /// them): PointSet::vertexCount, at least one past the largest vertIndex.
+  size_t vertexCount = 0;
 
   /// Throws InputError for the first bad input.
   static void Check(const PointSet<Scalar>& ps, bool hasTriangles, const Param& p) {
@@ -98,6 +102,9 @@ class GeodesicDomain {
                               Progress progress = Progress(nullptr)) {
     Check(ps, !tris.tri.empty(), p);
     GeodesicDomain d;
+    d.hasFaces = !tris.tri.empty() || tris.skipped > 0;
+    d.vertexCount = ps.vertexCount;
+    for (int v : ps.vertIndex) d.vertexCount = std::max(d.vertexCount, size_t(v) + 1);
     d.metric = p.metric;
     d.curvatureExponent = p.curvatureExponent;
     d.adaptivity = p.adaptivity;

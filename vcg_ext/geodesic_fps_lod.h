@@ -1,7 +1,8 @@
 #ifndef VCG_EXT_GEODESIC_FPS_LOD_H
 #define VCG_EXT_GEODESIC_FPS_LOD_H
-// Geodesic farthest point LOD of a vcglib mesh: an exact number of samples in
-// progressive (FPS) order.
+// Geodesic farthest point LOD of a geodesic domain: an exact number of
+// samples in progressive (FPS) order. MeshLod (mesh_lod.h) runs it on a
+// vcglib mesh.
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -12,13 +13,13 @@
 
 namespace vcg_ext {
 
-template <class MeshType>
+template <class ScalarType>
 class GeodesicFpsLod {
  public:
-  typedef typename MeshType::ScalarType Scalar;
+  typedef ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;
   struct Param {
-    typename Domain::Param domain;
+    typename Domain::Param domain;  ///< the domain MeshLod builds (Compute takes one built)
     size_t sampleNum = 0;     ///< exact number of samples, 1..number of points
     uint64_t seed = 0;        ///< chooses the first sample
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
@@ -42,29 +43,16 @@ class GeodesicFpsLod {
     return r;
   }
 
-  /// Never modifies `m`. Throws std::invalid_argument for bad input and
-  /// vcg_ext::Cancelled when the callback asks to stop.
-  static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
-    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
-    return Compute(std::move(ps), std::move(tris), m.fn > 0, m.vert.size(), p, Progress(cb));
-  }
+  /// Throws InputError for a parameter that no domain can satisfy.
+  static void CheckParam(const Param& p, bool hasFaces) { LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces); }
 
-  /// The same on points and their triangles, as GeodesicPoissonLod's.
-  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, size_t vertCount, const Param& p,
-                        Progress progress) {
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
-    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 50));
-    return ComputeOn(d, hasFaces, vertCount, p, progress.Sub(50, 100));
-  }
-
-  /// The same on a domain built before (p.domain is not read).
-  static Result ComputeOn(const Domain& d, bool hasFaces, size_t vertCount, const Param& p, Progress progress) {
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+  /// The LOD of a domain built before (p.domain is not read), as GeodesicPoissonLod's.
+  static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
+    CheckParam(p, d.hasFaces);
     const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress);
     Result r;
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
-        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, vertCount, p.placement);
+        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, p.placement);
     r.coveringRadius = s.coveringRadius;
     return r;
   }

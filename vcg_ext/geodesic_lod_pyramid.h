@@ -2,8 +2,8 @@
 #define VCG_EXT_GEODESIC_LOD_PYRAMID_H
 // Nested geodesic LODs in one run: the finest level is a Poisson-disk set of
 // the wanted count; every coarser level is a farthest-point prefix of it, so
-// each level is a subset of the finer ones. The domain (normals, eq. 1, the
-// geodesics) is built once for all levels.
+// each level is a subset of the finer ones, on one geodesic domain (normals,
+// eq. 1, the geodesics). MeshLod (mesh_lod.h) runs it on a vcglib mesh.
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -19,13 +19,13 @@ namespace vcg_ext {
 /// The levels a pyramid is asked for by default: percentages of the points, finest first.
 constexpr const char* kDefaultPyramidLevels = "50%,25%,10%,5%,2%";
 
-template <class MeshType>
+template <class ScalarType>
 class GeodesicLodPyramid {
  public:
-  typedef typename MeshType::ScalarType Scalar;
+  typedef ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;
   struct Param {
-    typename Domain::Param domain;
+    typename Domain::Param domain;  ///< the domain MeshLod builds (Compute takes one built)
     std::vector<size_t> counts;  ///< samples per level, strictly decreasing (finest first)
     int maxIterations = 24;      ///< Poisson runs at most for the finest level
     uint64_t seed = 0;
@@ -48,32 +48,22 @@ class GeodesicLodPyramid {
                                     std::to_string(c[k]));
   }
 
-  /// Never modifies `m`. Throws std::invalid_argument for bad input and
-  /// vcg_ext::Cancelled when the callback asks to stop.
-  static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    CheckCounts(p.counts);
-    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
-    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
-    return Compute(std::move(ps), std::move(tris), m.fn > 0, p, Progress(cb));
-  }
-
-  /// The same on points and their triangles, as GeodesicPoissonLod's.
-  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, const Param& p, Progress progress) {
+  /// Throws InputError for a parameter that no domain can satisfy.
+  static void CheckParam(const Param& p, bool hasFaces) {
     CheckCounts(p.counts);
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
-    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 40));
-    return ComputeOn(d, hasFaces, p, progress.Sub(40, 100));
   }
 
-  /// The same on a domain built before (p.domain is not read).
-  static Result ComputeOn(const Domain& d, bool hasFaces, const Param& p, Progress progress) {
-    CheckCounts(p.counts);
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
-    typename GeodesicPoissonLod<MeshType>::Param pp;
+  /// The levels on a domain built before (p.domain is not read). Throws
+  /// InputError for bad parameters and vcg_ext::Cancelled when `progress`
+  /// asks to stop.
+  static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
+    CheckParam(p, d.hasFaces);
+    typename GeodesicPoissonLod<Scalar>::Param pp;
     pp.sampleNum = p.counts[0];
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;
-    PoissonTargetCount::Result finest = GeodesicPoissonLod<MeshType>::SampleCount(d, pp, progress.Sub(0, 67));
+    PoissonTargetCount::Result finest = GeodesicPoissonLod<Scalar>::SampleCount(d, pp, progress.Sub(0, 67));
     Result r;
     r.radius = finest.radius;
     r.iterations = finest.iterations;
@@ -100,7 +90,7 @@ class GeodesicLodPyramid {
   // The first `count` samples in farthest-point order among `samples`, then the rest.
   static std::vector<int> Nested(const Domain& d, const std::vector<int>& samples, size_t count, uint64_t seed,
                                  Progress progress) {
-    FarthestPoint::Result f = GeodesicFpsLod<MeshType>::Sample(d, count, seed, progress, &samples);
+    FarthestPoint::Result f = GeodesicFpsLod<Scalar>::Sample(d, count, seed, progress, &samples);
     std::vector<char> taken(d.size(), 0);
     for (int s : f.samples) taken[s] = 1;
     std::vector<int> order = std::move(f.samples);

@@ -1,8 +1,8 @@
 #ifndef VCG_EXT_GEODESIC_POISSON_LOD_H
 #define VCG_EXT_GEODESIC_POISSON_LOD_H
-// Geodesic Poisson-disk LOD of a vcglib mesh: the whole pipeline, from the
-// mesh to the chosen vertices (and, for meshes, their Delaunay triangles),
-// at a given radius or a wanted number of samples.
+// Geodesic Poisson-disk LOD of a geodesic domain: the chosen vertices (and,
+// for meshes, their Delaunay triangles) at a given radius or a wanted number
+// of samples. MeshLod (mesh_lod.h) runs it on a vcglib mesh.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -17,13 +17,13 @@
 
 namespace vcg_ext {
 
-template <class MeshType>
+template <class ScalarType>
 class GeodesicPoissonLod {
  public:
-  typedef typename MeshType::ScalarType Scalar;
+  typedef ScalarType Scalar;
   typedef GeodesicDomain<Scalar> Domain;
   struct Param {
-    typename Domain::Param domain;
+    typename Domain::Param domain;  ///< the domain MeshLod builds (Compute takes one built)
     double radius = 0;        ///< absolute disk radius in the chosen metric, > 0; unused with sampleNum
     size_t sampleNum = 0;     ///< wanted samples (0: use radius); the radius is searched for
     double tolerance = 0;     ///< with sampleNum: accept sampleNum * (1 +- tolerance) untrimmed; 0: exact
@@ -123,33 +123,19 @@ class GeodesicPoissonLod {
     return d2 > 0 || cut == 0 ? std::sqrt(d2) : CoreDiagonal(pos, true);
   }
 
-  /// Never modifies `m`. Throws std::invalid_argument for bad input and
-  /// vcg_ext::Cancelled when the callback asks to stop.
-  static Result Compute(const MeshType& m, const Param& p, vcg::CallBackPos* cb = nullptr) {
-    PointSet<Scalar> ps = PointSetFromMesh<MeshType>::Compute(m);
-    MeshTriangles tris = MeshTrianglesFromMesh<MeshType>::Compute(m, ps);
-    return Compute(std::move(ps), std::move(tris), m.fn > 0, m.vert.size(), p, Progress(cb));
+  /// Throws InputError for a parameter that no domain can satisfy: checked
+  /// before a domain is built for it.
+  static void CheckParam(const Param& p, bool hasFaces) {
+    if (p.sampleNum == 0) CheckRadius(p.radius);
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
   }
 
-  /// The same on points and their triangles (the front ends without a mesh):
-  /// `hasFaces` whether the input had faces, `vertCount` its number of
-  /// vertices (`ps.vertIndex` indexes them).
-  static Result Compute(PointSet<Scalar> ps, MeshTriangles tris, bool hasFaces, size_t vertCount, const Param& p,
-                        Progress progress) {
-    if (p.sampleNum == 0 && (!(p.radius > 0) || !std::isfinite(p.radius))) {
-      // An empty or degenerate input also gets a zero default radius: name the input's problem first.
-      Domain::Check(ps, hasFaces, p.domain);
-      CheckRadius(p.radius);
-    }
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
-    const Domain d = Domain::Build(std::move(ps), std::move(tris), p.domain, progress.Sub(0, 60));
-    return ComputeOn(d, hasFaces, vertCount, p, progress.Sub(60, 100));
-  }
-
-  /// The same on a domain built before (p.domain is not read): several LODs
-  /// of one input share its normals, eq. 1 and search structure.
-  static Result ComputeOn(const Domain& d, bool hasFaces, size_t vertCount, const Param& p, Progress progress) {
-    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+  /// The LOD of a domain built before (p.domain is not read): several LODs
+  /// of one input share its normals, eq. 1 and search structure. Throws
+  /// InputError for bad parameters and vcg_ext::Cancelled when `progress`
+  /// asks to stop.
+  static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
+    CheckParam(p, d.hasFaces);
     const Progress sampling = progress.Sub(0, p.meshOutput ? 75 : 100);
     Result r;
     std::vector<int> samples, disk, voronoi;
@@ -175,8 +161,8 @@ class GeodesicPoissonLod {
       voronoi = GeodesicDelaunay<Scalar>::VoronoiOwners(d, samples);
     const std::vector<int>* regions =
         p.regions == Regions::None ? nullptr : p.regions == Regions::Disk ? &disk : &voronoi;
-    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, vertCount,
-                                                                      p.placement);
+    static_cast<LodResult<Scalar>&>(r) =
+        LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, p.placement);
     return r;
   }
 };

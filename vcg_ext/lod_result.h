@@ -41,15 +41,14 @@ struct LodResult {
   /// `d`); with `meshOutput` their geodesic Delaunay triangles, read from
   /// `voronoi` (per point, the rank of its nearest sample), their vertices
   /// placed as `placement` says; with `regionOwner` (per point, a rank)
-  /// regionOf for the mesh's `vertCount` vertices.
+  /// regionOf for every vertex of the input.
   static LodResult Finish(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, bool meshOutput,
-                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, size_t vertCount,
-                          Placement placement) {
+                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, Placement placement) {
     LodResult r = Collect(d, samples);
     if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
     if (meshOutput && placement == Placement::Quadric)
       r.position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
-    if (regionOwner) r.SetRegions(d, *regionOwner, vertCount);
+    if (regionOwner) r.SetRegions(d, *regionOwner);
     return r;
   }
 
@@ -71,8 +70,8 @@ struct LodResult {
   }
 
   /// regionOf from a per-point owner of `d` (an index in the samples).
-  void SetRegions(const GeodesicDomain<Scalar>& d, const std::vector<int>& owner, size_t vertCount) {
-    regionOf.assign(vertCount, -1);
+  void SetRegions(const GeodesicDomain<Scalar>& d, const std::vector<int>& owner) {
+    regionOf.assign(d.vertexCount, -1);
     for (size_t i = 0; i < owner.size(); ++i) regionOf[d.points.vertIndex[i]] = owner[i];
   }
 };

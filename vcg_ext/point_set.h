@@ -23,6 +23,7 @@ struct PointSet {
   std::vector<vcg::Point3<Scalar>> pos;      ///< positions
   std::vector<vcg::Point3<Scalar>> normal;   ///< the mesh's normals; empty when it has none, or only zero ones
   std::vector<int> vertIndex;                ///< index in m.vert of each point
+  size_t vertexCount = 0;                    ///< the input's vertices, live or not (m.vert.size())
   size_t size() const { return pos.size(); }
 };
 
@@ -97,6 +98,7 @@ class PointSetFromMesh {
     std::partial_sum(start.begin(), start.end(), start.begin());
     const bool copyNormals = std::find(someNormal.begin(), someNormal.end(), 1) != someNormal.end();
     PointSet<Scalar> ps;
+    ps.vertexCount = nv;
     ps.pos.resize(start[chunks]);  // Point3's constructor leaves them for the threads to write
     ps.vertIndex.resize(start[chunks]);
     if (copyNormals) ps.normal.resize(start[chunks]);

@@ -44,6 +44,7 @@ inline vcg_ext::PointSet<double> ReadPoints(const Array2& points, const Array2* 
   vcg_ext::PointSet<double> ps;
   ps.pos.resize(n);
   ps.vertIndex.resize(n);
+  ps.vertexCount = n;
   size_t nonFinite = 0;
   WithFloatType(points, "points", [&](auto tag) {
     typedef decltype(tag) T;

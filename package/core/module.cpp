@@ -12,7 +12,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-#include <vcg/complex/complex.h>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
@@ -29,17 +28,10 @@ using namespace geodesic_lod_package;
 
 namespace {
 
-// vcg_ext's samplers are templates on a vcglib mesh type; arrays need none,
-// but its scalar (double, as MeshLab 2025.07's) must match the plugin's for
-// the same LOD.
-class ArrayVertex;
-struct ArrayTypes : vcg::UsedTypes<vcg::Use<ArrayVertex>::AsVertexType> {};
-class ArrayVertex : public vcg::Vertex<ArrayTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
-class ArrayMesh : public vcg::tri::TriMesh<std::vector<ArrayVertex>> {};
-
-typedef vcg_ext::GeodesicPoissonLod<ArrayMesh> Poisson;
-typedef vcg_ext::GeodesicFpsLod<ArrayMesh> Fps;
-typedef vcg_ext::GeodesicLodPyramid<ArrayMesh> Pyramid;
+// Double coordinates, as MeshLab 2025.07's: the same LOD as the plugin's.
+typedef vcg_ext::GeodesicPoissonLod<double> Poisson;
+typedef vcg_ext::GeodesicFpsLod<double> Fps;
+typedef vcg_ext::GeodesicLodPyramid<double> Pyramid;
 typedef vcg_ext::GeodesicDomain<double> Domain;
 typedef vcg_ext::LodResult<double> LodResult;
 
@@ -106,92 +98,72 @@ nb::dict PyramidDict(const Pyramid::Result& r) {
   return d;
 }
 
-struct Input {
-  vcg_ext::PointSet<double> points;
-  vcg_ext::MeshTriangles triangles;
-  bool hasFaces = false;
-  size_t n = 0;
-};
+// The domain of the arrays: their points, and their faces when given.
+Domain BuildFrom(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                 const Domain::Param& p, vcg_ext::Progress progress) {
+  vcg_ext::PointSet<double> ps = ReadPoints(points, normals ? &*normals : nullptr);
+  vcg_ext::MeshTriangles tris;
+  if (faces) tris = ReadFaces(*faces, ps.size());
+  return Domain::Build(std::move(ps), std::move(tris), p, progress);
+}
 
-Input Read(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces) {
-  Input in;
-  in.points = ReadPoints(points, normals ? &*normals : nullptr);
-  in.n = in.points.size();
-  if (faces) {
-    in.triangles = ReadFaces(*faces, in.n);
-    in.hasFaces = faces->shape(0) > 0;
-  }
-  return in;
+// A sampler's LOD of arrays, as vcg_ext::MeshLod's of a mesh: the parameters
+// checked first, then the domain built and sampled.
+template <class Sampler>
+typename Sampler::Result LodOf(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                               const typename Sampler::Param& p, std::optional<int> threads, nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return pp.Run([&](vcg_ext::Progress pr) {
+    Sampler::CheckParam(p, faces && faces->shape(0) > 0);
+    const Domain d = BuildFrom(points, normals, faces, p.domain, pr.Sub(0, 50));
+    return Sampler::Compute(d, p, pr.Sub(50, 100));
+  });
 }
 
 nb::dict PoissonLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                     const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
-  Threads team(threads);
-  PythonProgress pp(std::move(progress));
-  return PoissonDict(pp.Run([&](vcg_ext::Progress pr) {
-    Input in = Read(points, normals, faces);
-    return Poisson::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
-  }));
+  return PoissonDict(LodOf<Poisson>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 nb::dict FpsLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                 const Fps::Param& p, std::optional<int> threads, nb::object progress) {
-  Threads team(threads);
-  PythonProgress pp(std::move(progress));
-  return FpsDict(pp.Run([&](vcg_ext::Progress pr) {
-    Input in = Read(points, normals, faces);
-    return Fps::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, in.n, p, pr);
-  }));
+  return FpsDict(LodOf<Fps>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 nb::dict LodPyramid(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                     const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
-  Threads team(threads);
-  PythonProgress pp(std::move(progress));
-  return PyramidDict(pp.Run([&](vcg_ext::Progress pr) {
-    Input in = Read(points, normals, faces);
-    return Pyramid::Compute(std::move(in.points), std::move(in.triangles), in.hasFaces, p, pr);
-  }));
+  return PyramidDict(LodOf<Pyramid>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 // One input's normals, eq. 1 and geodesic search structure, built once for
 // several LODs (the Python Domain holds it; it owns copies of the arrays).
-struct BuiltDomain {
-  Domain d;
-  bool hasFaces = false;
-  size_t n = 0;  ///< input points
-};
-
-BuiltDomain BuildDomain(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
-                        const Domain::Param& p, std::optional<int> threads, nb::object progress) {
+Domain BuildDomain(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+                   const Domain::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  return pp.Run([&](vcg_ext::Progress pr) {
-    Input in = Read(points, normals, faces);
-    BuiltDomain b;
-    b.hasFaces = in.hasFaces;
-    b.n = in.n;
-    b.d = Domain::Build(std::move(in.points), std::move(in.triangles), p, pr);
-    return b;
-  });
+  return pp.Run([&](vcg_ext::Progress pr) { return BuildFrom(points, normals, faces, p, pr); });
 }
 
-nb::dict PoissonOn(const BuiltDomain& b, const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
+// A sampler's LOD of a domain built before.
+template <class Sampler>
+typename Sampler::Result LodOn(const Domain& d, const typename Sampler::Param& p, std::optional<int> threads,
+                               nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  return PoissonDict(pp.Run([&](vcg_ext::Progress pr) { return Poisson::ComputeOn(b.d, b.hasFaces, b.n, p, pr); }));
+  return pp.Run([&](vcg_ext::Progress pr) { return Sampler::Compute(d, p, pr); });
 }
 
-nb::dict FpsOn(const BuiltDomain& b, const Fps::Param& p, std::optional<int> threads, nb::object progress) {
-  Threads team(threads);
-  PythonProgress pp(std::move(progress));
-  return FpsDict(pp.Run([&](vcg_ext::Progress pr) { return Fps::ComputeOn(b.d, b.hasFaces, b.n, p, pr); }));
+nb::dict PoissonOn(const Domain& d, const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
+  return PoissonDict(LodOn<Poisson>(d, p, threads, std::move(progress)));
 }
 
-nb::dict PyramidOn(const BuiltDomain& b, const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
-  Threads team(threads);
-  PythonProgress pp(std::move(progress));
-  return PyramidDict(pp.Run([&](vcg_ext::Progress pr) { return Pyramid::ComputeOn(b.d, b.hasFaces, p, pr); }));
+nb::dict FpsOn(const Domain& d, const Fps::Param& p, std::optional<int> threads, nb::object progress) {
+  return FpsDict(LodOn<Fps>(d, p, threads, std::move(progress)));
+}
+
+nb::dict PyramidOn(const Domain& d, const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
+  return PyramidDict(LodOn<Pyramid>(d, p, threads, std::move(progress)));
 }
 
 // Eq. 1 and the normals of every point, in the input's order.
@@ -203,12 +175,11 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
   std::vector<vcg::Point3d> normal;
   size_t estimated = 0;
   pp.Run([&](vcg_ext::Progress pr) {
-    Input in = Read(points, normals, std::nullopt);
     Domain::Param dp = p;
     dp.metric = vcg_ext::Metric::Euclidean;  // eq. 1 needs no geodesics
-    const Domain d = Domain::Build(std::move(in.points), {}, dp, pr);
-    curvature.resize(in.n);
-    normal.resize(in.n);
+    const Domain d = BuildFrom(points, normals, std::nullopt, dp, pr);
+    curvature.resize(d.vertexCount);
+    normal.resize(d.vertexCount);
     for (size_t i = 0; i < d.size(); ++i) {
       curvature[d.points.vertIndex[i]] = d.curvature[i];
       normal[d.points.vertIndex[i]] = vcg::Point3d::Construct(d.normal[i]);
@@ -311,14 +282,14 @@ NB_MODULE(_core, m) {
         "progress"_a.none());
   m.def("lod_pyramid", &LodPyramid, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());
-  nb::class_<BuiltDomain>(m, "Domain")
-      .def_prop_ro("point_count", [](const BuiltDomain& b) { return b.n; })
-      .def_prop_ro("has_faces", [](const BuiltDomain& b) { return b.hasFaces; })
-      .def_prop_ro("mesh_geodesics", [](const BuiltDomain& b) { return b.d.meshGeodesics; })
-      .def_prop_ro("components", [](const BuiltDomain& b) { return b.d.components; })
-      .def_prop_ro("estimated_normals", [](const BuiltDomain& b) { return b.d.estimatedNormals; })
-      .def_prop_ro("left_out", [](const BuiltDomain& b) { return b.d.leftOut; })
-      .def_prop_ro("nbytes", [](const BuiltDomain& b) { return b.d.MemoryBytes(); });
+  nb::class_<Domain>(m, "Domain")
+      .def_prop_ro("point_count", [](const Domain& d) { return d.vertexCount; })
+      .def_prop_ro("has_faces", [](const Domain& d) { return d.hasFaces; })
+      .def_prop_ro("mesh_geodesics", [](const Domain& d) { return d.meshGeodesics; })
+      .def_prop_ro("components", [](const Domain& d) { return d.components; })
+      .def_prop_ro("estimated_normals", [](const Domain& d) { return d.estimatedNormals; })
+      .def_prop_ro("left_out", [](const Domain& d) { return d.leftOut; })
+      .def_prop_ro("nbytes", [](const Domain& d) { return d.MemoryBytes(); });
   m.def("build_domain", &BuildDomain, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());
   m.def("poisson_on", &PoissonOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());

@@ -16,13 +16,14 @@
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/normal_projection.h>
 #include "../vcg_ext/test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
-using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
+using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh::ScalarType>;
 using Deviation = vcg_ext::NormalProjection<test::TMesh>;
 
 float Special(FuzzedDataProvider& f) {
@@ -157,7 +158,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lp.radius = radius;
   lp.regions = regions;
   try {
-    const auto r = LOD::Compute(m, lp);
+    const auto r = vcg_ext::MeshLod<LOD>(m, lp);
     Check(r, m);
     CheckSeparationAndCoverage(m, d, radius, r.vertIndex);
   } catch (const std::invalid_argument&) {
@@ -167,7 +168,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lp.sampleNum = sampleNum;
   lp.tolerance = tolerance;
   try {
-    const auto r = LOD::Compute(m, lp);
+    const auto r = vcg_ext::MeshLod<LOD>(m, lp);
     Check(r, m);
     if (sampleNum > 0 && tolerance == 0 && r.vertIndex.size() != sampleNum) Fail("Poisson count differs from samplenum");
   } catch (const std::invalid_argument&) {
@@ -178,7 +179,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fp.sampleNum = sampleNum;
   fp.regions = regions;
   try {
-    const auto r = FPS::Compute(m, fp);
+    const auto r = vcg_ext::MeshLod<FPS>(m, fp);
     Check(r, m);
     if (r.vertIndex.size() != sampleNum) Fail("FPS count differs from samplenum");
   } catch (const std::invalid_argument&) {
@@ -188,7 +189,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   common(pp);
   pp.counts = {sampleNum, sampleNum / 2, sampleNum / 5};
   try {
-    const auto r = Pyramid::Compute(m, pp);
+    const auto r = vcg_ext::MeshLod<Pyramid>(m, pp);
     Check(r, m);
     if (r.vertIndex.size() != sampleNum) Fail("pyramid's finest count differs");
   } catch (const std::invalid_argument&) {

@@ -3,10 +3,11 @@
 #include <gtest/gtest.h>
 #include <set>
 #include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
 using Domain = FPS::Domain;
 using vcg_ext::Metric;
 
@@ -74,7 +75,7 @@ TEST(FarthestPoint, EveryPartBeforeASecondSampleAnywhere) {
   test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 200, 0.2f); }, test::P3(0, 5, 0));
   FPS::Param p;
   p.sampleNum = 3;
-  const auto r = FPS::Compute(m, p);
+  const auto r = vcg_ext::MeshLod<FPS>(m, p);
   std::set<int> parts;
   for (int v : r.vertIndex) parts.insert(v < 225 ? 0 : v < 450 ? 1 : 2);
   EXPECT_EQ(parts.size(), 3u);
@@ -89,7 +90,7 @@ TEST(FarthestPoint, BadCounts) {
     FPS::Param p;
     p.sampleNum = n;
     try {
-      FPS::Compute(m, p);
+      vcg_ext::MeshLod<FPS>(m, p);
       FAIL() << n;
     } catch (const vcg_ext::InputError& e) {
       EXPECT_EQ(e.field, vcg_ext::Field::SampleNum);
@@ -98,5 +99,5 @@ TEST(FarthestPoint, BadCounts) {
   }
   FPS::Param all;
   all.sampleNum = 100;
-  EXPECT_EQ(FPS::Compute(m, all).coveringRadius.back(), 0.0);
+  EXPECT_EQ(vcg_ext::MeshLod<FPS>(m, all).coveringRadius.back(), 0.0);
 }

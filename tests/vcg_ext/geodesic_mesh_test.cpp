@@ -6,16 +6,17 @@
 #include <vcg/complex/algorithms/create/platonic.h>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
 using vcg_ext::GeodesicMode;
 
 std::string ErrorOf(const test::TMesh& m, const LOD::Param& p) {
   try {
-    LOD::Compute(m, p);
+    vcg_ext::MeshLod<LOD>(m, p);
   } catch (const vcg_ext::InputError& e) {
     return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
@@ -50,9 +51,9 @@ TEST(GeodesicMesh, AutoUsesTheFacesAndMeshModeNeedsThem) {
   test::GridMesh(grid, 20, [](float, float) { return 0.f; });
   LOD::Param p;
   p.radius = 0.2;
-  EXPECT_TRUE(LOD::Compute(grid, p).meshGeodesics);
+  EXPECT_TRUE(vcg_ext::MeshLod<LOD>(grid, p).meshGeodesics);
   p.domain.mode = GeodesicMode::PointGraph;
-  EXPECT_FALSE(LOD::Compute(grid, p).meshGeodesics);
+  EXPECT_FALSE(vcg_ext::MeshLod<LOD>(grid, p).meshGeodesics);
   test::TMesh cloud;
   test::Plane(cloud, 20);
   p.domain.mode = GeodesicMode::Mesh;
@@ -69,12 +70,12 @@ TEST(GeodesicMesh, UnreferencedVerticesAreLeftOutAndCounted) {
   for (int i = 0; i < 3; ++i) m.vert[400 + i].P() = test::P3(2 + i, 2, 2);
   LOD::Param p;
   p.radius = 0.3;
-  const auto mesh = LOD::Compute(m, p);
+  const auto mesh = vcg_ext::MeshLod<LOD>(m, p);
   EXPECT_EQ(mesh.leftOut, 3u);
   EXPECT_EQ(mesh.pointCount, 400u);
   for (int v : mesh.vertIndex) EXPECT_LT(v, 400);
   p.domain.mode = GeodesicMode::PointGraph;  // the point graph keeps them
-  EXPECT_EQ(LOD::Compute(m, p).leftOut, 0u);
+  EXPECT_EQ(vcg_ext::MeshLod<LOD>(m, p).leftOut, 0u);
 }
 
 TEST(GeodesicMesh, PoissonByFastMarchingIsSeparatedAndCovers) {
@@ -103,7 +104,7 @@ TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
     FPS::Param p;
     p.sampleNum = size_t(target);
     p.meshOutput = true;
-    const auto r = FPS::Compute(m, p);
+    const auto r = vcg_ext::MeshLod<FPS>(m, p);
     ASSERT_EQ(r.vertIndex.size(), size_t(target));
     ExpectClosedManifold(r.faces, r.vertIndex.size());
     // Outward, like the input: the faces' normals point away from the centre.
@@ -116,7 +117,7 @@ TEST(GeodesicMesh, DelaunayOutputOfASphereIsAClosedManifold) {
   LOD::Param p;
   p.radius = 0.5;
   p.meshOutput = true;
-  const auto r = LOD::Compute(m, p);
+  const auto r = vcg_ext::MeshLod<LOD>(m, p);
   ExpectClosedManifold(r.faces, r.vertIndex.size());
 }
 

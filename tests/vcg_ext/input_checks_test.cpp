@@ -5,14 +5,15 @@
 #include <limits>
 #include <set>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 
 std::string ErrorOf(const test::TMesh& m, LOD::Param p) {
   try {
-    LOD::Compute(m, p);
+    vcg_ext::MeshLod<LOD>(m, p);
   } catch (const vcg_ext::InputError& e) {
     return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
@@ -71,7 +72,7 @@ TEST(InputChecks, DuplicatePointsGiveOneSampleAtMost) {
   test::TMesh m;
   test::Plane(m, 20);
   test::AppendShifted(m, [](test::TMesh& b) { test::Plane(b, 20); }, test::P3(0, 0, 0));  // every point twice
-  const auto r = LOD::Compute(m, Radius(0.05));
+  const auto r = vcg_ext::MeshLod<LOD>(m, Radius(0.05));
   std::set<std::pair<float, float>> at;
   for (int v : r.vertIndex) EXPECT_TRUE(at.insert({m.vert[v].P()[0], m.vert[v].P()[1]}).second);
 }
@@ -81,7 +82,7 @@ TEST(InputChecks, DeletedVerticesAreSkippedAndTheMeshIsUnchanged) {
   test::Plane(m, 20);
   for (size_t i = 0; i < m.vert.size(); i += 2) vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[i]);
   const std::vector<test::TVertex> before = m.vert;
-  const auto r = LOD::Compute(m, Radius(0.1));
+  const auto r = vcg_ext::MeshLod<LOD>(m, Radius(0.1));
   ASSERT_FALSE(r.vertIndex.empty());
   for (int v : r.vertIndex) EXPECT_FALSE(m.vert[v].IsD());
   EXPECT_EQ(r.pointCount, 200u);
@@ -99,7 +100,7 @@ TEST(InputChecks, CancelStopsWithCancelled) {
   static int calls;
   calls = 0;
   vcg::CallBackPos* stop = [](int, const char*) { return ++calls < 3; };
-  EXPECT_THROW(LOD::Compute(m, Radius(0.05), stop), vcg_ext::Cancelled);
+  EXPECT_THROW(vcg_ext::MeshLod<LOD>(m, Radius(0.05), stop), vcg_ext::Cancelled);
 }
 
 TEST(InputChecks, ProgressRisesToTheEnd) {
@@ -108,7 +109,7 @@ TEST(InputChecks, ProgressRisesToTheEnd) {
   static std::vector<int> seen;
   seen.clear();
   vcg::CallBackPos* record = [](int pct, const char*) { seen.push_back(pct); return true; };
-  LOD::Compute(m, Radius(0.05), record);
+  vcg_ext::MeshLod<LOD>(m, Radius(0.05), record);
   ASSERT_GT(seen.size(), 5u);
   EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
   EXPECT_GE(seen.back(), 99);

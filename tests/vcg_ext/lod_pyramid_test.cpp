@@ -5,10 +5,11 @@
 #include <limits>
 #include <set>
 #include <vcg_ext/geodesic_lod_pyramid.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh>;
+using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh::ScalarType>;
 using Domain = Pyramid::Domain;
 
 Pyramid::Param Levels(std::vector<size_t> counts) {
@@ -38,7 +39,7 @@ TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
   test::TMesh m;
   test::HeightField(m, 45, [](float x, float y) { return test::HalfBumpy(x, y); });
   const Pyramid::Param p = Levels({1000, 400, 100, 25});
-  const auto r = Pyramid::Compute(m, p);
+  const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
   ASSERT_EQ(r.vertIndex.size(), 1000u);
   EXPECT_EQ(std::set<int>(r.vertIndex.begin(), r.vertIndex.end()).size(), 1000u);
   ASSERT_EQ(r.coarsest.size(), 1000u);
@@ -67,7 +68,7 @@ TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
 TEST(LodPyramid, SameSeedSameLevels) {
   test::TMesh m;
   test::HeightField(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
-  const auto a = Pyramid::Compute(m, Levels({300, 90, 10})), b = Pyramid::Compute(m, Levels({300, 90, 10}));
+  const auto a = vcg_ext::MeshLod<Pyramid>(m, Levels({300, 90, 10})), b = vcg_ext::MeshLod<Pyramid>(m, Levels({300, 90, 10}));
   EXPECT_EQ(a.vertIndex, b.vertIndex);
 }
 
@@ -76,7 +77,7 @@ TEST(LodPyramid, EveryLevelGetsItsOwnTriangulation) {
   test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
   Pyramid::Param p = Levels({200, 60, 12});
   p.meshOutput = true;
-  const auto r = Pyramid::Compute(m, p);
+  const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
   ASSERT_EQ(r.levelFaces.size(), 3u);
   for (size_t k = 0; k < 3; ++k) {
     // A triangulated disk with V vertices, B on its border, has 2V - B - 2 >= V - 2 faces.
@@ -91,7 +92,7 @@ TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
   test::Plane(m, 10);
   for (const auto& counts : {std::vector<size_t>{}, std::vector<size_t>{50, 50}, std::vector<size_t>{10, 20}}) {
     try {
-      Pyramid::Compute(m, Levels(counts));
+      vcg_ext::MeshLod<Pyramid>(m, Levels(counts));
       ADD_FAILURE() << "no error";
     } catch (const vcg_ext::InputError& e) {
       EXPECT_EQ(e.field, vcg_ext::Field::Levels) << e.what();

@@ -3,10 +3,11 @@
 #include <gtest/gtest.h>
 #include <set>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
 using vcg_ext::Metric;
 
@@ -94,7 +95,7 @@ TEST(PoissonDisk, SameSeedSameOutputOtherSeedOtherOutput) {
   LOD::Param p;
   p.radius = 0.05;
   p.seed = 42;
-  EXPECT_EQ(LOD::Compute(m, p).vertIndex, LOD::Compute(m, p).vertIndex);
+  EXPECT_EQ(vcg_ext::MeshLod<LOD>(m, p).vertIndex, vcg_ext::MeshLod<LOD>(m, p).vertIndex);
 }
 
 TEST(PoissonDisk, FewerSamplesAsTheRadiusGrows) {
@@ -117,7 +118,7 @@ TEST(PoissonDisk, EveryDisconnectedPartIsSampled) {
   test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 300, 0.2f); }, test::P3(0, 5, 0));
   LOD::Param p;
   p.radius = 100;  // one disk would swallow everything if the parts were connected
-  const auto r = LOD::Compute(m, p);
+  const auto r = vcg_ext::MeshLod<LOD>(m, p);
   EXPECT_EQ(r.components, 3);
   ASSERT_EQ(r.vertIndex.size(), 3u);
   std::set<int> parts;

@@ -20,7 +20,7 @@ class DVertex;
 struct DTypes : vcg::UsedTypes<vcg::Use<DVertex>::AsVertexType> {};
 class DVertex : public vcg::Vertex<DTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
 class DMesh : public vcg::tri::TriMesh<std::vector<DVertex>> {};
-typedef vcg_ext::GeodesicPoissonLod<DMesh> Whole;
+typedef vcg_ext::GeodesicPoissonLod<DMesh::ScalarType> Whole;
 
 /// A bumpy 40 x 40 height field on [0,1]^2, jittered so no two distances tie.
 std::vector<vcg::Point3d> Cloud() {
@@ -96,7 +96,7 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
   whole.domain = Graph(false);
   whole.radius = p.radius;
   whole.seed = p.seed;
-  const auto w = Whole::ComputeOn(DomainOf(cloud, Graph(false)), false, cloud.size(), whole, vcg_ext::Progress(nullptr));
+  const auto w = Whole::Compute(DomainOf(cloud, Graph(false)), whole);
   const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
   ASSERT_GT(expected.size(), 20u);
 

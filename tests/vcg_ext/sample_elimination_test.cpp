@@ -9,7 +9,7 @@
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
 using vcg_ext::Metric;
 

@@ -5,11 +5,12 @@
 #include <set>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "shared_data.h"
 #include "test_mesh.h"
 
 namespace {
-using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh>;
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
 using vcg_ext::Metric;
 
@@ -45,7 +46,7 @@ TEST(TargetCount, ExactCountsForARangeOfTargets) {
   for (size_t n : {size_t(1), size_t(2), size_t(17), size_t(160), size_t(400), size_t(1111), m.vert.size() - 1,
                    m.vert.size()}) {
     const LOD::Param p = Target(n);
-    const auto r = LOD::Compute(m, p);
+    const auto r = vcg_ext::MeshLod<LOD>(m, p);
     EXPECT_EQ(r.vertIndex.size(), n);
     EXPECT_LE(r.iterations, p.maxIterations);
     EXPECT_GE(r.poissonCount, n);
@@ -59,7 +60,7 @@ TEST(TargetCount, ExactCountsOnMeshesToo) {
   for (size_t n : {size_t(5), size_t(90), size_t(300)}) {
     LOD::Param p = Target(n);
     p.meshOutput = true;
-    const auto r = LOD::Compute(m, p);
+    const auto r = vcg_ext::MeshLod<LOD>(m, p);
     ASSERT_TRUE(r.meshGeodesics);
     EXPECT_EQ(r.vertIndex.size(), n);
     EXPECT_FALSE(r.faces.empty());
@@ -71,7 +72,7 @@ TEST(TargetCount, AToleranceKeepsAnUntrimmedPoissonSet) {
   test::TMesh m;
   test::HeightField(m, 50, [](float x, float y) { return test::HalfBumpy(x, y); });
   for (size_t n : {size_t(100), size_t(500)}) {
-    const auto r = LOD::Compute(m, Target(n, 0.05));
+    const auto r = vcg_ext::MeshLod<LOD>(m, Target(n, 0.05));
     EXPECT_NEAR(double(r.vertIndex.size()), double(n), 0.05 * n);
     EXPECT_FALSE(r.trimmed);
     EXPECT_EQ(r.vertIndex.size(), r.poissonCount);
@@ -89,7 +90,7 @@ TEST(TargetCount, AToleranceMeansWhatItSaysBelowTheThinningWindow) {
       for (uint64_t seed : {0, 1, 2}) {
         LOD::Param p = Target(n, tolerance);
         p.seed = seed;
-        const auto r = LOD::Compute(m, p);
+        const auto r = vcg_ext::MeshLod<LOD>(m, p);
         EXPECT_GE(double(r.vertIndex.size()), n * (1 - tolerance)) << n << " at " << tolerance << ", seed " << seed;
         EXPECT_LE(double(r.vertIndex.size()), n * (1 + tolerance)) << n << " at " << tolerance << ", seed " << seed;
         ExpectSeparated(m, p, r);
@@ -106,7 +107,7 @@ TEST(TargetCount, TerminatesWhereTheCountJumpsAcrossTheTarget) {
     LOD::Param p = Target(600);
     p.domain.metric = Metric::Euclidean;
     p.maxIterations = maxIterations;
-    const auto r = LOD::Compute(m, p);
+    const auto r = vcg_ext::MeshLod<LOD>(m, p);
     EXPECT_EQ(r.vertIndex.size(), 600u);
     EXPECT_LE(r.iterations, maxIterations);
     EXPECT_TRUE(r.trimmed);
@@ -119,7 +120,7 @@ TEST(TargetCount, NamesBadTargets) {
   test::Plane(m, 10);
   for (auto bad : {std::make_pair(size_t(101), 0.0), std::make_pair(size_t(10), -0.1), std::make_pair(size_t(10), 1.0)}) {
     try {
-      LOD::Compute(m, Target(bad.first, bad.second));
+      vcg_ext::MeshLod<LOD>(m, Target(bad.first, bad.second));
       ADD_FAILURE() << "no error for " << bad.first << " " << bad.second;
     } catch (const vcg_ext::InputError& e) {
       EXPECT_EQ(e.field, bad.first > 100 ? vcg_ext::Field::SampleNum : vcg_ext::Field::Tolerance) << e.what();
@@ -139,7 +140,7 @@ TEST(TargetCount, RegionsCoverEveryPointAndHoldTheirSample) {
       LOD::Param p = Target(n);
       p.radius = 0.1;
       p.regions = regions;
-      const auto r = LOD::Compute(m, p);
+      const auto r = vcg_ext::MeshLod<LOD>(m, p);
       ASSERT_EQ(r.regionOf.size(), m.vert.size());
       std::set<int> seen;
       for (int k : r.regionOf) {
@@ -159,7 +160,7 @@ TEST(TargetCount, ExactCountsOnTheBunnyScan) {
   for (double rate : {0.5, 0.25, 0.10, 0.05, 0.02}) {
     const size_t n = size_t(rate * m.vn);
     LOD::Param p = Target(n);
-    const auto r = LOD::Compute(m, p);
+    const auto r = vcg_ext::MeshLod<LOD>(m, p);
     EXPECT_EQ(r.vertIndex.size(), n) << rate;
     EXPECT_LE(r.iterations, p.maxIterations);
     RecordProperty("iterations_" + std::to_string(n), r.iterations);

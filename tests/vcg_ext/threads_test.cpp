@@ -8,11 +8,12 @@
 #endif
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
 namespace {
-using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh>;
-using FPS = vcg_ext::GeodesicFpsLod<test::TMesh>;
+using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
 
 // Byte-wise equality of normals and curvature (NaN-safe, no tolerance).
 template <class T>
@@ -48,8 +49,8 @@ TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
     Poisson::Param pp;
     common(pp);
     pp.radius = 0.01;
-    const auto a = OnThreads(1, [&] { return Poisson::Compute(m, pp); });
-    const auto b = OnThreads(2, [&] { return Poisson::Compute(m, pp); });
+    const auto a = OnThreads(1, [&] { return vcg_ext::MeshLod<Poisson>(m, pp); });
+    const auto b = OnThreads(2, [&] { return vcg_ext::MeshLod<Poisson>(m, pp); });
     EXPECT_GT(a.vertIndex.size(), 1000u);
     EXPECT_EQ(a.vertIndex, b.vertIndex);
     EXPECT_TRUE(SameBytes(a.normal, b.normal));
@@ -58,8 +59,8 @@ TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
     FPS::Param fp;
     common(fp);
     fp.sampleNum = 300;
-    const auto c = OnThreads(1, [&] { return FPS::Compute(m, fp); });
-    const auto d = OnThreads(2, [&] { return FPS::Compute(m, fp); });
+    const auto c = OnThreads(1, [&] { return vcg_ext::MeshLod<FPS>(m, fp); });
+    const auto d = OnThreads(2, [&] { return vcg_ext::MeshLod<FPS>(m, fp); });
     EXPECT_EQ(c.vertIndex, d.vertIndex);
     EXPECT_TRUE(SameBytes(c.coveringRadius, d.coveringRadius));
     EXPECT_TRUE(SameBytes(c.normal, d.normal));
@@ -102,8 +103,8 @@ TEST(Threads, PoissonDisksAreIdenticalOnOneAndTwoThreadsForEverySearch) {
     p.radius = c.radius;
     p.seed = 11;
     p.regions = vcg_ext::Regions::Disk;
-    const auto a = OnThreads(1, [&] { return Poisson::Compute(*c.m, p); });
-    const auto b = OnThreads(2, [&] { return Poisson::Compute(*c.m, p); });
+    const auto a = OnThreads(1, [&] { return vcg_ext::MeshLod<Poisson>(*c.m, p); });
+    const auto b = OnThreads(2, [&] { return vcg_ext::MeshLod<Poisson>(*c.m, p); });
     EXPECT_GT(a.vertIndex.size(), c.radius < 0.1 ? 500u : 3u);
     EXPECT_EQ(a.vertIndex, b.vertIndex);
     EXPECT_EQ(a.regionOf, b.regionOf);
