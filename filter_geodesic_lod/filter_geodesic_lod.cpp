@@ -4,6 +4,7 @@
 
 #include "apply_lod.h"
 #include "python_names.h"
+#include "rich_params.h"
 
 using namespace geodesic_lod;
 
@@ -37,22 +38,12 @@ RichParameterList ToRich(const std::vector<ParamSpec>& specs, const MeshDocument
   RichParameterList list;
   std::vector<const MeshModel*> layers;
   for (const MeshModel& m : md.meshIterator()) layers.push_back(&m);
-  for (const ParamSpec& s : specs) {
-    switch (s.kind) {
-      case ParamKind::Percentage:
-        list.addParam(RichPercentage(s.name, s.defaultValue, s.min, s.max, s.label, s.tooltip));
-        break;
-      case ParamKind::Float: list.addParam(RichFloat(s.name, s.defaultValue, s.label, s.tooltip)); break;
-      case ParamKind::Int: list.addParam(RichInt(s.name, int(s.defaultValue), s.label, s.tooltip)); break;
-      case ParamKind::Bool: list.addParam(RichBool(s.name, s.defaultValue != 0, s.label, s.tooltip)); break;
-      case ParamKind::Enum: list.addParam(RichEnum(s.name, int(s.defaultValue), s.values, s.label, s.tooltip)); break;
-      case ParamKind::String: list.addParam(RichString(s.name, s.text, s.label, s.tooltip)); break;
-      case ParamKind::Mesh:
-        list.addParam(RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue))->id(), &md, s.label,
-                               s.tooltip));
-        break;
-    }
-  }
+  AddRichParams(
+      list, specs,
+      [](const ParamSpec& s) { return RichPercentage(s.name, s.defaultValue, s.min, s.max, s.label, s.tooltip); },
+      [&](const ParamSpec& s) {
+        return RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue))->id(), &md, s.label, s.tooltip);
+      });
   return list;
 }
 

@@ -3,6 +3,7 @@
 
 #include <new>
 #include "apply_lod.h"
+#include "rich_params.h"
 
 using namespace geodesic_lod;
 
@@ -63,21 +64,14 @@ int FilterGeodesicLod2020Plugin::postCondition(QAction* a) const {
 
 void FilterGeodesicLod2020Plugin::initParameterSet(QAction* a, MeshDocument& md, RichParameterList& list) {
   std::vector<MeshModel*> layers(md.meshList.begin(), md.meshList.end());
-  for (const ParamSpec& s : Filters().at(ID(a)).params(md.mm()->cm)) {
-    switch (s.kind) {
-      case ParamKind::Percentage:
-        list.addParam(RichAbsPerc(s.name, float(s.defaultValue), float(s.min), float(s.max), s.label, s.tooltip));
-        break;
-      case ParamKind::Float: list.addParam(RichFloat(s.name, float(s.defaultValue), s.label, s.tooltip)); break;
-      case ParamKind::Int: list.addParam(RichInt(s.name, int(s.defaultValue), s.label, s.tooltip)); break;
-      case ParamKind::Bool: list.addParam(RichBool(s.name, s.defaultValue != 0, s.label, s.tooltip)); break;
-      case ParamKind::Enum: list.addParam(RichEnum(s.name, int(s.defaultValue), s.values, s.label, s.tooltip)); break;
-      case ParamKind::String: list.addParam(RichString(s.name, s.text, s.label, s.tooltip)); break;
-      case ParamKind::Mesh:
-        list.addParam(RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue)), &md, s.label, s.tooltip));
-        break;
-    }
-  }
+  AddRichParams(
+      list, Filters().at(ID(a)).params(md.mm()->cm),
+      [](const ParamSpec& s) {
+        return RichAbsPerc(s.name, float(s.defaultValue), float(s.min), float(s.max), s.label, s.tooltip);
+      },
+      [&](const ParamSpec& s) {
+        return RichMesh(s.name, DefaultLayer(layers, md.mm(), int(s.defaultValue)), &md, s.label, s.tooltip);
+      });
 }
 
 bool FilterGeodesicLod2020Plugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
