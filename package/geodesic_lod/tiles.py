@@ -5,8 +5,8 @@ and decides every core point whose earlier neighbours it sees settled (``decide`
 seams stay open, each with the ids of the points whose disks may cover it. ``settle`` then decides
 all open points at once, in the visiting order. Nothing here needs the whole cloud in one process:
 a tile's decision is small beside its points, and the seams' part of it smaller still. The Dask
-pipeline (``geodesic_lod.distributed``) runs ``decide`` on workers; this module also runs it in one
-process (``poisson_lod_tiled``), which the tests compare with ``poisson_lod``.
+pipeline (``geodesic_lod.distributed``) runs ``decide`` on workers; the tests run it in one process
+and compare with ``poisson_lod``.
 """
 from __future__ import annotations
 
@@ -37,9 +37,6 @@ class Box:
     def core_mask(self, points: np.ndarray, cloud: "Box") -> np.ndarray:
         b = self.outer(cloud)
         return np.all((points >= b.lo) & (points < b.hi), axis=1)
-
-    def read_mask(self, points: np.ndarray, halo: float) -> np.ndarray:
-        return np.all((points >= self.lo - halo) & (points <= self.hi + halo), axis=1)
 
     def as_tuple(self):
         return tuple(float(v) for v in self.lo) + tuple(float(v) for v in self.hi)
@@ -187,37 +184,3 @@ def spacing_of(box: Box, n: int) -> float:
     surface's)."""
     extent = np.sort(box.hi - box.lo)
     return math.sqrt(max(extent[2] * extent[1], 1e-300) / n)
-
-
-def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
-                      metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity,
-                      halo: Optional[float] = None, within: Optional[np.ndarray] = None,
-                      threads: Optional[int] = None,
-                      on_tile: Optional[Callable[[int, Decision], None]] = None) -> np.ndarray:
-    """poisson_lod(points, normals, radius=radius, seed=seed, within=within).indices, computed tile by tile in
-    one process (shape: tiles per axis). For tests and for seeing what the tiling costs; the Dask pipeline
-    runs the same steps on workers."""
-    p, n = arrays.point_arrays(points, normals)
-    domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
-    cloud = Box(p.min(axis=0), p.max(axis=0))
-    ids = np.arange(len(p), dtype=np.uint64)
-    width = halo if halo is not None else first_halo(radius, spacing_of(cloud, len(p)))
-    may = None
-    if within is not None:
-        chosen = np.zeros(len(p), bool)
-        chosen[np.asarray(within, dtype=np.int64)] = True
-        may = lambda ids, halo: chosen[ids.astype(np.int64)]
-    decisions = []
-    for t, box in enumerate(grid_tiles(cloud, shape)):
-        def read(halo, box=box):
-            m = box.read_mask(p, halo)
-            return p[m], None if n is None else n[m], ids[m]
-        d = decide_widening(read, box=box, cloud=cloud, halo=width, domain=domain, radius=radius, seed=seed,
-                            candidates=may, threads=threads)
-        if d is None:
-            continue
-        if on_tile:
-            on_tile(t, d)
-        decisions.append(d)
-    samples = np.concatenate([d.samples for d in decisions] + [settle([d.seams() for d in decisions], seed)])
-    return in_visiting_order(samples, seed).astype(np.int64)

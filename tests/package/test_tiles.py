@@ -7,8 +7,8 @@ import pytest
 
 import geodesic_lod as gl
 import geodesic_lod.pymeshlab  # noqa: F401  (binds the filters)
-from geodesic_lod import tiles
 from conftest import bumpy_sphere
+from tiled_lod import poisson_lod_tiled
 
 
 def uneven(n=12000, seed=1):
@@ -29,7 +29,7 @@ def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
     p = uneven()
     whole = gl.poisson_lod(p, radius=radius, seed=seed, metric=metric).indices
     opened = []
-    tiled = tiles.poisson_lod_tiled(p, radius=radius, shape=shape, seed=seed, metric=metric,
+    tiled = poisson_lod_tiled(p, radius=radius, shape=shape, seed=seed, metric=metric,
                                     on_tile=lambda t, d: opened.append(len(d.open_ids)))
     assert np.array_equal(tiled, whole)
     assert len(opened) > 1 and sum(opened) > 0  # the seams were really settled across tiles
@@ -38,7 +38,7 @@ def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
 def test_a_halo_too_narrow_is_widened_and_changes_nothing():
     p, normals = bumpy_sphere(8000), None
     widened = []
-    tiled = tiles.poisson_lod_tiled(p, normals, radius=0.07, shape=(2, 2, 2), halo=0.0701,
+    tiled = poisson_lod_tiled(p, normals, radius=0.07, shape=(2, 2, 2), halo=0.0701,
                                     on_tile=lambda t, d: widened.append(d.halo > 0.0701))
     assert any(widened)
     assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.07).indices)
@@ -51,13 +51,13 @@ def test_given_normals_and_the_pymeshlab_filter_agree():
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=p, v_normals_matrix=normals))
     ms.generate_geodesic_poisson_lod(radius=pymeshlab.PureValue(0.06), seed=4)
     filtered = ms.current_mesh().vertex_matrix()
-    tiled = tiles.poisson_lod_tiled(p, normals, radius=0.06, shape=(2, 2, 1), seed=4)
+    tiled = poisson_lod_tiled(p, normals, radius=0.06, shape=(2, 2, 1), seed=4)
     assert np.array_equal(p[tiled], filtered)
 
 
 def test_separation_and_coverage_hold_across_every_seam():
     p, r = uneven(6000), 0.05
-    tiled = tiles.poisson_lod_tiled(p, radius=r, shape=(4, 4, 1), metric="euclidean")
+    tiled = poisson_lod_tiled(p, radius=r, shape=(4, 4, 1), metric="euclidean")
     s = p[tiled]
     d2 = ((s[:, None, :] - s[None, :, :]) ** 2).sum(-1)
     np.fill_diagonal(d2, np.inf)
