@@ -210,6 +210,14 @@ def level_items(levels, name: str = "levels") -> list:
     return out
 
 
+def level_label(item) -> str:
+    """A level's name in file and folder names: a percentage in plain digits ('2.5%' gives '2.5pct', '1e-1%'
+    '0.1pct'), a count as it is."""
+    if isinstance(item, str):
+        return f"{np.format_float_positional(float(item.strip()[:-1]), trim='-')}pct"
+    return str(item)
+
+
 def _choice(x, table: dict, name: str):
     if x not in table:
         raise InputError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
@@ -337,8 +345,10 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0, within=None,
                 threads: Optional[int] = None, progress: Progress = None) -> PoissonLod:
     p, n, f, has_faces = input_arrays(points, normals, faces)
-    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
-                           recompute_normals).param(p.shape[0], has_faces)
+    options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
+                            curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
+                            graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
+    domain = options.param(p.shape[0], has_faces)
     param, threads = poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
                                     seed, within, threads, progress, lambda: diagonal_of(p))
     param.domain = domain
@@ -395,8 +405,10 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
             placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0,
             threads: Optional[int] = None, progress: Progress = None) -> FpsLod:
     p, n, f, has_faces = input_arrays(points, normals, faces)
-    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
-                           recompute_normals).param(p.shape[0], has_faces)
+    options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
+                            curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
+                            graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
+    domain = options.param(p.shape[0], has_faces)
     param, threads = fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
     param.domain = domain
     param.placement = placement_of(placement, mesh_output)
@@ -457,8 +469,10 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEF
                 seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     counts = level_counts(levels, p.shape[0])
-    domain = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
-                           recompute_normals).param(p.shape[0], has_faces)
+    options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
+                            curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
+                            graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
+    domain = options.param(p.shape[0], has_faces)
     param, threads = pyramid_param(counts, has_faces, mesh_output, seed, threads, progress)
     param.domain = domain
     return result_of(LodPyramid, call_core(_core.lod_pyramid, p, n, f, param, threads, progress))
@@ -478,6 +492,7 @@ def normal_variation(points, normals=None, *, normal_neighbors: int = DOMAIN_DEF
                      recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, threads: Optional[int] = None,
                      progress: Progress = None) -> NormalVariation:
     p, n = point_arrays(points, normals)
-    d = DomainOptions("euclidean", "auto", 0.0, 1.0, normal_neighbors, 1, recompute_normals).param(p.shape[0])
+    d = DomainOptions(metric="euclidean", normal_neighbors=normal_neighbors,
+                      recompute_normals=recompute_normals).param(p.shape[0])
     _, threads = run_options(0, threads, progress, False, False)
     return NormalVariation(**call_core(_core.normal_variation, p, n, d, threads, progress))

@@ -21,8 +21,10 @@ class Domain:
                  recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, threads: Optional[int] = None,
                  progress: Progress = None):
         p, n, f, has_faces = input_arrays(points, normals, faces)
-        param = DomainOptions(metric, geodesics, adaptivity, curvature_exponent, normal_neighbors, graph_neighbors,
-                              recompute_normals).param(p.shape[0], has_faces)
+        options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
+                                curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
+                                graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
+        param = options.param(p.shape[0], has_faces)
         _, threads = run_options(0, threads, progress, False, has_faces)
         self._built = call_core(_core.build_domain, p, n, f, param, threads, progress)
         self._diagonal = diagonal_of(p)
