@@ -49,8 +49,7 @@ def _radius(text: str, points: np.ndarray) -> float:
 
 
 def _level_path(out: pathlib.Path, item) -> pathlib.Path:
-    label = f"{item[:-1].strip()}pct" if isinstance(item, str) else str(item)
-    return out.with_name(f"{out.stem}_{label}{out.suffix}")
+    return out.with_name(f"{out.stem}_{arrays.level_label(item)}{out.suffix}")
 
 
 def parser() -> argparse.ArgumentParser:

@@ -44,8 +44,9 @@ def survey(path: str) -> dict:
     src = point_files.read(path)
     check_finite(path, src.points)
     fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
-    return {"kind": kind, "count": len(src.points), "lo": src.points.min(axis=0), "hi": src.points.max(axis=0),
-            "signature": (kind, str(fields))}
+    empty = len(src.points) == 0  # no bounds: sources() skips it
+    return {"kind": kind, "count": len(src.points), "lo": np.zeros(3) if empty else src.points.min(axis=0),
+            "hi": np.zeros(3) if empty else src.points.max(axis=0), "signature": (kind, str(fields))}
 
 
 def check_finite(path, points: np.ndarray) -> None:

@@ -91,7 +91,11 @@ def core_diagonal(run_pass, n: int, lo: np.ndarray, hi: np.ndarray) -> float:
             ranks[k] -= int(cum[b - 1]) if b else 0
             inside[k] = int(c[b])
             chains[k] = chains[k] + [(lo_k, hi_k, b)]
-            ranges[k] = (lo_k + (hi_k - lo_k) * b / BINS, lo_k + (hi_k - lo_k) * (b + 1) / BINS)
+            # The end bins also hold the values beyond the bounds: cut them again over the values' own range.
+            a = wants[k][0]
+            low = lo_k + (hi_k - lo_k) * b / BINS if b > 0 else min(lo_k, float(mins[a]))
+            high = lo_k + (hi_k - lo_k) * (b + 1) / BINS if b < BINS - 1 else max(hi_k, float(maxs[a]))
+            ranges[k] = (low, high)
         first = False
     values, _, _, _ = run_pass([(wants[k][0], chains[k], *ranges[k]) for k in range(len(wants))], True)
     picked = [float(v[int(np.searchsorted(np.cumsum(c), r, side="right"))]) for (v, c), r in zip(values, ranks)]

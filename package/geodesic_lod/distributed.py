@@ -170,8 +170,9 @@ def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
 
 
 def level_folder(item) -> str:
-    """The folder of a level given as '50%' or 5000."""
-    return f"level_{item[:-1].strip()}pct" if isinstance(item, str) else f"level_{item}"
+    """The folder of a level given as '50%' or 5000 (level_50pct, level_5000: output_folder.OWN_FOLDER
+    knows them as the run's)."""
+    return f"level_{arrays.level_label(item)}"
 
 
 @dataclass
