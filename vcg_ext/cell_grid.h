@@ -36,8 +36,7 @@ class CellGrid {
     h_ = h > 0 ? h : extent / double(1 << kBits);
     if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1;  // all points coincide: one cell
     std::vector<uint64_t> key(pos.size());
-#pragma omp parallel for
-    for (long long i = 0; i < (long long)pos.size(); ++i) key[size_t(i)] = Key(CellOf(pos[size_t(i)]));
+    ParallelFor(pos.size(), 4096, [&](size_t i) { key[i] = Key(CellOf(pos[i])); });
     pts_ = SortKeys(key);  // ties by index: the same order on any thread count
     for (size_t r = 0; r < key.size(); ++r)
       if (r == 0 || key[r] != key[r - 1]) {

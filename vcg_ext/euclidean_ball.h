@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 #include <vcg/space/index/kdtree/kdtree.h>
+#include "parallel.h"
 
 namespace vcg_ext {
 
@@ -42,15 +43,14 @@ class EuclideanBall {
     for (size_t k = 0; k < sources.size(); ++k) at[k] = pos_[size_t(sources[k])];
     if (at.empty()) return;
     vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(at.data(), int(at.size())));
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (long long i = 0; i < (long long)pos_.size(); ++i) {
-      if (owner[size_t(i)] >= 0) continue;
+    ParallelFor(pos_.size(), 1024, [&](size_t i) {
+      if (owner[i] >= 0) return;
       unsigned int k = 0;
       Scalar sq = 0;
-      tree.doQueryClosest(pos_[size_t(i)], k, sq);
-      owner[size_t(i)] = int(k);
-      dist[size_t(i)] = std::sqrt(sq);
-    }
+      tree.doQueryClosest(pos_[i], k, sq);
+      owner[i] = int(k);
+      dist[i] = std::sqrt(sq);
+    });
   }
 
   /// Calls f(i, d) for every point i with |p_i - p_src| <= r (any order; src

@@ -84,9 +84,7 @@ class NeighbourGraph {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c)
           if (oneWay[i * k + c]) {
-            int& count = g.offset[knn.Row(i)[c] + 1];
-#pragma omp atomic
-            ++count;
+            __atomic_fetch_add(&g.offset[knn.Row(i)[c] + 1], 1, __ATOMIC_RELAXED);
           }
     });
     int64_t total = 0;
@@ -111,9 +109,7 @@ class NeighbourGraph {
         for (int c = 0; c < k; ++c)
           if (oneWay[i * k + c]) {
             int& next = fill[g.adj[size_t(g.offset[i] + c)]];  // the arc's end, in its row's first k
-            int slot;
-#pragma omp atomic capture
-            slot = next++;
+            const int slot = __atomic_fetch_add(&next, 1, __ATOMIC_RELAXED);
             g.adj[size_t(slot)] = int(i);
           }
     });

@@ -1,10 +1,26 @@
 #ifndef VCG_EXT_PARALLEL_H
 #define VCG_EXT_PARALLEL_H
-// Loops over independent rows on all OpenMP threads (one thread without OpenMP).
+// Loops over independent rows on all threads, on a team of worker threads
+// that wait passively. An OpenMP team spins at every barrier: on a busy
+// machine the waiting thread keeps the core the late one needs, and a run on
+// two threads takes several times one thread's (docs/busy_machine.md). These
+// workers spin a few microseconds (a loop's next batch usually follows that
+// soon), then sleep until woken. The thread count is OpenMP's
+// (omp_get_max_threads: OMP_NUM_THREADS, or what the host set), one without
+// OpenMP. Cost: a wake-up per loop, microseconds.
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
+#include <functional>
+#include <mutex>
+#include <new>
+#include <system_error>
+#include <thread>
 #include <vector>
+#include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -12,28 +28,201 @@
 
 namespace vcg_ext {
 
-/// The threads a parallel region gets, and the calling thread's number in it.
+namespace detail {
+/// The calling thread's place in the team running it (0 of 1 outside a loop).
+struct TeamPlace {
+  int index = 0, size = 1;
+  bool inLoop = false;
+};
+inline TeamPlace& Place() {
+  thread_local TeamPlace place;
+  return place;
+}
+}  // namespace detail
+
+/// The threads a parallel loop gets: one inside another loop's body.
 inline int ThreadCount() {
+  if (detail::Place().inLoop) return 1;
 #ifdef _OPENMP
   return std::max(1, omp_get_max_threads());
 #else
   return 1;
 #endif
 }
-inline int ThreadIndex() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
+/// Inside a loop's body: the calling thread's number, and the threads the loop got.
+inline int ThreadIndex() { return detail::Place().index; }
+inline int TeamSize() { return detail::Place().size; }
+
+/// Worker threads for the loops of one calling thread (each thread that runs
+/// loops gets its own, as with OpenMP), grown on demand and kept until that
+/// thread ends.
+class ThreadTeam {
+ public:
+  static ThreadTeam& Mine() {
+    thread_local ThreadTeam team;
+    if (team.pid_ != getpid()) team.AfterFork();
+    return team;
+  }
+  ThreadTeam() = default;
+  ThreadTeam(const ThreadTeam&) = delete;
+  ThreadTeam& operator=(const ThreadTeam&) = delete;
+  ~ThreadTeam() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+      generation_.fetch_add(1, std::memory_order_release);
+    }
+    wake_.notify_all();
+    for (std::thread& w : workers_) w.join();
+  }
+
+  /// job(t) for every t in [0, threads), t = 0 on the calling thread, the
+  /// others on workers (on the calling thread too when the system gives no
+  /// more threads); returns when all have returned, then rethrows the
+  /// exception of the lowest t that threw. Inside a loop's body (a nested
+  /// loop), `threads` must be 1: job(0) on the calling thread.
+  void Run(int threads, const std::function<void(int)>& job) {
+    detail::TeamPlace& place = detail::Place();
+    if (place.inLoop || threads <= 1) {
+      const detail::TeamPlace outer = place;
+      place = {0, 1, true};
+      try {
+        job(0);
+      } catch (...) {
+        place = outer;
+        throw;
+      }
+      place = outer;
+      return;
+    }
+    const int asked = threads;
+    threads = Grow(threads);
+    std::vector<std::exception_ptr> error(static_cast<size_t>(asked));
+    auto guarded = [&](int t) {
+      try {
+        job(t);
+      } catch (...) {
+        error[size_t(t)] = std::current_exception();
+      }
+    };
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      job_ = guarded;
+      size_ = threads;
+      asked_ = asked;
+      pending_.store(threads - 1, std::memory_order_relaxed);
+      generation_.fetch_add(1, std::memory_order_release);
+    }
+    wake_.notify_all();
+    place = {0, asked, true};
+    guarded(0);
+    for (int t = threads; t < asked; ++t) place.index = t, guarded(t);
+    place = {0, 1, false};
+    Await([&] { return pending_.load(std::memory_order_acquire) == 0; }, done_);
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      job_ = nullptr;
+    }
+    for (const std::exception_ptr& e : error)
+      if (e) std::rethrow_exception(e);
+  }
+
+ private:
+  // The workers for `threads` in all (the caller is one); fewer if the system refuses a thread.
+  int Grow(int threads) {
+    while (int(workers_.size()) + 1 < threads) {
+      try {
+        workers_.emplace_back([this, w = int(workers_.size()) + 1] { Work(w); });
+      } catch (const std::system_error&) {
+        break;
+      }
+    }
+    return std::min(threads, int(workers_.size()) + 1);
+  }
+
+  // Spins briefly on `ready`, then sleeps on `cv` until it holds.
+  template <class Ready>
+  void Await(Ready ready, std::condition_variable& cv) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinMicroseconds);
+    for (int i = 1; !ready(); ++i) {
+      if (i % 64 == 0 && std::chrono::steady_clock::now() > until) {
+        std::unique_lock<std::mutex> lock(m_);
+        cv.wait(lock, ready);
+        return;
+      }
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
 #endif
-}
-/// Inside a parallel region: the threads it got.
-inline int TeamSize() {
-#ifdef _OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
+    }
+  }
+
+  void Work(int w) {
+    uint64_t seen = 0;
+    for (;;) {
+      Await([&] { return generation_.load(std::memory_order_acquire) != seen; }, wake_);
+      std::function<void(int)>* job = nullptr;
+      int total = 1;
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        if (stop_) return;
+        seen = generation_.load(std::memory_order_relaxed);
+        if (w < size_) job = &job_, total = asked_;
+      }
+      if (!job) continue;  // a loop on fewer threads
+      detail::Place() = {w, total, true};
+      (*job)(w);
+      detail::Place() = {0, 1, false};
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        std::lock_guard<std::mutex> lock(m_);
+        done_.notify_one();
+      }
+    }
+  }
+
+  // A forked child has the team's memory but none of its threads: their
+  // handles are let go (neither joined nor destroyed) and the team starts anew.
+  void AfterFork() {
+    new std::vector<std::thread>(std::move(workers_));
+    workers_.clear();
+    new (&m_) std::mutex;
+    new (&wake_) std::condition_variable;
+    new (&done_) std::condition_variable;
+    pending_ = 0;
+    size_ = 1;
+    pid_ = getpid();
+  }
+
+  static constexpr int kSpinMicroseconds = 50;
+  std::vector<std::thread> workers_;
+  std::mutex m_;
+  std::condition_variable wake_, done_;
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<int> pending_{0};
+  int size_ = 1, asked_ = 1;  // the workers running the job, and its t's in all
+  std::function<void(int)> job_;
+  bool stop_ = false;
+  pid_t pid_ = getpid();
+};
+
+/// Calls f(i) for every i in [0, n) on all threads, `grain` consecutive i at
+/// a time, handed out in order as threads ask. Each f(i) must depend on i
+/// only, so the result is the same on any number of threads; f must not
+/// throw (an exception is rethrown after the loop, the others stopped).
+template <class F>
+void ParallelFor(size_t n, size_t grain, F&& f) {
+  grain = std::max<size_t>(1, grain);
+  const int threads = int(std::min<size_t>(size_t(ThreadCount()), (n + grain - 1) / grain));
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  ThreadTeam::Mine().Run(threads, [&](int) {
+    try {
+      for (size_t b; !failed.load(std::memory_order_relaxed) && (b = next.fetch_add(grain)) < n;)
+        for (size_t i = b, e = std::min(n, b + grain); i < e; ++i) f(i);
+    } catch (...) {
+      failed = true;
+      throw;
+    }
+  });
 }
 
 /// One object per thread: the given one for thread 0, copies for the others
@@ -55,19 +244,20 @@ class PerThread {
 /// Calls f(begin, end) on consecutive chunks covering [0, n), on all threads.
 /// Each row's result must depend on that row only, so the output is the same
 /// for any number of threads. Progress is reported (and a stop request thrown)
-/// between blocks, on the calling thread: no exception leaves a parallel
-/// region. `f` must not throw; it may allocate scratch once per chunk.
+/// by the calling thread between its chunks; the others then stop too. `f`
+/// must not throw; it may allocate scratch once per chunk.
 template <class F>
 void ParallelChunks(size_t n, Progress progress, const char* what, F&& f) {
-  const size_t block = size_t(1) << 16, chunk = 1024;
-  for (size_t b = 0; b < n; b += block) {
-    progress(b, n, what);
-    const size_t e = std::min(n, b + block);
-    const long long chunks = (long long)((e - b + chunk - 1) / chunk);
-#pragma omp parallel for schedule(dynamic)
-    for (long long c = 0; c < chunks; ++c) f(b + size_t(c) * chunk, std::min(e, b + size_t(c + 1) * chunk));
-    progress(e, n, what);
-  }
+  constexpr size_t chunk = 1024;
+  std::atomic<size_t> finished{0};
+  progress(0, n, what);
+  ParallelFor((n + chunk - 1) / chunk, 1, [&](size_t c) {
+    const size_t b = c * chunk, e = std::min(n, b + chunk);
+    f(b, e);
+    const size_t total = finished.fetch_add(e - b, std::memory_order_relaxed) + (e - b);
+    if (ThreadIndex() == 0) progress(total, n, what);
+  });
+  progress(n, n, what);
 }
 
 /// Runs `main` on the calling thread while `single`, a pass that cannot use
@@ -85,15 +275,10 @@ void Beside(Main&& main, Single&& single) {
       error[t] = std::current_exception();
     }
   };
-  bool pair = false;  // the team may be smaller than asked for
-  if (ThreadCount() > 1) {
-#pragma omp parallel num_threads(2)
-    if (TeamSize() == 2) {
-      if (ThreadIndex() == 0) pair = true;
-      run(ThreadIndex());
-    }
-  }
-  if (!pair) run(1), run(0);
+  if (ThreadCount() > 1)
+    ThreadTeam::Mine().Run(2, run);
+  else
+    run(1), run(0);
   for (const std::exception_ptr& e : error)
     if (e) std::rethrow_exception(e);
 }

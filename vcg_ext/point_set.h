@@ -12,6 +12,7 @@
 #include <vector>
 #include <vcg/complex/complex.h>
 #include "input_error.h"
+#include "parallel.h"
 #include "priority_order.h"
 
 namespace vcg_ext {
@@ -34,17 +35,16 @@ struct PointSet {
 template <class Scalar>
 std::vector<std::pair<int, int>> CoincidentPairs(const std::vector<vcg::Point3<Scalar>>& pos) {
   std::vector<uint64_t> key(pos.size());
-#pragma omp parallel for schedule(static)
-  for (long long i = 0; i < (long long)pos.size(); ++i) {
+  ParallelFor(pos.size(), 4096, [&](size_t i) {
     uint64_t h = 0;
     for (int c = 0; c < 3; ++c) {
-      const Scalar x = pos[size_t(i)][c] + Scalar(0);  // -0 and 0 are one position
+      const Scalar x = pos[i][c] + Scalar(0);  // -0 and 0 are one position
       uint64_t bits = 0;
       std::memcpy(&bits, &x, sizeof x);
       h = Mix64(h ^ bits);
     }
-    key[size_t(i)] = h;
-  }
+    key[i] = h;
+  });
   const std::vector<int> order = SortKeys(key);
   auto before = [&](int a, int b) { return pos[a] < pos[b] || (pos[a] == pos[b] && a < b); };
   std::vector<std::pair<int, int>> pairs;
@@ -78,9 +78,8 @@ class PointSetFromMesh {
     // Pass 1: per chunk, its live points, its non-finite ones, and whether a normal is not zero.
     std::vector<size_t> start(chunks + 1, 0), nonFinite(chunks, 0);
     std::vector<char> someNormal(chunks, 0);
-#pragma omp parallel for schedule(static)
-    for (long long c = 0; c < (long long)chunks; ++c) {
-      const size_t b = size_t(c) * chunk, e = std::min(nv, b + chunk);
+    ParallelFor(chunks, 1, [&](size_t c) {
+      const size_t b = c * chunk, e = std::min(nv, b + chunk);
       size_t live = 0, bad = 0;
       bool normal = false;
       for (size_t i = b; i < e; ++i) {
@@ -90,8 +89,8 @@ class PointSetFromMesh {
         ++live;
         normal = normal || (hasNormal && v.cN() != typename MeshType::VertexType::NormalType(0, 0, 0));
       }
-      start[size_t(c) + 1] = live, nonFinite[size_t(c)] = bad, someNormal[size_t(c)] = normal;
-    }
+      start[c + 1] = live, nonFinite[c] = bad, someNormal[c] = normal;
+    });
     const size_t bad = std::accumulate(nonFinite.begin(), nonFinite.end(), size_t(0));
     if (bad)
       throw NonFiniteCoordinates(bad);
@@ -103,10 +102,9 @@ class PointSetFromMesh {
     ps.vertIndex.resize(start[chunks]);
     if (copyNormals) ps.normal.resize(start[chunks]);
     // Pass 2: each chunk writes its points from its start.
-#pragma omp parallel for schedule(static)
-    for (long long c = 0; c < (long long)chunks; ++c) {
-      const size_t b = size_t(c) * chunk, e = std::min(nv, b + chunk);
-      for (size_t i = b, o = start[size_t(c)]; i < e; ++i) {
+    ParallelFor(chunks, 1, [&](size_t c) {
+      const size_t b = c * chunk, e = std::min(nv, b + chunk);
+      for (size_t i = b, o = start[c]; i < e; ++i) {
         const auto& v = m.vert[i];
         if (v.IsD() || !isFinite(v.cP())) continue;
         ps.pos[o] = vcg::Point3<Scalar>::Construct(v.cP());
@@ -114,7 +112,7 @@ class PointSetFromMesh {
         if (copyNormals) ps.normal[o] = vcg::Point3<Scalar>::Construct(v.cN());
         ++o;
       }
-    }
+    });
     return ps;
   }
 };

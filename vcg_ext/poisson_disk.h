@@ -81,19 +81,17 @@ class PoissonDisk {
         if (wanted(order[o])) cand.push_back(order[o]);
       if (members.size() < cand.size()) members.resize(cand.size());
       const long long m = (long long)cand.size();
-      bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
-#pragma omp parallel for schedule(dynamic, 8) if (m > 1)
-      for (long long c = 0; c < m; ++c) {
+      std::atomic<bool> outOfMemory{false};  // a search's bad_alloc, rethrown after the loop
+      ParallelFor(size_t(m), 8, [&](size_t c) {
         DiskSearch& search = searches.Mine();
-        std::vector<int>& list = members[size_t(c)];
+        std::vector<int>& list = members[c];
         list.clear();
         try {
-          search.Visit(cand[size_t(c)], radius, [&](int i, double) { list.push_back(i); });
+          search.Visit(cand[c], radius, [&](int i, double) { list.push_back(i); });
         } catch (const std::bad_alloc&) {
-#pragma omp atomic write
           outOfMemory = true;
         }
-      }
+      });
       if (outOfMemory) throw std::bad_alloc();
       for (size_t c = 0; c < cand.size(); ++c) {
         searched += 1, reached += members[c].size();

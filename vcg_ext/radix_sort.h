@@ -27,28 +27,27 @@ template <class Move>
 void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
   constexpr size_t kBuckets = size_t(1) << kRadixBits;
   const size_t n = key.size();
-  // Zeroed before the parallel region: nothing there may throw.
-  std::vector<size_t> count(size_t(ThreadCount()) * kBuckets, 0);
-#pragma omp parallel
-  {
-    const int threads = TeamSize(), t = ThreadIndex();
-    const size_t b = n * size_t(t) / size_t(threads), e = n * size_t(t + 1) / size_t(threads);
+  // Each thread counts, then places, a fixed share of the keys.
+  const int threads = int(std::min<size_t>(size_t(ThreadCount()), std::max<size_t>(1, n >> 12)));
+  std::vector<size_t> count(size_t(threads) * kBuckets, 0);
+  auto from = [&](int t) { return n * size_t(t) / size_t(threads); };
+  auto bucket = [&](size_t i) { return (key[i] >> shift) & (kBuckets - 1); };
+  ThreadTeam::Mine().Run(threads, [&](int t) {
     size_t* mine = &count[size_t(t) * kBuckets];
-    for (size_t i = b; i < e; ++i) ++mine[(key[i] >> shift) & (kBuckets - 1)];
-#pragma omp barrier
-#pragma omp single
-    {
-      size_t at = 0;  // bucket by bucket, thread by thread: a stable placement
-      for (size_t v = 0; v < kBuckets; ++v)
-        for (int u = 0; u < threads; ++u) {
-          size_t& c = count[size_t(u) * kBuckets + v];
-          const size_t next = at + c;
-          c = at;
-          at = next;
-        }
+    for (size_t i = from(t), e = from(t + 1); i < e; ++i) ++mine[bucket(i)];
+  });
+  size_t at = 0;  // bucket by bucket, thread by thread: a stable placement
+  for (size_t v = 0; v < kBuckets; ++v)
+    for (int u = 0; u < threads; ++u) {
+      size_t& c = count[size_t(u) * kBuckets + v];
+      const size_t next = at + c;
+      c = at;
+      at = next;
     }
-    for (size_t i = b; i < e; ++i) move(i, mine[(key[i] >> shift) & (kBuckets - 1)]++);
-  }
+  ThreadTeam::Mine().Run(threads, [&](int t) {
+    size_t* mine = &count[size_t(t) * kBuckets];
+    for (size_t i = from(t), e = from(t + 1); i < e; ++i) move(i, mine[bucket(i)]++);
+  });
 }
 
 /// Sorts `key` ascending and returns order[r] = the input position of the
@@ -60,12 +59,19 @@ inline std::vector<int> SortKeys(std::vector<uint64_t>& key) {
   constexpr uint64_t kMask = (uint64_t(1) << kBits) - 1;
   const size_t n = key.size();
   std::vector<int> order(n);
+  // Per block, the bits all its keys share and those any has: a block's
+  // result does not depend on which thread computed it.
+  constexpr size_t kBlock = size_t(1) << 16;
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<uint64_t> blockAll(blocks, ~uint64_t(0)), blockAny(blocks, 0);
+  ParallelFor(blocks, 1, [&](size_t k) {
+    for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i) {
+      order[i] = int(i);
+      blockAll[k] &= key[i], blockAny[k] |= key[i];
+    }
+  });
   uint64_t all = ~uint64_t(0), any = 0;
-#pragma omp parallel for reduction(& : all) reduction(| : any)
-  for (long long i = 0; i < (long long)n; ++i) {
-    order[size_t(i)] = int(i);
-    all &= key[size_t(i)], any |= key[size_t(i)];
-  }
+  for (size_t k = 0; k < blocks; ++k) all &= blockAll[k], any |= blockAny[k];
   std::vector<int> differs;  // the digits in which some keys differ, lowest first
   for (int d = 0; d < kDigits; ++d)
     if (((all ^ any) >> (d * kBits)) & kMask) differs.push_back(d);
@@ -112,10 +118,10 @@ inline std::vector<int> SortKeys(std::vector<uint64_t>& key) {
     if (r.second - r.first <= large) longest = std::max(longest, r.second - r.first);
   std::vector<Pairs> scratch(static_cast<size_t>(ThreadCount()));
   for (Pairs& kp : scratch) kp.reserve(longest);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (long long r = 0; r < (long long)runs.size(); ++r)
-    if (runs[size_t(r)].second - runs[size_t(r)].first <= large)
-      sortRun(runs[size_t(r)].first, runs[size_t(r)].second, scratch[size_t(ThreadIndex())], false);
+  ParallelFor(runs.size(), 64, [&](size_t r) {
+    if (runs[r].second - runs[r].first <= large)
+      sortRun(runs[r].first, runs[r].second, scratch[size_t(ThreadIndex())], false);
+  });
   Pairs kp;
   for (const auto& r : runs)  // skewed keys: the few large runs on all threads each
     if (r.second - r.first > large) sortRun(r.first, r.second, kp, true);

@@ -119,19 +119,17 @@ class SampleElimination {
     std::vector<std::vector<std::pair<int, double>>> disks(kBatch);
     for (size_t b = 0; b < src.size(); b += kBatch) {
       const long long m = (long long)std::min(kBatch, src.size() - b);
-      bool outOfMemory = false;  // no exception may leave the parallel loop: rethrown after it
-#pragma omp parallel for schedule(dynamic, 16) if (m > 1)
-      for (long long c = 0; c < m; ++c) {
+      std::atomic<bool> outOfMemory{false};  // a search's bad_alloc, rethrown after the loop
+      ParallelFor(size_t(m), 16, [&](size_t c) {
         Search& s = searches.Mine();
-        auto& disk = disks[size_t(c)];
+        auto& disk = disks[c];
         disk.clear();
         try {
-          s.Visit(src[b + size_t(c)], r, [&](int i, double d) { disk.emplace_back(i, d); });
+          s.Visit(src[b + c], r, [&](int i, double d) { disk.emplace_back(i, d); });
         } catch (const std::bad_alloc&) {
-#pragma omp atomic write
           outOfMemory = true;
         }
-      }
+      });
       if (outOfMemory) throw std::bad_alloc();
       for (long long c = 0; c < m; ++c) take(int(b + size_t(c)), disks[size_t(c)]);
       progress(b + size_t(m), src.size(), "Thinning to the exact count");

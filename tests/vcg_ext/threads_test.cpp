@@ -9,6 +9,7 @@
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace {
@@ -21,20 +22,7 @@ bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-// Runs f with the given number of threads, then restores the default.
-template <class F>
-auto OnThreads(int threads, F&& f) {
-#ifdef _OPENMP
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(threads);
-  auto r = f();
-  omp_set_num_threads(before);
-  return r;
-#else
-  (void)threads;
-  return f();
-#endif
-}
+using test::OnThreads;
 }  // namespace
 
 TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {

@@ -1,0 +1,150 @@
+// vcg_ext/parallel.h: a loop calls its body once for every index on any
+// number of threads, on distinct threads when there are several; a nested
+// loop runs on its caller alone; an exception or a stop request ends the loop
+// and is rethrown; progress comes from the calling thread only; each calling
+// thread has its own team; waiting workers leave the cores to others.
+#include <gtest/gtest.h>
+#include <atomic>
+#include <chrono>
+#include <ctime>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+#include <vcg_ext/parallel.h>
+#include "on_threads.h"
+
+namespace {
+
+using test::OnThreads;
+
+std::vector<int> Visits(size_t n, size_t grain) {
+  std::vector<std::atomic<int>> seen(n);
+  vcg_ext::ParallelFor(n, grain, [&](size_t i) { seen[i].fetch_add(1); });
+  std::vector<int> out;
+  for (auto& s : seen) out.push_back(s.load());
+  return out;
+}
+
+}  // namespace
+
+TEST(Parallel, ALoopVisitsEveryIndexOnceOnAnyNumberOfThreads) {
+  for (int threads : {1, 2, 3, 8})
+    OnThreads(threads, [&] {
+      for (size_t n : {0, 1, 7, 1000, 100003})
+        for (size_t grain : {1, 8, 4096}) EXPECT_EQ(Visits(n, grain), std::vector<int>(n, 1)) << threads << " " << n;
+    });
+}
+
+TEST(Parallel, ALoopOnSeveralThreadsRunsOnDistinctThreadsWithDistinctIndices) {
+  OnThreads(3, [&] {
+    std::mutex m;
+    std::set<std::thread::id> ids;
+    std::set<int> indices;
+    std::atomic<int> arrived{0};
+    vcg_ext::ThreadTeam::Mine().Run(3, [&](int t) {
+      {
+        std::lock_guard<std::mutex> lock(m);
+        ids.insert(std::this_thread::get_id());
+        indices.insert(vcg_ext::ThreadIndex());
+        EXPECT_EQ(vcg_ext::ThreadIndex(), t);
+        EXPECT_EQ(vcg_ext::TeamSize(), 3);
+      }
+      // All three at once: each waits for the others, which only distinct threads can do.
+      arrived.fetch_add(1);
+      while (arrived.load() < 3) std::this_thread::yield();
+    });
+    EXPECT_EQ(ids.size(), 3u);
+    EXPECT_EQ(indices, (std::set<int>{0, 1, 2}));
+    EXPECT_EQ(vcg_ext::ThreadIndex(), 0);
+    EXPECT_EQ(vcg_ext::TeamSize(), 1);
+  });
+}
+
+TEST(Parallel, ANestedLoopRunsOnItsCallerAlone) {
+  OnThreads(2, [&] {
+    std::atomic<int> wrong{0};
+    vcg_ext::ParallelFor(64, 1, [&](size_t) {
+      const std::thread::id me = std::this_thread::get_id();
+      EXPECT_EQ(vcg_ext::ThreadCount(), 1);
+      vcg_ext::ParallelFor(100, 1, [&](size_t) {
+        if (std::this_thread::get_id() != me) wrong.fetch_add(1);
+      });
+    });
+    EXPECT_EQ(wrong.load(), 0);
+    EXPECT_EQ(vcg_ext::ThreadCount(), 2);
+  });
+}
+
+TEST(Parallel, AnExceptionEndsTheLoopAndIsRethrownAfterIt) {
+  for (int threads : {1, 2, 3})
+    OnThreads(threads, [&] {
+      std::atomic<size_t> after{0};
+      EXPECT_THROW(vcg_ext::ParallelFor(1000000, 1, [&](size_t i) {
+                     if (i == 10) throw std::runtime_error("row 10");
+                     if (i > 100000) after.fetch_add(1);
+                   }),
+                   std::runtime_error);
+      EXPECT_LT(after.load(), 1000000u - 100001u) << "the loop went on to the end";
+      // The team is ready for the next loop.
+      EXPECT_EQ(Visits(5000, 16), std::vector<int>(5000, 1));
+    });
+}
+
+TEST(Parallel, ProgressComesFromTheCallingThreadAndAStopEndsTheLoop) {
+  static std::thread::id caller;
+  static std::atomic<int> elsewhere{0}, calls{0};
+  caller = std::this_thread::get_id();
+  vcg::CallBackPos* report = [](const int, const char*) {
+    calls.fetch_add(1);
+    if (std::this_thread::get_id() != caller) elsewhere.fetch_add(1);
+    return true;
+  };
+  vcg::CallBackPos* stop = [](const int pct, const char*) { return pct < 30; };
+  OnThreads(2, [&] {
+    std::atomic<size_t> rows{0};
+    // Chunks that take a while, so the calling thread takes its share of them.
+    auto work = [&](size_t b, size_t e) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      rows.fetch_add(e - b);
+    };
+    vcg_ext::ParallelChunks(size_t(1) << 20, vcg_ext::Progress(report), "rows", work);
+    EXPECT_EQ(rows.load(), size_t(1) << 20);
+    EXPECT_GT(calls.load(), 2);
+    EXPECT_EQ(elsewhere.load(), 0);
+    rows = 0;
+    EXPECT_THROW(vcg_ext::ParallelChunks(size_t(1) << 20, vcg_ext::Progress(stop), "rows", work),
+                 vcg_ext::Cancelled);
+    EXPECT_LT(rows.load(), size_t(1) << 20);
+  });
+}
+
+TEST(Parallel, ThreadsLoopingAtOnceEachGetTheirOwnTeam) {
+  OnThreads(2, [&] {
+    std::vector<std::vector<int>> seen(4);
+    std::vector<std::thread> callers;
+    for (size_t c = 0; c < seen.size(); ++c)
+      callers.emplace_back([&, c] {
+        for (int round = 0; round < 20; ++round) seen[c] = Visits(20000, 64);
+      });
+    for (auto& t : callers) t.join();
+    for (const auto& s : seen) EXPECT_EQ(s, std::vector<int>(20000, 1));
+  });
+}
+
+// A thread that finishes its share first waits for the others without
+// spinning: on a busy machine the one it waits for needs that core. Here the
+// calling thread sleeps 20 ms in each of 40 loops while the worker, done at
+// once, waits: the process uses next to no processor time.
+TEST(Parallel, AThreadWaitingForAnotherLeavesTheProcessorToOthers) {
+  OnThreads(2, [&] {
+    const std::clock_t before = std::clock();
+    for (int loop = 0; loop < 40; ++loop)
+      vcg_ext::ThreadTeam::Mine().Run(2, [](int t) {
+        if (t == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      });
+    const double busy = double(std::clock() - before) / CLOCKS_PER_SEC;
+    EXPECT_LT(busy, 0.1) << "processor seconds used in 0.8 s of waiting";
+  });
+}
