@@ -54,6 +54,7 @@ class Lod:
 
 @dataclass
 class PoissonLod(Lod):
+    """What ``poisson_lod`` returns: a Lod and its Poisson set's radii."""
     radius: float = 0.0            #: radius of the Poisson set (absolute, in the metric)
     covering_radius: float = 0.0   #: every point lies within it of a sample
     iterations: int = 1            #: Poisson runs (more than one when a count was asked)
@@ -63,6 +64,7 @@ class PoissonLod(Lod):
 
 @dataclass
 class FpsLod(Lod):
+    """What ``fps_lod`` returns: a Lod in farthest-point order; its first k samples are the k-sample LOD."""
     covering_radii: np.ndarray = field(default_factory=lambda: np.empty(0))  #: [k]: of the first k+1 samples
 
     @property
@@ -73,10 +75,11 @@ class FpsLod(Lod):
 
 @dataclass
 class LodPyramid(Lod):
+    """What ``lod_pyramid`` returns: a Lod whose first ``counts[k]`` samples are level k."""
     counts: list = field(default_factory=list)        #: samples per level, finest first
     level_faces: list = field(default_factory=list)   #: per level, triangles over its samples (mesh_output)
     radius: float = 0.0                               #: radius of the finest level's Poisson set
-    iterations: int = 0
+    iterations: int = 0                               #: Poisson runs for the finest level
 
     @property
     def levels(self) -> list:
@@ -86,9 +89,10 @@ class LodPyramid(Lod):
 
 @dataclass
 class NormalVariation:
+    """What ``normal_variation`` returns, per input row."""
     curvature: np.ndarray          #: v_i (eq. 1) per input row
     normals: np.ndarray            #: (n, 3) n_i per input row
-    estimated_normals: int
+    estimated_normals: int         #: normals estimated from the points
 
 
 def _float_array(a, name: str, allow_none: bool = False):
@@ -427,9 +431,8 @@ def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, p
     return param, threads
 
 
+@documented
 def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
-    """Sample counts of pyramid levels given as counts (5000) or percentages of the points ('50%'),
-    finest first, each strictly smaller than the one before; or a comma-separated string of them."""
     levels = level_items(levels)
     if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
         raise InputError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "

@@ -346,6 +346,57 @@ TEXTS = {
     >>> len(lod.indices), lod.hull_size, int(lod.tin(10).max())  # the TIN of the first 10 samples
     (125, 4, 9)
     """,
+    "level_counts": f"""Sample counts of pyramid levels, finest first, as ``lod_pyramid`` and the command's
+    ``--levels`` read them.
+
+    Parameters
+    ----------
+    levels : sequence of int and str, or str
+        The levels, finest first: counts (5000) or percentages of the points (``'50%'``, above 0 to 100),
+        each giving strictly fewer samples than the one before; or a comma-separated string of them
+        (``'50%,10%,500'``). The pyramid filter's default is ``{_core.DEFAULT_LEVELS}``.
+    n : int
+        The number of points the percentages are of.
+
+    Returns
+    -------
+    list of int
+        The counts, finest first; a percentage rounds as the MeshLab filters round it.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import geodesic_lod as gl
+    >>> gl.level_counts("50%,10%,300", 10000)
+    [5000, 1000, 300]
+    """,
+    "HeightFieldLod.tin": """The TIN of the first ``k`` samples: a Delaunay triangulation in x, y.
+
+    Parameters
+    ----------
+    k : int
+        The samples, from ``hull_size`` (the hull's corners) to ``len(indices)``.
+
+    Returns
+    -------
+    (f, 3) array of int64
+        Triangles as rows of ``indices[:k]``, counter-clockwise seen from +z.
+
+    Raises
+    ------
+    InputError
+        (a ``ValueError``) when ``k`` is not a whole number in that range.
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> y, x = np.mgrid[0:20, 0:20] * 30.0
+    >>> lod = gl.height_field_lod(np.column_stack([x.ravel(), y.ravel(), np.hypot(x, y).ravel()]), count=40)
+    >>> tin = lod.tin(10)
+    >>> tin.shape[1], int(tin.max()) < 10
+    (3, True)
+    """,
     "Domain": f"""One input's normals, curvature (eq. 1) and geodesic structure, built once for several LODs.
 
     The arrays are copied: changing them afterwards changes nothing here. The domain holds its memory

@@ -2,6 +2,7 @@
 constraint in x, y, vcg_ext's HeightFieldLod."""
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -28,9 +29,8 @@ class HeightFieldLod:
     #: cover too little of their hull)
     points: np.ndarray = field(repr=False, default=None)  #: the input (not copied)
 
+    @functools.partial(documented, name="HeightFieldLod.tin")
     def tin(self, k: int) -> np.ndarray:
-        """The TIN of the first ``k`` samples (a Delaunay triangulation in x, y), as rows of
-        ``indices[:k]``."""
         k = whole_number(k, "k", int(self.hull_size), len(self.indices),
                          f" (the samples; at least the {self.hull_size} hull corners)")
         if k == len(self.indices):

@@ -9,7 +9,8 @@ import geodesic_lod as gl
 from geodesic_lod import arrays, distributed, domain, height_field
 
 DOCUMENTED = [gl.poisson_lod, gl.fps_lod, gl.lod_pyramid, gl.normal_variation, gl.Domain, gl.Domain.poisson_lod,
-              gl.Domain.fps_lod, gl.Domain.lod_pyramid, distributed.lod_files, gl.height_field_lod]
+              gl.Domain.fps_lod, gl.Domain.lod_pyramid, distributed.lod_files, gl.height_field_lod, gl.level_counts,
+              gl.HeightFieldLod.tin]
 
 
 @pytest.mark.parametrize("fn", DOCUMENTED, ids=lambda f: f.__qualname__)
