@@ -127,6 +127,7 @@ class GeodesicPoissonLod {
   /// before a domain is built for it.
   static void CheckParam(const Param& p, bool hasFaces) {
     if (p.sampleNum == 0) CheckRadius(p.radius);
+    else PoissonTargetCount::CheckTolerance(p.tolerance);
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
   }
 

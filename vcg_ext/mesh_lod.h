@@ -14,8 +14,10 @@ namespace vcg_ext {
 
 /// `Sampler::Compute` on the domain of `m` built as `p.domain` says. Never
 /// modifies `m`. Throws InputError for bad input, the input's problems named
-/// before the parameters' (an empty mesh also gets a zero default radius), all
-/// of them before the build; vcg_ext::Cancelled when `cb` asks to stop.
+/// before the parameters' (an empty mesh also gets a zero default radius):
+/// those and the parameters no domain can satisfy before the build, a count
+/// out of the domain's range (which names its points) after it;
+/// vcg_ext::Cancelled when `cb` asks to stop.
 template <class Sampler, class MeshType>
 typename Sampler::Result MeshLod(const MeshType& m, const typename Sampler::Param& p,
                                  vcg::CallBackPos* cb = nullptr) {

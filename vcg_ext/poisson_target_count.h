@@ -138,6 +138,12 @@ class PoissonTargetCount {
     double coveringRadius = 0;
   };
 
+  static void CheckTolerance(double tolerance) {
+    if (!(tolerance >= 0) || !(tolerance < 1))
+      throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
+                                             std::to_string(100 * tolerance) + "%)");
+  }
+
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
   /// FastMarching, EuclideanBall).
   template <class Scalar, class Search>
@@ -146,9 +152,7 @@ class PoissonTargetCount {
     if (p.sampleNum < 1 || p.sampleNum > candidates)
       throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(candidates) +
                                              "), got " + std::to_string(p.sampleNum));
-    if (!(p.tolerance >= 0) || !(p.tolerance < 1))
-      throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
-                                             std::to_string(100 * p.tolerance) + "%)");
+    CheckTolerance(p.tolerance);
     RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);
     Trial above, accepted;     // above: the run with count >= target at the largest radius
     above.count = candidates;  // radius 0: every point is a sample

@@ -1,5 +1,6 @@
-// Nested LOD pyramid: exact counts per level, levels nested and each spread
-// evenly, coarsest-level labels, one triangulation per level, bad level lists.
+// vcg_ext/geodesic_lod_pyramid.h: exact counts per level, levels nested and
+// each spread evenly, coarsest-level labels, one triangulation per level, bad
+// level lists.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <limits>

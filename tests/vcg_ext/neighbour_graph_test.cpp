@@ -1,19 +1,12 @@
-// The neighbour graph: symmetric, weights never shorter than the edge, components found;
-// the bounded search reaches exactly the points within the radius.
+// The neighbour graph: symmetric, weights never shorter than the edge, components found.
 #include <gtest/gtest.h>
-#include <vcg_ext/bounded_dijkstra.h>
 #include <vcg_ext/geodesic_domain.h>
+#include "graph_domain.h"
 #include "test_mesh.h"
 
 namespace {
 using Domain = vcg_ext::GeodesicDomain<float>;
-
-Domain Build(const test::TMesh& m, vcg_ext::Metric metric, double a = 10) {
-  Domain::Param p;
-  p.metric = metric;
-  p.adaptivity = a;
-  return Domain::FromMesh(m, p);
-}
+using test::GraphDomain;
 
 bool HasEdge(const vcg_ext::NeighbourGraph<float>& g, int i, int j) {
   return std::binary_search(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1], j);
@@ -39,7 +32,7 @@ TEST(NeighbourGraph, WeightsAreNeverShorterThanTheEdge) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
   for (auto metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity, vcg_ext::Metric::Geodesic}) {
-    const Domain d = Build(m, metric);
+    const Domain d = GraphDomain(m, metric);
     const auto len = d.Lengths();
     for (size_t i = 0; i < d.graph.size(); ++i)
       for (int e = d.graph.offset[i]; e < d.graph.offset[i + 1]; ++e) {
@@ -55,7 +48,7 @@ TEST(NeighbourGraph, CountsDisconnectedParts) {
   test::Plane(m, 20);
   test::AppendShifted(m, [](test::TMesh& b) { test::Plane(b, 20); }, test::P3(5, 0, 0));
   test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 500, 0.3f); }, test::P3(0, 5, 0));
-  EXPECT_EQ(Build(m, vcg_ext::Metric::Geodesic).components, 3);
+  EXPECT_EQ(GraphDomain(m, vcg_ext::Metric::Geodesic).components, 3);
 }
 
 // The domain counts the parts from the kNN table, before the graph exists:
@@ -75,46 +68,6 @@ TEST(NeighbourGraph, ComponentsFromTheTableAreTheGraphs) {
     EXPECT_EQ(vcg_ext::NeighbourGraph<float>::ComponentCount(knn, k), parts) << "k = " << k;
     if (k == 1) EXPECT_GT(parts, 3);  // one neighbour each cannot join a whole plane
     if (k == 10) EXPECT_EQ(parts, 3);
-  }
-}
-
-// Radii at a point's exact distance too: the disk's edges skipped by their
-// straight length must not lose a point lying on its rim.
-TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
-  test::TMesh m;
-  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
-  for (vcg_ext::Metric metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity}) {
-    const Domain d = Build(m, metric);
-    vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
-    for (int src : {0, 333, 801, 1599}) {
-      const std::vector<float> full = search.Distances(src);
-      auto at = [&](int step) { return full[size_t(src + step) % full.size()]; };
-      for (float r : {0.02f, 0.1f, 0.3f, at(1), at(41), at(83)}) {
-        std::vector<char> seen(full.size(), 0);
-        float last = 0;
-        search.Visit(src, r, [&](int i, float di) {
-          EXPECT_FALSE(seen[i]) << "visited twice";
-          seen[i] = 1;
-          EXPECT_FLOAT_EQ(di, full[i]);
-          EXPECT_GE(di, last);  // increasing distance
-          last = di;
-        });
-        for (size_t i = 0; i < full.size(); ++i) EXPECT_EQ(bool(seen[i]), full[i] <= r) << "point " << i;
-      }
-    }
-  }
-}
-
-TEST(BoundedDijkstra, GraphDistanceBoundsTheStraightLine) {
-  test::TMesh m;
-  test::Plane(m, 30);
-  const Domain d = Build(m, vcg_ext::Metric::Geodesic);
-  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
-  const auto dist = search.Distances(0);
-  for (size_t i = 0; i < dist.size(); ++i) {
-    const float e = vcg::Distance(d.points.pos[0], d.points.pos[i]);
-    EXPECT_GE(dist[i], e * (1 - 1e-5f));
-    EXPECT_LE(dist[i], e * 1.1f + 1e-6f);  // an 8-connected grid path is at most ~8% longer
   }
 }
 
@@ -146,7 +99,7 @@ TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
   for (auto metric : {vcg_ext::Metric::WeightedEq3, vcg_ext::Metric::CurvatureDensity}) {
-    const Domain d = Build(m, metric, 3);
+    const Domain d = GraphDomain(m, metric, 3);
     double maxV = 0;
     for (float v : d.curvature) maxV = std::max(maxV, double(v));
     ASSERT_GT(maxV, 0.01) << "a surface without curvature tests nothing";

@@ -1,6 +1,7 @@
-// Poisson-disk sampling to a wanted number of samples: exact counts, counts
-// within a tolerance, separation kept, termination where the count jumps
-// across the target, and the regions reported on the input.
+// vcg_ext/poisson_target_count.h, the count search: Poisson-disk sampling to a
+// wanted number of samples gives exact counts, counts within a tolerance,
+// separation kept, termination where the count jumps across the target, and
+// the regions reported on the input.
 #include <gtest/gtest.h>
 #include <set>
 #include <vcg_ext/geodesic_fps_lod.h>
