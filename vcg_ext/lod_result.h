@@ -45,7 +45,7 @@ struct LodResult {
   static LodResult Finish(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, bool meshOutput,
                           const std::vector<int>& voronoi, const std::vector<int>* regionOwner, Placement placement) {
     LodResult r = Collect(d, samples);
-    if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.triangles, voronoi);
+    if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
     if (meshOutput && placement == Placement::Quadric)
       r.position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
     if (regionOwner) r.SetRegions(d, *regionOwner);
