@@ -5,6 +5,7 @@
 // vcglib mesh.
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 #include "farthest_point.h"
 #include "geodesic_delaunay.h"
@@ -43,8 +44,14 @@ class GeodesicFpsLod {
     return r;
   }
 
-  /// Throws InputError for a parameter that no domain can satisfy.
-  static void CheckParam(const Param& p, bool hasFaces) { LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces); }
+  /// Throws InputError for a parameter that no domain can satisfy: checked
+  /// before a domain is built for it. A count above the domain's points is
+  /// refused by Compute (FarthestPoint), which names them.
+  static void CheckParam(const Param& p, bool hasFaces) {
+    if (p.sampleNum < 1)
+      throw InputError(Field::SampleNum, "must be at least 1 (got " + std::to_string(p.sampleNum) + ")");
+    LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
+  }
 
   /// The LOD of a domain built before (p.domain is not read), as GeodesicPoissonLod's.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {

@@ -82,22 +82,3 @@ TEST(FarthestPoint, EveryPartBeforeASecondSampleAnywhere) {
   EXPECT_TRUE(std::isfinite(r.coveringRadius.back()));
   EXPECT_TRUE(std::isinf(r.coveringRadius[1]));  // two samples leave a part unreached
 }
-
-TEST(FarthestPoint, BadCounts) {
-  test::TMesh m;
-  test::Plane(m, 10);
-  for (size_t n : {size_t(0), size_t(101)}) {
-    FPS::Param p;
-    p.sampleNum = n;
-    try {
-      vcg_ext::MeshLod<FPS>(m, p);
-      FAIL() << n;
-    } catch (const vcg_ext::InputError& e) {
-      EXPECT_EQ(e.field, vcg_ext::Field::SampleNum);
-      EXPECT_NE(std::string(e.what()).find("must be between 1 and the number of points (100)"), std::string::npos);
-    }
-  }
-  FPS::Param all;
-  all.sampleNum = 100;
-  EXPECT_EQ(vcg_ext::MeshLod<FPS>(m, all).coveringRadius.back(), 0.0);
-}

@@ -95,19 +95,3 @@ TEST(FastMarching, LoweringGivesTheDistanceToTheNearestSource) {
     EXPECT_LE(dist[i], best * 1.0001f + 1e-6f);              // never worse than each source alone ... up to rounding
   }
 }
-
-TEST(MeshTriangles, SkipsDegenerateAndDeletedAndCountsUnreferenced) {
-  test::TMesh m;
-  test::GridMesh(m, 5, [](float, float) { return 0.f; });
-  const size_t faces = m.face.size();
-  vcg::tri::Allocator<test::TMesh>::AddFace(m, &m.vert[0], &m.vert[0], &m.vert[1]);  // repeated corner
-  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 2);                                // unreferenced
-  m.vert[25].P() = test::P3(3, 3, 3);
-  m.vert[26].P() = test::P3(4, 3, 3);
-  vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[24]);  // its faces must go too
-  const auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
-  const auto t = vcg_ext::MeshTrianglesFromMesh<test::TMesh>::Compute(m, ps);
-  EXPECT_EQ(t.tri.size(), faces - 2);  // the two faces at the deleted corner
-  EXPECT_EQ(t.skipped, 3u);
-  EXPECT_EQ(t.unreferenced, 2u);
-}

@@ -1,0 +1,287 @@
+// vcg_ext/geodesic_poisson_lod.h: checks, visiting order, radius and count runs, regions, `within`, CoreDiagonal.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include "distance_fields.h"
+#include "test_mesh.h"
+
+namespace {
+typedef test::TMesh::ScalarType Scalar;
+typedef vcg_ext::GeodesicPoissonLod<Scalar> Poisson;
+typedef Poisson::Domain Domain;
+typedef vcg::tri::Allocator<test::TMesh> Alloc;
+using vcg_ext::Field;
+
+void BumpyCloud(test::TMesh& m, int n = 30) {
+  test::HeightField(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+}
+
+Poisson::Param Radius(double r, uint64_t seed = 2) {
+  Poisson::Param p;
+  p.radius = r;
+  p.seed = seed;
+  return p;
+}
+
+Poisson::Param Count(size_t n, double tolerance = 0) {
+  Poisson::Param p;
+  p.sampleNum = n;
+  p.tolerance = tolerance;
+  p.seed = 2;
+  return p;
+}
+
+// The field of the InputError f throws ("no error" when none).
+template <class F>
+std::string FieldOf(F&& f) {
+  try {
+    f();
+  } catch (const vcg_ext::InputError& e) {
+    return vcg_ext::FieldId(e.field);
+  }
+  return "no error";
+}
+
+// The order as vertex indices.
+std::vector<int> Vertices(const Domain& d, const std::vector<int>& points) {
+  std::vector<int> v;
+  for (int i : points) v.push_back(d.points.vertIndex[size_t(i)]);
+  return v;
+}
+
+float Nearest(const std::vector<std::vector<float>>& dist, size_t i) {
+  float best = std::numeric_limits<float>::infinity();
+  for (const auto& from : dist) best = std::min(best, from[i]);
+  return best;
+}
+
+// Smallest distance between two of the samples.
+float Separation(const std::vector<std::vector<float>>& dist, const std::vector<int>& samples) {
+  float s = std::numeric_limits<float>::infinity();
+  for (size_t a = 0; a < samples.size(); ++a)
+    for (size_t b = 0; b < samples.size(); ++b)
+      if (a != b) s = std::min(s, dist[a][size_t(samples[b])]);
+  return s;
+}
+}  // namespace
+
+TEST(GeodesicPoissonLod, CheckRadiusTakesOnlyPositiveFiniteNumbers) {
+  for (double bad : {0.0, -0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()})
+    EXPECT_EQ(FieldOf([&] { Poisson::CheckRadius(bad); }), "Radius") << bad;
+  for (double good : {1e-30, 0.5, 1e30}) EXPECT_NO_THROW(Poisson::CheckRadius(good)) << good;
+}
+
+TEST(GeodesicPoissonLod, CheckParamReadsTheRadiusOnlyWithoutACount) {
+  // A count searches its own radius: the (default 0) radius is not read then, its tolerance is.
+  EXPECT_EQ(FieldOf([] { Poisson::CheckParam(Poisson::Param(), true); }), "Radius");
+  EXPECT_EQ(FieldOf([] { Poisson::CheckParam(Radius(0.1), false); }), "no error");
+  EXPECT_EQ(FieldOf([] { Poisson::CheckParam(Count(10), false); }), "no error");
+  for (double bad : {-0.1, 1.0, 2.0, std::nan("")})
+    EXPECT_EQ(FieldOf([&] { Poisson::CheckParam(Count(10, bad), true); }), "Tolerance") << bad;
+  Poisson::Param radius = Radius(0.1);
+  radius.tolerance = -1;  // read only with a count
+  EXPECT_EQ(FieldOf([&] { Poisson::CheckParam(radius, true); }), "no error");
+  // A mesh output needs faces, whichever size is asked.
+  for (Poisson::Param p : {Radius(0.1), Count(10)}) {
+    p.meshOutput = true;
+    EXPECT_EQ(FieldOf([&] { Poisson::CheckParam(p, false); }), "MeshOutput");
+    EXPECT_EQ(FieldOf([&] { Poisson::CheckParam(p, true); }), "no error");
+  }
+  // Compute on a domain built before checks them too.
+  test::TMesh m;
+  BumpyCloud(m, 10);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  EXPECT_EQ(FieldOf([&] { Poisson::Compute(d, Radius(-1)); }), "Radius");
+  EXPECT_EQ(FieldOf([&] { Poisson::Compute(d, Count(10, 1.0)); }), "Tolerance");
+}
+
+TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
+  test::TMesh m;
+  BumpyCloud(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const std::vector<int> order = Poisson::VisitingOrder(d, 5);
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], int(i)) << "not a permutation of the points";
+  EXPECT_EQ(Poisson::VisitingOrder(d, 5), order);
+  EXPECT_NE(Poisson::VisitingOrder(d, 6), order);
+  // `within` keeps the order of the points it names; repeats and indices past the input change nothing.
+  std::vector<int> within;
+  std::set<int> may;
+  for (int v = 0; v < int(m.vert.size()); v += 3) within.push_back(v), may.insert(v);
+  within.push_back(0);
+  within.push_back(int(m.vert.size()) + 50);
+  std::vector<int> want;
+  for (int v : Vertices(d, order))
+    if (may.count(v)) want.push_back(v);
+  EXPECT_EQ(Vertices(d, Poisson::VisitingOrder(d, 5, within)), want);
+  EXPECT_EQ(FieldOf([&] { Poisson::VisitingOrder(d, 5, {3, -1}); }), "Within");
+  // The same vertex has the same rank in the domain of a subset of the input (a tile, a cloud with deleted points).
+  test::TMesh fewer;
+  BumpyCloud(fewer);
+  for (size_t v = 0; v < fewer.vert.size(); v += 4) Alloc::DeleteVertex(fewer, fewer.vert[v]);
+  const Domain e = Domain::FromMesh(fewer, Domain::Param());
+  want.clear();
+  for (int v : Vertices(d, order))
+    if (v % 4 != 0) want.push_back(v);
+  EXPECT_EQ(Vertices(e, Poisson::VisitingOrder(e, 5)), want);
+}
+
+TEST(GeodesicPoissonLod, ARadiusGivesItsPoissonSetAndItsDiskRegions) {
+  test::TMesh m;
+  BumpyCloud(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const double radius = 0.08;
+  Poisson::Param p = Radius(radius);
+  p.regions = vcg_ext::Regions::Disk;
+  const Poisson::Result r = Poisson::Compute(d, p);
+  const std::vector<int> samples = Poisson::Sample(d, radius, p.seed).samples;
+  EXPECT_EQ(test::PointsOf(d, r.vertIndex), samples);
+  ASSERT_GT(samples.size(), 10u);
+  EXPECT_EQ(r.radius, radius);
+  EXPECT_EQ(r.coveringRadius, radius);
+  EXPECT_EQ(r.poissonCount, samples.size());
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_FALSE(r.trimmed);
+  const auto dist = test::DistanceFields(d, samples);
+  EXPECT_GT(Separation(dist, samples), radius);
+  // Each point's disk region is a sample at most the radius away.
+  ASSERT_EQ(r.regionOf.size(), m.vert.size());
+  for (size_t i = 0; i < d.size(); ++i) {
+    const int k = r.regionOf[size_t(d.points.vertIndex[i])];
+    ASSERT_GE(k, 0) << "point " << i;
+    EXPECT_LE(dist[size_t(k)][i], radius) << "point " << i;
+  }
+  // Voronoi regions: the nearest sample.
+  p.regions = vcg_ext::Regions::Voronoi;
+  const Poisson::Result v = Poisson::Compute(d, p);
+  EXPECT_EQ(v.vertIndex, r.vertIndex);
+  for (size_t i = 0; i < d.size(); ++i) {
+    const int k = v.regionOf[size_t(d.points.vertIndex[i])];
+    ASSERT_GE(k, 0) << "point " << i;
+    EXPECT_LE(dist[size_t(k)][i], Nearest(dist, i) * (1 + 1e-6f)) << "point " << i;
+  }
+}
+
+TEST(GeodesicPoissonLod, ACountGivesThatManySeparatedSamplesWithinTheCoveringRadius) {
+  test::TMesh m;
+  BumpyCloud(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  for (size_t n : {size_t(1), size_t(70), size_t(300)}) {
+    const Poisson::Param p = Count(n);
+    const Poisson::Result r = Poisson::Compute(d, p);
+    ASSERT_EQ(r.vertIndex.size(), n);
+    EXPECT_EQ(std::set<int>(r.vertIndex.begin(), r.vertIndex.end()).size(), n);
+    EXPECT_EQ(test::PointsOf(d, r.vertIndex), Poisson::SampleCount(d, p).samples);
+    EXPECT_GE(r.iterations, 1);
+    EXPECT_LE(r.iterations, p.maxIterations);
+    EXPECT_GE(r.poissonCount, n);
+    EXPECT_EQ(r.trimmed, r.poissonCount > n);
+    const std::vector<int> samples = test::PointsOf(d, r.vertIndex);
+    const auto dist = test::DistanceFields(d, samples);
+    if (r.radius > 0 && n > 1) EXPECT_GT(Separation(dist, samples), r.radius) << n;
+    double worst = 0;
+    for (size_t i = 0; i < d.size(); ++i) worst = std::max(worst, double(Nearest(dist, i)));
+    EXPECT_LE(worst, r.coveringRadius * (1 + 1e-5)) << n;
+    if (r.trimmed) EXPECT_NEAR(worst, r.coveringRadius, 1e-5 * worst) << n << ": trimmed, the radius is exact";
+  }
+  // A tolerance accepts an untrimmed set within it.
+  const Poisson::Result loose = Poisson::Compute(d, Count(100, 0.1));
+  EXPECT_GE(loose.vertIndex.size(), 90u);
+  EXPECT_LE(loose.vertIndex.size(), 110u);
+}
+
+TEST(GeodesicPoissonLod, WithinLimitsTheSamplesSoLevelsNest) {
+  test::TMesh m;
+  BumpyCloud(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const Poisson::Result fine = Poisson::Compute(d, Radius(0.05));
+  const std::set<int> fineSet(fine.vertIndex.begin(), fine.vertIndex.end());
+  Poisson::Param p = Radius(0.12);
+  p.within = fine.vertIndex;
+  const Poisson::Result coarse = Poisson::Compute(d, p);
+  ASSERT_GT(coarse.vertIndex.size(), 3u);
+  ASSERT_LT(coarse.vertIndex.size(), fine.vertIndex.size());
+  for (int v : coarse.vertIndex) EXPECT_TRUE(fineSet.count(v)) << "vertex " << v << " is no finer sample";
+  // Geodesics still run over every point: separated in the whole domain, and every finer sample covered.
+  const std::vector<int> samples = test::PointsOf(d, coarse.vertIndex);
+  const auto dist = test::DistanceFields(d, samples);
+  EXPECT_GT(Separation(dist, samples), 0.12);
+  for (int i : test::PointsOf(d, fine.vertIndex)) EXPECT_LE(Nearest(dist, size_t(i)), 0.12) << "point " << i;
+  // A count among them: exactly that many, and no more than they are.
+  Poisson::Param count = Count(20);
+  count.within = fine.vertIndex;
+  const Poisson::Result some = Poisson::Compute(d, count);
+  EXPECT_EQ(some.vertIndex.size(), 20u);
+  for (int v : some.vertIndex) EXPECT_TRUE(fineSet.count(v)) << "vertex " << v << " is no finer sample";
+  count.sampleNum = fine.vertIndex.size() + 1;
+  try {
+    Poisson::Compute(d, count);
+    ADD_FAILURE() << "no error";
+  } catch (const vcg_ext::InputError& e) {
+    EXPECT_EQ(e.field, Field::SampleNum);
+    EXPECT_NE(std::string(e.what()).find("(" + std::to_string(fine.vertIndex.size()) + ")"), std::string::npos)
+        << e.what();
+  }
+  // Every vertex named is as none named.
+  std::vector<int> all(m.vert.size());
+  for (size_t v = 0; v < all.size(); ++v) all[v] = int(v);
+  p.within = all;
+  Poisson::Param none = Radius(0.12);
+  EXPECT_EQ(Poisson::Compute(d, p).vertIndex, Poisson::Compute(d, none).vertIndex);
+}
+
+TEST(GeodesicPoissonLod, MeshOutputTriangulatesTheSameSamples) {
+  test::TMesh m;
+  test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  ASSERT_TRUE(d.meshGeodesics);
+  for (Poisson::Param p : {Radius(0.1), Count(60)}) {
+    const Poisson::Result points = Poisson::Compute(d, p);
+    EXPECT_TRUE(points.faces.empty());
+    p.meshOutput = true;
+    p.placement = vcg_ext::Placement::InputVertices;
+    const Poisson::Result mesh = Poisson::Compute(d, p);
+    EXPECT_EQ(mesh.vertIndex, points.vertIndex) << "triangulating changes no sample";
+    ASSERT_FALSE(mesh.faces.empty());
+    const int k = int(mesh.vertIndex.size());
+    for (const auto& f : mesh.faces) {
+      for (int c : f) EXPECT_TRUE(c >= 0 && c < k) << c;
+      EXPECT_TRUE(f[0] != f[1] && f[1] != f[2] && f[0] != f[2]);
+    }
+    for (int s = 0; s < k; ++s) EXPECT_EQ(mesh.position[size_t(s)], m.vert[size_t(mesh.vertIndex[size_t(s)])].cP());
+  }
+}
+
+TEST(GeodesicPoissonLod, CoreDiagonalLeavesOutAFewStrayPoints) {
+  typedef std::vector<vcg::Point3<Scalar>> Points;
+  auto wholeDiagonal = [](const Points& pos) {
+    vcg::Box3<Scalar> box;
+    for (const auto& q : pos) box.Add(q);
+    return double(box.Diag());
+  };
+  // A 10 x 11 x 9 lattice on the unit cube (990 points) and 10 points far away:
+  // the 1st to 99th percentiles on each axis are the lattice's 0 and 1.
+  Points pos;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 11; ++j)
+      for (int k = 0; k < 9; ++k) pos.emplace_back(Scalar(i / 9.0), Scalar(j / 10.0), Scalar(k / 8.0));
+  for (int s = 0; s < 10; ++s) pos.emplace_back(Scalar(1e6), Scalar(1e6 + s), Scalar(1e6));
+  EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pos), std::sqrt(3.0));
+  EXPECT_NEAR(Poisson::CoreDiagonal(pos, true), wholeDiagonal(pos), 1e-6 * wholeDiagonal(pos));
+  // Below 100 points, the whole box.
+  const Points few(pos.end() - 60, pos.end());
+  EXPECT_NEAR(Poisson::CoreDiagonal(few), wholeDiagonal(few), 1e-6 * wholeDiagonal(few));
+  // A core flat to one point (most points coincide) falls back to the whole box.
+  Points pile(500, vcg::Point3<Scalar>(0.5f, 0.5f, 0.5f));
+  pile.emplace_back(0, 0, 0);
+  pile.emplace_back(1, 2, 3);
+  pile.emplace_back(2, 0, 1);
+  EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pile), std::sqrt(17.0));
+}
