@@ -44,6 +44,17 @@ def ours(pymeshlab, name, n, output):
     return m.vertex_matrix(), m.face_matrix()
 
 
+def pyramid_level(pymeshlab, name, n):
+    """The level of n vertices of one pyramid run over every rate (each level's vertices fitted for it)."""
+    ms = load(pymeshlab, name)
+    total = ms.current_mesh().vertex_number()
+    counts = [int(round(rate * total)) for rate in RATES]
+    ms.apply_filter("generate_geodesic_lod_pyramid", levels=",".join(map(str, counts)),
+                    output="Triangle mesh (geodesic Delaunay)")
+    m = ms.mesh(1 + counts.index(n))  # the levels' layers follow the input, finest first
+    return m.vertex_matrix(), m.face_matrix()
+
+
 def restricted_vertices_our_triangles(pymeshlab, name, n):
     """QEC's input-vertex choice, triangulated by our geodesic Delaunay over the input's faces."""
     import geodesic_lod as gl
@@ -61,6 +72,7 @@ OUTPUTS = {"fitted vertices (default)": "Triangle mesh (geodesic Delaunay)",
            "input vertices": "Triangle mesh on input vertices"}
 METHODS = {
     **{f"ours, Poisson LOD, {k}": (lambda pm, name, n, v=v: ours(pm, name, n, v)) for k, v in OUTPUTS.items()},
+    "ours, LOD pyramid of every rate, fitted vertices (default)": pyramid_level,
     "MeshLab quadric edge collapse (defaults)": lambda pm, name, n: qec(pm, name, n, optimal=True),
     "quadric edge collapse on input vertices": lambda pm, name, n: qec(pm, name, n, optimal=False),
     "its vertices, our geodesic Delaunay": restricted_vertices_our_triangles,
@@ -93,7 +105,7 @@ def main():
     models, methods, out = MODELS, METHODS, "mesh_lod"
     if args.tune:
         models, out = TUNING_MODELS, "mesh_lod_tuning"
-        methods = {k: v for k, v in METHODS.items() if k.startswith(("ours", "MeshLab"))}
+        methods = {k: v for k, v in METHODS.items() if k.startswith(("ours, Poisson", "MeshLab"))}
     rows = []
     for model, name in models.items():
         src = load(pymeshlab, name)
@@ -117,6 +129,27 @@ def main():
         ("vertices", lambda r: str(r["vertices"])), ("mean (‰ diag)", lambda r: f"{r['mean']:.3f}"),
         ("max (‰ diag)", lambda r: f"{r['max']:.2f}"), ("non-manifold edges", lambda r: str(r["non_manifold_edges"])),
         ("boundary edges", lambda r: str(r["boundary_edges"])), ("time", lambda r: f"{r['seconds']:.1f} s")])
+    if not args.tune:
+        print_gap(rows)
+
+
+def print_gap(rows):
+    """Our gap to quadric edge collapse as ratios of the mean distance, split into three factors."""
+    mean = {(r["model"], r["rate"], r["method"]): r["mean"] for r in rows}
+    ours, kept = "ours, Poisson LOD, fitted vertices (default)", "ours, Poisson LOD, input vertices"
+    qec_, qec_kept = "MeshLab quadric edge collapse (defaults)", "quadric edge collapse on input vertices"
+    theirs_ours = "its vertices, our geodesic Delaunay"
+    columns = ["ours (default) / quadric collapse", "pyramid level / quadric collapse",
+               "ours on input vertices / quadric collapse", "vertex choice", "triangulation",
+               "input vertices only", "fitted / on input vertices"]
+    print("| model | rate | " + " | ".join(columns) + " |")
+    print("|" + "---|" * (len(columns) + 2))
+    for model, rate in dict.fromkeys((r["model"], r["rate"]) for r in rows if r["rate"] < 1):
+        m = lambda method: mean[(model, rate, method)]
+        ratios = [m(ours) / m(qec_), m("ours, LOD pyramid of every rate, fitted vertices (default)") / m(qec_),
+                  m(kept) / m(qec_), m(kept) / m(theirs_ours), m(theirs_ours) / m(qec_kept),
+                  m(qec_kept) / m(qec_), m(ours) / m(kept)]
+        print(f"| {model} | {rate:.0%} | " + " | ".join(f"{x:.2f}" for x in ratios) + " |")
 
 
 if __name__ == "__main__":

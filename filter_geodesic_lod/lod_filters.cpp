@@ -62,10 +62,8 @@ const Choices<Regions> kPoissonRegions{
     {{Regions::None, "None"}, {Regions::Disk, "Disk regions"}, {Regions::Voronoi, "Voronoi regions"}}};
 const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, "Voronoi regions"}}};
 using vcg_ext::Placement;
-// The pyramid's: its levels' vertices are input vertices. The samplers' add the placement other than their
-// default (vcg_ext's), as a third choice, so scripts written before it still name every parameter.
-const Choices<OutputKind> kOutputs{{{{false, Placement::InputVertices}, "Points"},
-                                    {{true, Placement::InputVertices}, "Triangle mesh (geodesic Delaunay)"}}};
+// A triangle mesh placed as vcg_ext's default, and the other placement as a third choice, so scripts written
+// before it still name every parameter.
 Choices<OutputKind> PlacedOutputs(Placement byDefault) {
   const Placement other = byDefault == Placement::Quadric ? Placement::InputVertices : Placement::Quadric;
   return {{{{false, byDefault}, "Points"},
@@ -74,6 +72,7 @@ Choices<OutputKind> PlacedOutputs(Placement byDefault) {
             other == Placement::Quadric ? "Triangle mesh, vertices fitted" : "Triangle mesh on input vertices"}}};
 }
 const Choices<OutputKind> kPlacedOutputs = PlacedOutputs(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().placement);
+const Choices<OutputKind> kPyramidOutputs = PlacedOutputs(vcg_ext::GeodesicLodPyramid<Scalarm>::Param().placement);
 
 // An empty layer is named as such before any count is read.
 void RequireVertices(const CMeshO& in) {
@@ -355,7 +354,7 @@ ParamSpec LevelsParam() {
 
 std::vector<ParamSpec> PyramidParams(const CMeshO&) {
   std::vector<ParamSpec> p{LevelsParam()};
-  AddDomainParams(p, kOutputs);
+  AddDomainParams(p, kPyramidOutputs);
   return p;
 }
 
@@ -366,12 +365,16 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     std::vector<LodLevel> levels = ParseLevels(src.text(kLevels), size_t(in.vn));
     for (const LodLevel& l : levels) p.counts.push_back(l.count);
     OutputKind output;
-    ReadDomainParams(src, p.domain, p.seed, kOutputs, output);
+    ReadDomainParams(src, p.domain, p.seed, kPyramidOutputs, output);
     p.meshOutput = output.mesh;
+    p.placement = output.placement;
     const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
-    for (size_t k = 0; k < r.levelFaces.size(); ++k) levels[k].faces = r.levelFaces[k];
+    for (size_t k = 0; k < r.levelFaces.size(); ++k) {
+      levels[k].faces = r.levelFaces[k];
+      levels[k].positions = r.levelPositions[k];
+    }
     run.levels = std::move(levels);
     run.coarsest = r.coarsest;
     run.useInputNormals = p.domain.useInputNormals;

@@ -67,6 +67,7 @@ struct LodLevel {
   size_t count = 0;
   QString suffix;                                  ///< appended to the input layer's name
   std::vector<std::array<int, 3>> faces;           ///< triangle-mesh output, indices into the samples
+  std::vector<vcg::Point3<Scalarm>> positions;     ///< its vertices' own placement; empty: the run's
 };
 
 /// What a filter made, ready for the output layers.

@@ -30,7 +30,8 @@ std::vector<LodLevel> OutputLevels(const LodRun& run) {
 QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& level, bool first, CMeshO& out) {
   return Guarded([&] {
     const auto& r = run.result;
-    if (r.position.size() < level.count || r.normal.size() < level.count)
+    if (r.position.size() < level.count || r.normal.size() < level.count ||
+        (!level.positions.empty() && level.positions.size() != level.count))
       throw std::logic_error("a LOD run without the positions or normals of its samples");
     const size_t base = out.vert.size();
     const std::vector<int> chosen(r.vertIndex.begin(), r.vertIndex.begin() + level.count);
@@ -38,7 +39,8 @@ QStringList FillLodLayer(const CMeshO& in, const LodRun& run, const LodLevel& le
     for (size_t k = 0; k < level.count; ++k) {
       auto& n = out.vert[base + k].N();
       if (!run.useInputNormals || !vcg_ext::PointNormals<Scalarm>::IsValid(n)) n = r.normal[k];
-      out.vert[base + k].P() = r.position[k];  // the input's, or placed to fit the surface
+      // The input's, or placed to fit the surface (at this level's spacing, when it has its own).
+      out.vert[base + k].P() = level.positions.empty() ? r.position[k] : level.positions[k];
     }
     if (run.fpsOrder) {
       auto order = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(out, "fps_order");

@@ -30,11 +30,14 @@ class GeodesicLodPyramid {
     int maxIterations = 24;      ///< Poisson runs at most for the finest level
     uint64_t seed = 0;
     bool meshOutput = false;     ///< triangulate every level (layers with faces only)
+    Placement placement = typename GeodesicPoissonLod<Scalar>::Param().placement;  ///< each level's vertices (mesh output)
   };
   struct Result : LodResult<Scalar> {
     std::vector<size_t> counts;          ///< level k is the first counts[k] samples of vertIndex
     std::vector<int> coarsest;           ///< per sample: the coarsest level holding it (0 = finest only)
     std::vector<std::vector<std::array<int, 3>>> levelFaces;  ///< mesh output per level, indices into vertIndex
+    /// Mesh output per level: its vertices' positions (the first counts[k] samples), placed for that level.
+    std::vector<std::vector<vcg::Point3<Scalar>>> levelPositions;
     double radius = 0;                   ///< radius of the finest level's Poisson set
     int iterations = 0;                  ///< Poisson runs for the finest level
   };
@@ -79,10 +82,15 @@ class GeodesicLodPyramid {
     if (p.meshOutput)
       for (size_t k = 0; k < p.counts.size(); ++k) {
         const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
-        r.levelFaces.push_back(
-            GeodesicDelaunay<Scalar>::Compute(d.triangles, GeodesicDelaunay<Scalar>::VoronoiOwners(d, level)));
+        const std::vector<int> owner = GeodesicDelaunay<Scalar>::VoronoiOwners(d, level);
+        r.levelFaces.push_back(GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, owner, level));
+        r.levelPositions.push_back(
+            p.placement == Placement::Quadric
+                ? QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, owner, level)
+                : std::vector<vcg::Point3<Scalar>>(r.position.begin(), r.position.begin() + p.counts[k]));
         progress(83 + 17 * (k + 1) / p.counts.size(), 100, "Triangulating the levels");
       }
+    if (p.meshOutput) r.position = r.levelPositions[0];
     return r;
   }
 

@@ -93,6 +93,9 @@ nb::dict PyramidDict(const Pyramid::Result& r) {
   nb::list levelFaces;
   for (const auto& f : r.levelFaces) levelFaces.append(Faces(f));
   d["level_faces"] = levelFaces;
+  nb::list levelPositions;
+  for (const auto& p : r.levelPositions) levelPositions.append(Rows3(p));
+  d["level_positions"] = levelPositions;
   d["radius"] = r.radius;
   d["iterations"] = r.iterations;
   return d;
@@ -269,7 +272,8 @@ NB_MODULE(_core, m) {
       .def_rw("counts", &Pyramid::Param::counts)
       .def_rw("max_iterations", &Pyramid::Param::maxIterations)
       .def_rw("seed", &Pyramid::Param::seed)
-      .def_rw("mesh_output", &Pyramid::Param::meshOutput);
+      .def_rw("mesh_output", &Pyramid::Param::meshOutput)
+      .def_rw("placement", &Pyramid::Param::placement);
 
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;

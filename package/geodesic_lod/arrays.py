@@ -36,36 +36,37 @@ DEFAULT_METRIC = _name_of(METRICS, DOMAIN_DEFAULTS.metric)
 DEFAULT_GEODESICS = _name_of(GEODESICS, DOMAIN_DEFAULTS.mode)
 
 
+# The result classes' docstrings, with their Attributes sections, are docstrings.TEXTS' (by class name).
+@documented
 @dataclass
 class Lod:
-    """What every sampler returns. Arrays are new numpy arrays; the input is never modified."""
-    indices: np.ndarray            #: int64 rows of the input chosen, in sampling order
-    normals: np.ndarray            #: (k, 3) n_i of each sample (the input's, or estimated)
-    curvature: np.ndarray          #: v_i (eq. 1) of each sample
-    faces: np.ndarray              #: (f, 3) triangles over the samples (mesh_output), else empty
-    positions: np.ndarray          #: (k, 3) each sample's position: the input's, or fitted (placement)
-    region_of: np.ndarray          #: per input row, the rank of its sample's region (-1: none); empty unless asked
-    point_count: int               #: points sampled from
-    estimated_normals: int         #: normals estimated from the points
-    components: int                #: connected parts of the geodesic domain
-    left_out: int                  #: vertices in no triangle (mesh geodesics do not sample them)
-    mesh_geodesics: bool           #: fast marching over the faces (else the point graph or Euclidean)
+    indices: np.ndarray
+    normals: np.ndarray
+    curvature: np.ndarray
+    faces: np.ndarray
+    positions: np.ndarray
+    region_of: np.ndarray
+    point_count: int
+    estimated_normals: int
+    components: int
+    left_out: int
+    mesh_geodesics: bool
 
 
+@documented
 @dataclass
 class PoissonLod(Lod):
-    """What ``poisson_lod`` returns: a Lod and its Poisson set's radii."""
-    radius: float = 0.0            #: radius of the Poisson set (absolute, in the metric)
-    covering_radius: float = 0.0   #: every point lies within it of a sample
-    iterations: int = 1            #: Poisson runs (more than one when a count was asked)
-    poisson_count: int = 0         #: samples of the Poisson set before a trim
-    trimmed: bool = False          #: thinned to the count (the samples nearest to others taken out first)
+    radius: float = 0.0
+    covering_radius: float = 0.0
+    iterations: int = 1
+    poisson_count: int = 0
+    trimmed: bool = False
 
 
+@documented
 @dataclass
 class FpsLod(Lod):
-    """What ``fps_lod`` returns: a Lod in farthest-point order; its first k samples are the k-sample LOD."""
-    covering_radii: np.ndarray = field(default_factory=lambda: np.empty(0))  #: [k]: of the first k+1 samples
+    covering_radii: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     @property
     def covering_radius(self) -> float:
@@ -73,13 +74,14 @@ class FpsLod(Lod):
         return float(self.covering_radii[-1])
 
 
+@documented
 @dataclass
 class LodPyramid(Lod):
-    """What ``lod_pyramid`` returns: a Lod whose first ``counts[k]`` samples are level k."""
-    counts: list = field(default_factory=list)        #: samples per level, finest first
-    level_faces: list = field(default_factory=list)   #: per level, triangles over its samples (mesh_output)
-    radius: float = 0.0                               #: radius of the finest level's Poisson set
-    iterations: int = 0                               #: Poisson runs for the finest level
+    counts: list = field(default_factory=list)
+    level_faces: list = field(default_factory=list)
+    level_positions: list = field(default_factory=list)
+    radius: float = 0.0
+    iterations: int = 0
 
     @property
     def levels(self) -> list:
@@ -87,12 +89,12 @@ class LodPyramid(Lod):
         return [self.indices[:c] for c in self.counts]
 
 
+@documented
 @dataclass
 class NormalVariation:
-    """What ``normal_variation`` returns, per input row."""
-    curvature: np.ndarray          #: v_i (eq. 1) per input row
-    normals: np.ndarray            #: (n, 3) n_i per input row
-    estimated_normals: int         #: normals estimated from the points
+    curvature: np.ndarray
+    normals: np.ndarray
+    estimated_normals: int
 
 
 def _float_array(a, name: str, allow_none: bool = False):
@@ -240,7 +242,25 @@ def too_few_points(n: int, neighbours: int) -> Optional[str]:
 @dataclass(frozen=True)
 class DomainOptions:
     """The metric's and the geodesics' arguments, as every sampler takes them (see poisson_lod); ``param``
-    checks them into the core's DomainParam."""
+    checks them into the core's DomainParam.
+
+    Attributes
+    ----------
+    metric : {'curvature-density', 'eq3', 'geodesic', 'euclidean'}
+        As ``poisson_lod``'s.
+    geodesics : {'auto', 'mesh', 'point-graph'}
+        As ``poisson_lod``'s.
+    adaptivity : float
+        a of the curvature-density metric, no unit.
+    curvature_exponent : float
+        c of eq. 3, no unit.
+    normal_neighbors : int
+        k of the normals' plane fits and of eq. 1, a count of points.
+    graph_neighbors : int
+        k of the point graph, a count of points.
+    recompute_normals : bool
+        Estimate every normal, ignoring the input's.
+    """
     metric: str = DEFAULT_METRIC
     geodesics: str = DEFAULT_GEODESICS
     adaptivity: float = DOMAIN_DEFAULTS.adaptivity
@@ -272,11 +292,11 @@ class DomainOptions:
         return d
 
 
-def placement_of(placement, mesh_output):
-    """The core's Placement for a triangle-mesh output's vertices (None: the product default; 'fitted'
+def placement_of(placement, mesh_output, default):
+    """The core's Placement for a triangle-mesh output's vertices (None: `default`, the sampler's own; 'fitted'
     needs mesh_output)."""
     if placement is None:
-        return _core.PoissonParam().placement
+        return default
     value = _choice(placement, PLACEMENTS, "placement")
     if value != _core.Placement.InputVertices and not mesh_output:
         raise InputError(f"placement={placement!r} places a triangle mesh's vertices: it needs mesh_output=True")
@@ -356,7 +376,7 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
     param, threads = poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
                                     seed, within, threads, progress, lambda: diagonal_of(p))
     param.domain = domain
-    param.placement = placement_of(placement, mesh_output)
+    param.placement = placement_of(placement, mesh_output, param.placement)
     return result_of(PoissonLod, call_core(_core.poisson_lod, p, n, f, param, threads, progress))
 
 
@@ -415,7 +435,7 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
     domain = options.param(p.shape[0], has_faces)
     param, threads = fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
     param.domain = domain
-    param.placement = placement_of(placement, mesh_output)
+    param.placement = placement_of(placement, mesh_output, param.placement)
     return result_of(FpsLod, call_core(_core.fps_lod, p, n, f, param, threads, progress))
 
 
@@ -469,24 +489,26 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEF
                 adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-                seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
+                placement: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
+                progress: Progress = None) -> LodPyramid:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     counts = level_counts(levels, p.shape[0])
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
     domain = options.param(p.shape[0], has_faces)
-    param, threads = pyramid_param(counts, has_faces, mesh_output, seed, threads, progress)
+    param, threads = pyramid_param(counts, has_faces, mesh_output, placement, seed, threads, progress)
     param.domain = domain
     return result_of(LodPyramid, call_core(_core.lod_pyramid, p, n, f, param, threads, progress))
 
 
-def pyramid_param(counts, has_faces, mesh_output, seed, threads, progress):
+def pyramid_param(counts, has_faces, mesh_output, placement, seed, threads, progress):
     """lod_pyramid's sampling arguments checked, as a PyramidParam without its domain; and the threads."""
     param = _core.PyramidParam()
     param.counts = counts
     param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
+    param.placement = placement_of(placement, mesh_output, param.placement)
     return param, threads
 
 

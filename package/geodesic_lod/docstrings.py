@@ -46,9 +46,10 @@ MESH_OUTPUT = """mesh_output : bool
         ``faces``. Default False."""
 
 PLACEMENT = f"""placement : {{'input', 'fitted'}}, optional
-        With ``mesh_output``: where the mesh's vertices go, in ``positions`` of the result: the input's
-        points, or fitted, each moved to the point nearest (in least squares) to the planes of the input's
-        triangles in its geodesic Voronoi region, never across a border. Default (None):
+        With ``mesh_output``: where the mesh's vertices go, in ``positions`` of the result (a pyramid's
+        levels: ``level_positions``, each placed for its own level): the input's points, or fitted, each
+        moved to the point nearest (in least squares) to the planes of the input's triangles in its
+        geodesic Voronoi region, never across a border. Default (None):
         ``'{'input' if _core.PoissonParam().placement == _core.Placement.InputVertices else 'fitted'}'`` with
         ``mesh_output``; without it the positions are the input's."""
 
@@ -77,6 +78,42 @@ POISSON_EXAMPLE = """Examples
     >>> lod = gl.poisson_lod(p, count=100)
     >>> len(lod.indices), lod.radius > 0
     (100, True)"""
+
+# The attributes every sampler's result has (k: the samples, n: the input's rows).
+LOD_SAMPLES = """indices : (k,) ndarray of int64
+        Rows of the input chosen, in sampling order.
+    normals : (k, 3) ndarray of float64
+        n_i of each sample, of unit length: the input's, or estimated.
+    curvature : (k,) ndarray of float64
+        v_i (eq. 1) of each sample: the normal variation around it, no unit, 0 on a plane, at most 1."""
+
+LOD_MESH = """faces : (f, 3) ndarray of int64
+        With ``mesh_output``: the triangles over the samples, as rows of ``indices`` (0 to k - 1); else (0, 3).
+    positions : (k, 3) ndarray of float64
+        Each sample's position, in the input's units: its input point, or fitted (``placement``)."""
+
+LOD_REGIONS = """region_of : (n,) ndarray of int64
+        With ``regions``: per input row, the rank in ``indices`` of the sample whose region holds it (-1:
+        none); else empty."""
+
+LOD_DOMAIN = """point_count : int
+        Points sampled from.
+    estimated_normals : int
+        Normals estimated from the points (the others are the input's).
+    components : int
+        Connected parts of the geodesic domain (0 in the Euclidean metric).
+    left_out : int
+        Input rows in no triangle: mesh geodesics do not sample them.
+    mesh_geodesics : bool
+        Whether geodesics ran over the faces (fast marching), else on the point graph or in straight lines."""
+
+# An Attributes section opening with the attributes of every sampler's result.
+LOD_ATTRIBUTES = f"""Attributes
+    ----------
+    {LOD_SAMPLES}
+    {LOD_MESH}
+    {LOD_REGIONS}
+    {LOD_DOMAIN}"""
 
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
@@ -150,6 +187,7 @@ TEXTS = {
     {FACES}
     {METRIC}
     {MESH_OUTPUT}
+    {PLACEMENT}
     {RUN}
 
     Returns
@@ -236,6 +274,7 @@ TEXTS = {
     levels : sequence of int or str, or str
         As in ``lod_pyramid``. Default ``{_core.DEFAULT_LEVELS!r}``.
     {MESH_OUTPUT}
+    {PLACEMENT}
     {RUN}
 
     {RAISES}
@@ -411,6 +450,97 @@ TEXTS = {
         As in ``poisson_lod``.
 
     {RAISES}
+    """,
+    "Lod": f"""What every sampler returns. Arrays are new numpy arrays; the input is never modified.
+
+    {LOD_ATTRIBUTES}
+    """,
+    "PoissonLod": f"""What ``poisson_lod`` returns: a Lod and its Poisson set's radii.
+
+    {LOD_ATTRIBUTES}
+    radius : float
+        The radius of the Poisson set the samples are (or were trimmed from), in the metric: the input's
+        units, stretched by the metric's weights. 0 when a count was trimmed from all the points.
+    covering_radius : float
+        Every point lies within this distance in the metric (the input's units, weighted) of a sample: the
+        exact largest one when trimmed, else ``radius``.
+    iterations : int
+        Poisson runs made (more than one when a count was asked).
+    poisson_count : int
+        Samples of the Poisson set before a trim.
+    trimmed : bool
+        Whether the set was thinned to the count (the samples nearest to others taken out first).
+    """,
+    "FpsLod": f"""What ``fps_lod`` returns: a Lod in farthest-point order; its first k samples are the k-sample LOD.
+
+    {LOD_ATTRIBUTES}
+    covering_radii : (k,) ndarray of float64
+        ``covering_radii[j]``: the largest distance in the metric (the input's units, weighted) from a
+        point to the first j + 1 samples; never rising, infinite while a connected part has no sample.
+    covering_radius : float
+        ``covering_radii[-1]``: every point lies within it of a sample (read-only).
+    """,
+    "LodPyramid": f"""What ``lod_pyramid`` returns: a Lod whose first ``counts[j]`` samples are level j.
+
+    Attributes
+    ----------
+    {LOD_SAMPLES}
+    faces : (0, 3) ndarray of int64
+        Empty: each level's triangles are in ``level_faces``.
+    positions : (k, 3) ndarray of float64
+        Each sample's position, in the input's units: its input point, or with ``mesh_output`` the finest
+        level's ``level_positions``.
+    region_of : (0,) ndarray of int64
+        Empty: a pyramid reports no regions.
+    {LOD_DOMAIN}
+    counts : list of int
+        Samples per level, finest first, strictly decreasing.
+    level_faces : list of (f_j, 3) ndarray of int64
+        With ``mesh_output``: per level, its triangles, as rows of ``indices`` (below ``counts[j]``); else
+        empty.
+    level_positions : list of (counts[j], 3) ndarray of float64
+        With ``mesh_output``: per level, its vertices' positions in the input's units, placed for that level
+        (``placement``); else empty.
+    radius : float
+        The radius of the finest level's Poisson set, in the metric (the input's units, weighted).
+    iterations : int
+        Poisson runs made for the finest level.
+    levels : list of (counts[j],) ndarray of int64
+        Per level, finest first, its rows of the input, ``indices[:counts[j]]``: each a subset of the finer
+        ones (read-only).
+    """,
+    "NormalVariation": """What ``normal_variation`` returns, per input row (n of them).
+
+    Attributes
+    ----------
+    curvature : (n,) ndarray of float64
+        v_i (eq. 1): the normal variation around each point, no unit, 0 on a plane, at most 1.
+    normals : (n, 3) ndarray of float64
+        n_i, of unit length: the input's, or estimated.
+    estimated_normals : int
+        Normals estimated from the points (the others are the input's).
+    """,
+    "HeightFieldLod": """A height-field LOD; every prefix of ``indices`` from ``hull_size`` on is an LOD of its own
+    (k: the samples).
+
+    Attributes
+    ----------
+    indices : (k,) ndarray of int64
+        Rows of the input chosen: the corners of its convex hull in x, y, then in insertion order.
+    errors : (k,) ndarray of float64
+        Per sample, its height above or below the TIN of the samples before it, in the input's z units: the
+        error its insertion removed (0 for the hull's corners).
+    faces : (f, 3) ndarray of int64
+        The Delaunay TIN in x, y of all samples, as rows of ``indices``, counter-clockwise seen from +z.
+    hull_size : int
+        Corners of the points' convex hull in x, y: the first samples.
+    area : float
+        The area of that hull, in the input's x, y units squared.
+    separated_prefix : int
+        The samples up to this many keep their disks: all of them, unless the points cover too little of
+        their hull to hold that many disks (then the rest go by error alone).
+    points : (n, 3) ndarray of float32 or float64
+        The input points (not copied), for ``tin``.
     """,
 }
 

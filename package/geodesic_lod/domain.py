@@ -52,7 +52,7 @@ class Domain:
         param, threads = poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
                                         mesh_output, regions, seed, within, threads, progress,
                                         lambda: self._diagonal)
-        param.placement = placement_of(placement, mesh_output)
+        param.placement = placement_of(placement, mesh_output, param.placement)
         return result_of(PoissonLod, call_core(_core.poisson_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.fps_lod")
@@ -61,13 +61,13 @@ class Domain:
                 progress: Progress = None) -> FpsLod:
         param, threads = fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
                                     threads, progress)
-        param.placement = placement_of(placement, mesh_output)
+        param.placement = placement_of(placement, mesh_output, param.placement)
         return result_of(FpsLod, call_core(_core.fps_on, self._built, param, threads, progress))
 
     @functools.partial(documented, name="Domain.lod_pyramid")
     def lod_pyramid(self, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
-                    mesh_output: bool = False, seed: int = 0, threads: Optional[int] = None,
-                    progress: Progress = None) -> LodPyramid:
+                    mesh_output: bool = False, placement: Optional[str] = None, seed: int = 0,
+                    threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
         param, threads = pyramid_param(level_counts(levels, self.point_count), self._built.has_faces,
-                                        mesh_output, seed, threads, progress)
+                                        mesh_output, placement, seed, threads, progress)
         return result_of(LodPyramid, call_core(_core.pyramid_on, self._built, param, threads, progress))

@@ -17,17 +17,16 @@ HEIGHT_FIELD_DEFAULTS = _core.HeightFieldParam()
 SEPARATION_SPACES = {"xyz": True, "xy": False}  # the disks in x, y, z or in x, y (the core's in_height)
 
 
+@documented  # its Attributes are docstrings.TEXTS'
 @dataclass
 class HeightFieldLod:
-    """A height-field LOD; every prefix of ``indices`` from ``hull_size`` on is an LOD of its own."""
-    indices: np.ndarray            #: int64 rows chosen: the hull's corners, then in insertion order
-    errors: np.ndarray             #: per sample, its height above or below the TIN of those before it
-    faces: np.ndarray              #: (f, 3) the Delaunay TIN in x, y of all samples, rows of ``indices``
-    hull_size: int                 #: corners of the points' convex hull in x, y (the first samples)
-    area: float                    #: of that hull
-    separated_prefix: int          #: the samples up to this many keep their disks (all, unless the points
-    #: cover too little of their hull)
-    points: np.ndarray = field(repr=False, default=None)  #: the input (not copied)
+    indices: np.ndarray
+    errors: np.ndarray
+    faces: np.ndarray
+    hull_size: int
+    area: float
+    separated_prefix: int
+    points: np.ndarray = field(repr=False, default=None)
 
     @functools.partial(documented, name="HeightFieldLod.tin")
     def tin(self, k: int) -> np.ndarray:

@@ -108,6 +108,15 @@ def test_pyramid_triangulates_every_level(plugin):
     for i, n in zip(range(1, 4), (400, 100, 30)):
         assert ms.mesh(i).vertex_number() == n
         assert ms.mesh(i).face_number() >= n - 2
+    # Fitted to the surface, each level for its own spacing: a sample shared by two levels sits apart in them.
+    inputs = {tuple(p) for p in pts}
+    placed = [ms.mesh(i).vertex_matrix() for i in range(1, 4)]
+    assert sum(tuple(p) not in inputs for p in placed[2]) > 0
+    assert not np.array_equal(placed[0][:30], placed[2])
+    ms.set_current_mesh(0)
+    ms.apply_filter(PYRAMID, levels="400,100,30", output="Triangle mesh on input vertices")
+    for i in range(4, 7):
+        assert all(tuple(p) in inputs for p in ms.mesh(i).vertex_matrix())
 
 
 def snapshot(m):

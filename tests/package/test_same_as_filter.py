@@ -83,6 +83,22 @@ def test_mesh_geodesics_and_triangles():
     np.testing.assert_array_equal(filter_rows(ms, pts), lod.indices)
 
 
+def test_pyramid_mesh_levels():
+    pts, faces = grid_mesh(35)
+    ms = layer(pts, faces=faces)
+    normals = ms.current_mesh().vertex_normal_matrix()
+    ms.generate_geodesic_lod_pyramid(levels="200,60,15", output="Triangle mesh (geodesic Delaunay)")
+    pyr = gl.lod_pyramid(pts, normals, faces=faces, levels=[200, 60, 15], mesh_output=True)
+    outputs = [ms.mesh(i) for i in range(1, ms.mesh_number())]
+    assert len(outputs) == len(pyr.level_positions) == 3
+    for out, positions, level_faces in zip(outputs, pyr.level_positions, pyr.level_faces):
+        np.testing.assert_array_equal(out.vertex_matrix(), positions)  # each level fitted alike
+        np.testing.assert_array_equal(out.face_matrix(), level_faces)
+    kept = gl.lod_pyramid(pts, normals, faces=faces, levels=[200, 60, 15], mesh_output=True, placement="input")
+    for positions, level in zip(kept.level_positions, kept.levels):
+        np.testing.assert_array_equal(positions, pts[level])
+
+
 def test_normal_variation(cloud):
     ms = layer(cloud)
     ms.compute_scalar_by_normal_variation(normalneighbors=15)

@@ -1,6 +1,6 @@
 // vcg_ext/geodesic_lod_pyramid.h: exact counts per level, levels nested and
-// each spread evenly, coarsest-level labels, one triangulation per level, bad
-// level lists.
+// each spread evenly, coarsest-level labels, one triangulation and placement
+// per level, bad level lists.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <limits>
@@ -86,6 +86,39 @@ TEST(LodPyramid, EveryLevelGetsItsOwnTriangulation) {
     for (const auto& f : r.levelFaces[k])
       for (int c : f) EXPECT_LT(c, int(p.counts[k])) << "a face of level " << k << " uses a finer sample";
   }
+}
+
+// Mean height gained by the first `n` samples' placed positions over their input points.
+double MeanRise(const test::TMesh& m, const std::vector<int>& vertIndex, const std::vector<vcg::Point3f>& placed,
+                size_t n) {
+  double rise = 0;
+  for (size_t i = 0; i < n; ++i) rise += placed[i][2] - m.vert[size_t(vertIndex[i])].cP()[2];
+  return rise / double(n);
+}
+
+TEST(LodPyramid, EachMeshLevelIsPlacedForItsOwnSpacing) {
+  // A dome: a LOD's chords pass under it, so fitted vertices rise, and more for longer chords.
+  test::TMesh m;
+  test::GridMesh(m, 40, [](float x, float y) { return -((x - .5f) * (x - .5f) + (y - .5f) * (y - .5f)); });
+  Pyramid::Param p = Levels({400, 100, 25});
+  p.meshOutput = true;
+  const auto fitted = vcg_ext::MeshLod<Pyramid>(m, p);
+  ASSERT_EQ(fitted.levelPositions.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    ASSERT_EQ(fitted.levelPositions[k].size(), p.counts[k]) << "level " << k;
+    EXPECT_GT(MeanRise(m, fitted.vertIndex, fitted.levelPositions[k], p.counts[k]), 0) << "level " << k;
+  }
+  EXPECT_EQ(fitted.position, fitted.levelPositions[0]);
+  EXPECT_GT(MeanRise(m, fitted.vertIndex, fitted.levelPositions[2], 25),
+            MeanRise(m, fitted.vertIndex, fitted.levelPositions[0], 25))
+      << "the coarsest level's shared samples are placed as the finest level's";
+
+  p.placement = vcg_ext::Placement::InputVertices;
+  const auto kept = vcg_ext::MeshLod<Pyramid>(m, p);
+  EXPECT_EQ(kept.vertIndex, fitted.vertIndex);
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t i = 0; i < p.counts[k]; ++i)
+      ASSERT_EQ(kept.levelPositions[k][i], m.vert[size_t(kept.vertIndex[i])].cP()) << "level " << k;
 }
 
 TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
