@@ -490,7 +490,7 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_model
         "Times are the time to the count, as a user waits for it: every run of a method's radius or size search "
         "is counted (ours search inside the filter call; MeshLab's samplers by the same radius search, each "
         "run counted; CGAL's and Open3D's searches in the peer tool, each run counted; FPS methods take the "
-        "count in one run). Ours run on all threads (OpenMP), the others as their tools run them (MeshLab's and "
+        "count in one run). Ours run on all threads (a worker pool), the others as their tools run them (MeshLab's and "
         f"CGAL's on one thread), on a machine with {os.cpu_count()} cores shared with other work "
         f"({platform.machine()}; {load_text(runs)}). "
         "Ours and MeshLab's adaptive Poisson include their curvature computation. " + total_text(runs),
