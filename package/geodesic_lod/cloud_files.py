@@ -14,14 +14,31 @@ from . import las_files, point_files
 
 @dataclass
 class Source:
-    """One input file as the tiles see it: where its ids start, its bounds and what its records are."""
+    """One input file as the tiles see it: where its ids start, its bounds and what its records are.
+
+    Attributes
+    ----------
+    path : str
+        The file.
+    kind : {'ply', 'las', 'npy'}
+        Its format.
+    count : int
+        Its points.
+    first_id : int
+        The id of its first point: ids number the points of all the files together, in file order.
+    lo, hi : (3,) ndarray of float64
+        Its points' bounds, in the input's units (a LAS file's header bounds).
+    signature : tuple
+        What must match across files to write them together (a LAS file's point format, scales, offsets,
+        CRS; other formats' fields).
+    """
     path: str
     kind: str
     count: int
     first_id: int
     lo: np.ndarray
     hi: np.ndarray
-    signature: tuple = field(default_factory=tuple)  #: what must match across files to write them together
+    signature: tuple = field(default_factory=tuple)
 
 
 def _las_signature(source: las_files.LasSource) -> tuple:

@@ -39,15 +39,36 @@ WORK = ".levels"   # each level's samples per tile, while the next level is made
 
 @dataclass
 class Job:
-    """What every tile task needs: the files, the cloud, the radius and the sampler's parameters."""
+    """What every tile task needs: the files, the cloud, the radius and the sampler's parameters.
+
+    Attributes
+    ----------
+    srcs : list of cloud_files.Source
+        The input files, in id order.
+    cloud : tiles.Box
+        The box of all their points.
+    radius : float
+        The Poisson disks' radius, a length in the metric (the input's units, weighted).
+    seed : int
+        Seed of the visiting order.
+    domain : dict
+        DomainParam fields by name, as plain values so that the job pickles.
+    threads : int or None
+        Threads per task (None: all the worker machine's cores).
+    halo : float
+        The width of the first halo a tile reads around its core, in the input's units.
+    within : (str, list of tiles.Box) or None
+        Nested levels: the folder of the finer level's samples (one .npy of ids per tile) and its tiles'
+        boxes; None: every point may become a sample.
+    """
     srcs: list
     cloud: tiles.Box
     radius: float
     seed: int
-    domain: dict          #: DomainParam fields (plain values, so the job pickles)
+    domain: dict
     threads: Optional[int]
     halo: float
-    within: Optional[tuple] = None  #: (folder, boxes): the finer level's samples, one .npy of ids per tile
+    within: Optional[tuple] = None
 
     def domain_param(self):
         d = _core.DomainParam()

@@ -30,10 +30,20 @@ WRITABLE_VERSIONS = ("1.1", "1.2", "1.3", "1.4")
 
 @dataclass
 class LasSource:
-    """What a LOD of a LAS/LAZ file is written with: its header and its own VLR and EVLR bytes."""
-    header: object   #: laspy.LasHeader
-    vlrs: list       #: laspy.VLR, the input's bytes, in file order
-    evlrs: list      #: likewise, the extended records
+    """What a LOD of a LAS/LAZ file is written with: its header and its own VLR and EVLR bytes.
+
+    Attributes
+    ----------
+    header : laspy.LasHeader
+        The input's header.
+    vlrs : list of laspy.VLR
+        Its variable-length records, the input's bytes, in file order.
+    evlrs : list of laspy.VLR
+        Likewise, its extended variable-length records.
+    """
+    header: object
+    vlrs: list
+    evlrs: list
 
     def crs(self) -> bytes:
         """The bytes of the coordinate reference system's records (GeoTIFF keys and WKT)."""

@@ -25,14 +25,32 @@ WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".
 
 @dataclass
 class PointFile:
-    """The coordinates the sampler needs, and the rows they came from, for writing the LOD."""
+    """The coordinates the sampler needs, and the rows they came from, for writing the LOD.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file.
+    kind : {'ply', 'las', 'npy'}
+        Its format.
+    points : (n, 3) ndarray of float64
+        Its coordinates, in the file's units (LAS: scaled and offset).
+    normals : (n, 3) ndarray of float or None
+        Its normals, or None when the file has none.
+    faces : (m, 3) ndarray of int or None
+        A PLY mesh's triangles as vertex rows, else None.
+    rows : PLY vertex table, LAS point records or ndarray
+        The rows the points came from, written out for the chosen ones.
+    source : object
+        The parsed PLY or LAS file (header, comments, VLRs).
+    """
     path: pathlib.Path
-    kind: str                          #: 'ply', 'las' or 'npy'
-    points: np.ndarray                 #: (n, 3) float64 (LAS: scaled and offset)
-    normals: Optional[np.ndarray]      #: (n, 3), or None when the file has none
-    faces: Optional[np.ndarray]        #: (m, 3) vertex indices of a PLY mesh, else None
-    rows: Any                          #: PLY vertex table, LAS point records or the .npy array
-    source: Any                        #: the parsed PLY or LAS file (header, comments, VLRs)
+    kind: str
+    points: np.ndarray
+    normals: Optional[np.ndarray]
+    faces: Optional[np.ndarray]
+    rows: Any
+    source: Any
 
 
 def format_of(path, role: str = "input") -> str:

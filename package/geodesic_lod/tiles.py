@@ -26,7 +26,13 @@ OUT, IN, OPEN = _core.TILE_OUT, _core.TILE_IN, _core.TILE_OPEN
 class Box:
     """An axis-aligned box; a tile's core holds the points with lo <= x < hi, without a bound on the
     sides where the tile meets the cloud's box (a point a rounding beyond a file's header bounds still
-    belongs to a tile), so the tiles' cores partition the cloud."""
+    belongs to a tile), so the tiles' cores partition the cloud.
+
+    Attributes
+    ----------
+    lo, hi : (3,) ndarray of float64
+        Its lowest and highest corner, in the input's units.
+    """
     lo: np.ndarray
     hi: np.ndarray
 
@@ -67,15 +73,35 @@ def plan(lo: np.ndarray, hi: np.ndarray, total: int, tile_points: int) -> tuple:
 
 @dataclass
 class Decision:
-    """One tile's decisions: its samples, and what the seams need (the band and the open points)."""
-    samples: np.ndarray        #: ids of core points decided samples
-    band_ids: np.ndarray       #: ids of core points within the radius of the core's boundary
-    band_status: np.ndarray    #: their status (OUT, IN or OPEN)
-    open_ids: np.ndarray       #: ids of core points left open
-    cover_offset: np.ndarray   #: open_ids[k]'s coverers are coverers[cover_offset[k]:cover_offset[k + 1]]
-    coverers: np.ndarray       #: ids
-    halo: float                #: the halo the decision was made with
-    read: int                  #: points read (core and halo)
+    """One tile's decisions: its samples, and what the seams need (the band and the open points).
+
+    Attributes
+    ----------
+    samples : ndarray of uint64
+        Ids of the core points decided samples.
+    band_ids : ndarray of uint64
+        Ids of the core points within the radius of the core's boundary.
+    band_status : ndarray of int8
+        Their statuses, OUT, IN or OPEN.
+    open_ids : (m,) ndarray of uint64
+        Ids of the core points left open (settled with the other tiles' seams).
+    cover_offset : (m + 1,) ndarray of int64
+        ``open_ids[j]``'s coverers are ``coverers[cover_offset[j]:cover_offset[j + 1]]``.
+    coverers : ndarray of uint64
+        Ids of the earlier points whose disks may cover an open point.
+    halo : float
+        The halo the decision was made with, a width in the input's units.
+    read : int
+        Points read for it (core and halo).
+    """
+    samples: np.ndarray
+    band_ids: np.ndarray
+    band_status: np.ndarray
+    open_ids: np.ndarray
+    cover_offset: np.ndarray
+    coverers: np.ndarray
+    halo: float
+    read: int
 
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.samples, self.band_ids, self.band_status, self.open_ids, self.cover_offset,

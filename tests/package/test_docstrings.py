@@ -1,7 +1,13 @@
 """The package's reference is its docstrings: every public function and Domain method names each of its
-parameters in a numpydoc Parameters section, and their examples run as doctests."""
+parameters in a numpydoc Parameters section, every public dataclass (the result classes, and the records
+the command and the cluster jobs pass around) each of its public attributes in an Attributes section with
+its type, and their examples run as doctests."""
+import ast
+import dataclasses
 import doctest
+import importlib
 import inspect
+import pathlib
 
 import pytest
 
@@ -34,3 +40,96 @@ def test_the_examples_run(module):
     for t in tests:
         runner.run(t)
     assert runner.failures == 0
+
+
+def _is_dataclass_decorator(d) -> bool:
+    d = d.func if isinstance(d, ast.Call) else d  # @dataclass(...)
+    return (d.id if isinstance(d, ast.Name) else getattr(d, "attr", None)) == "dataclass"
+
+
+def _public_dataclasses() -> list:
+    """Every public dataclass of the package's public modules, found in their source (so that a module is
+    imported only when it holds one: geodesic_lod.pymeshlab would load the MeshLab plugin)."""
+    found = []
+    for path in sorted(pathlib.Path(gl.__file__).parent.glob("*.py")):
+        if path.stem.startswith("_"):
+            continue
+        names = [node.name for node in ast.parse(path.read_text()).body if isinstance(node, ast.ClassDef)
+                 and not node.name.startswith("_") and any(map(_is_dataclass_decorator, node.decorator_list))]
+        if names:
+            module = importlib.import_module(f"geodesic_lod.{path.stem}")
+            found += [getattr(module, name) for name in names]
+    return found
+
+
+DATACLASSES = _public_dataclasses()
+
+
+def _attribute_entries(doc: str) -> dict:
+    """The entries of a numpydoc Attributes section: name -> (type, description lines)."""
+    lines = doc.split("Attributes\n----------\n", 1)[1].splitlines()
+    entries, last = {}, None
+    for k, line in enumerate(lines):
+        if k + 1 < len(lines) and line.strip() and set(lines[k + 1].strip()) == {"-"}:
+            break  # the next section
+        if line and not line[0].isspace():
+            names, _, kind = line.partition(" :")
+            last = [kind.strip(), []]
+            entries.update({n: last for n in names.split(", ")})
+        elif line.strip() and last is not None:
+            last[1].append(line.strip())
+    return entries
+
+
+def _attribute_problems(cls) -> list:
+    """What the class's Attributes section lacks: an entry, a type or a description for a public field or
+    property, or holds: an entry for no attribute."""
+    doc = inspect.getdoc(cls) or ""
+    if "Attributes\n----------\n" not in doc:
+        return [f"{cls.__qualname__} has no Attributes section"]
+    entries = _attribute_entries(doc)
+    public = [f.name for f in dataclasses.fields(cls)] + [n for n, v in inspect.getmembers(cls)
+                                                          if isinstance(v, property)]
+    public = [n for n in public if not n.startswith("_")]
+    problems = [f"{n}: no entry" for n in public if n not in entries]
+    problems += [f"{n}: no type" for n in public if n in entries and not entries[n][0]]
+    problems += [f"{n}: no description" for n in public if n in entries and not entries[n][1]]
+    problems += [f"{n}: no such attribute" for n in entries if n not in public]
+    return problems
+
+
+def test_the_exported_result_classes_are_found():
+    assert {gl.Lod, gl.PoissonLod, gl.FpsLod, gl.LodPyramid, gl.NormalVariation, gl.HeightFieldLod} <= set(
+        DATACLASSES)
+
+
+@pytest.mark.parametrize("cls", DATACLASSES, ids=lambda c: f"{c.__module__}.{c.__qualname__}")
+def test_every_public_attribute_is_in_an_attributes_section(cls):
+    problems = _attribute_problems(cls)
+    assert not problems, f"{cls.__module__}.{cls.__qualname__}: {problems}"
+
+
+def test_the_attributes_check_finds_what_is_missing():
+    @dataclasses.dataclass
+    class Made:
+        """A result.
+
+        Attributes
+        ----------
+        size : int
+            Its size.
+        gone : float
+            An attribute renamed since.
+
+        Examples
+        --------
+        >>> Made(1, 2.0).size
+        1
+        """
+        size: int
+        weight: float
+
+        @property
+        def ratio(self) -> float:
+            return self.weight / self.size
+    assert sorted(_attribute_problems(Made)) == ["gone: no such attribute", "ratio: no entry", "weight: no entry"]
