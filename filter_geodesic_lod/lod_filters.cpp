@@ -62,14 +62,17 @@ const Choices<Regions> kPoissonRegions{
     {{Regions::None, "None"}, {Regions::Disk, "Disk regions"}, {Regions::Voronoi, "Voronoi regions"}}};
 const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, "Voronoi regions"}}};
 using vcg_ext::Placement;
-// A triangle mesh placed as vcg_ext's default, and the other placement as a third choice, so scripts written
-// before it still name every parameter.
+// A triangle mesh placed as vcg_ext's default, then the other placements, each a choice of its own, in an order
+// that keeps the choices of scripts written before them.
 Choices<OutputKind> PlacedOutputs(Placement byDefault) {
-  const Placement other = byDefault == Placement::Quadric ? Placement::InputVertices : Placement::Quadric;
-  return {{{{false, byDefault}, "Points"},
-           {{true, byDefault}, "Triangle mesh (geodesic Delaunay)"},
-           {{true, other},
-            other == Placement::Quadric ? "Triangle mesh, vertices fitted" : "Triangle mesh on input vertices"}}};
+  Choices<OutputKind> c{{{{false, byDefault}, "Points"}, {{true, byDefault}, "Triangle mesh (geodesic Delaunay)"}}};
+  const std::pair<Placement, const char*> others[] = {
+      {Placement::InputVertices, "Triangle mesh on input vertices"},
+      {Placement::Quadric, "Triangle mesh, vertices fitted per region"},
+      {Placement::Optimized, "Triangle mesh, optimized to the points"}};
+  for (const auto& o : others)
+    if (o.first != byDefault) c.items.push_back({{true, o.first}, o.second});
+  return c;
 }
 const Choices<OutputKind> kPlacedOutputs = PlacedOutputs(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().placement);
 const Choices<OutputKind> kPyramidOutputs = PlacedOutputs(vcg_ext::GeodesicLodPyramid<Scalarm>::Param().placement);
@@ -145,9 +148,10 @@ void AddDomainParams(std::vector<ParamSpec>& p, const Choices<OutputKind>& outpu
                QString("Points: the chosen vertices. Triangle mesh: also the geodesic Delaunay triangulation of the "
                        "samples (dual of their geodesic Voronoi regions), for layers with faces.") +
                    (placed ? " Its vertices are fitted: each moved to the point nearest (in least squares) to the "
-                             "planes of the input's triangles in its geodesic Voronoi region, never across a border, "
-                             "so the flat LOD triangles pass through the surface instead of lying under it (the "
-                             "vertex data stay the input vertex's); or, on request, the input's vertices."
+                             "planes of the input's triangles in its geodesic Voronoi region; then the mesh is "
+                             "optimized to the input's points: edges flipped and vertices moved by least squares "
+                             "where that brings the triangles nearer to the points (the vertex data stay the input "
+                             "vertex's). On request: the input's vertices, or the per-region fit alone."
                            : ""),
                outputs.IndexOf(outputs.items.front().first), 0, 0, outputs.Names()});
   p.push_back({ParamKind::Int, kSeed, "Random seed", "The same seed gives the same LOD.", 0});

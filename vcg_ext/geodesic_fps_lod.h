@@ -24,7 +24,7 @@ class GeodesicFpsLod {
     size_t sampleNum = 0;     ///< exact number of samples, 1..number of points
     uint64_t seed = 0;        ///< chooses the first sample
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
-    Placement placement = Placement::Quadric;  ///< where the triangle mesh's vertices go (as Poisson's)
+    Placement placement = Placement::Optimized;  ///< where the triangle mesh's vertices go (as Poisson's)
     Regions regions = Regions::None;  ///< fill Result::regionOf; FPS regions are Voronoi regions
   };
   struct Result : LodResult<Scalar> {
@@ -56,10 +56,11 @@ class GeodesicFpsLod {
   /// The LOD of a domain built before (p.domain is not read), as GeodesicPoissonLod's.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
     CheckParam(p, d.hasFaces);
-    const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress);
+    const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(0, p.meshOutput ? 75 : 100));
     Result r;
-    static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Finish(
-        d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr, p.placement);
+    static_cast<LodResult<Scalar>&>(r) =
+        LodResult<Scalar>::Finish(d, s.samples, p.meshOutput, s.owner, p.regions != Regions::None ? &s.owner : nullptr,
+                                  p.placement, progress.Sub(75, 100));
     r.coveringRadius = s.coveringRadius;
     return r;
   }

@@ -83,12 +83,12 @@ class GeodesicLodPyramid {
       for (size_t k = 0; k < p.counts.size(); ++k) {
         const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
         const std::vector<int> owner = GeodesicDelaunay<Scalar>::VoronoiOwners(d, level);
-        r.levelFaces.push_back(GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, owner, level));
-        r.levelPositions.push_back(
-            p.placement == Placement::Quadric
-                ? QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, owner, level)
-                : std::vector<vcg::Point3<Scalar>>(r.position.begin(), r.position.begin() + p.counts[k]));
-        progress(83 + 17 * (k + 1) / p.counts.size(), 100, "Triangulating the levels");
+        r.levelFaces.emplace_back();
+        r.levelPositions.emplace_back(r.position.begin(), r.position.begin() + p.counts[k]);
+        const int from = int(83 + 17 * k / p.counts.size()), to = int(83 + 17 * (k + 1) / p.counts.size());
+        LodResult<Scalar>::MeshOf(d, level, owner, p.placement, r.levelFaces.back(), r.levelPositions.back(),
+                                  progress.Sub(from, to));
+        progress(size_t(to), 100, "Triangulating the levels");
       }
     if (p.meshOutput) r.position = r.levelPositions[0];
     return r;

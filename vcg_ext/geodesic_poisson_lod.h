@@ -30,9 +30,10 @@ class GeodesicPoissonLod {
     int maxIterations = 24;   ///< with sampleNum: Poisson runs at most
     uint64_t seed = 0;
     bool meshOutput = false;  ///< also triangulate the samples (layers with faces only)
-    /// Where the triangle mesh's vertices go: fitted to the surface, the lower
-    /// error on the tuning mesh at every rate (docs/mesh_lod.md).
-    Placement placement = Placement::Quadric;
+    /// Where the triangle mesh's vertices go: fitted per region, then the mesh
+    /// optimized to the input's points, the lowest error on the tuning mesh at
+    /// every rate (docs/mesh_lod.md).
+    Placement placement = Placement::Optimized;
     Regions regions = Regions::None;  ///< fill Result::regionOf
     /// Input vertices that may become samples (empty: all). Nested levels take a
     /// finer level's samples here: each level is the Poisson set of its radius
@@ -163,7 +164,7 @@ class GeodesicPoissonLod {
     const std::vector<int>* regions =
         p.regions == Regions::None ? nullptr : p.regions == Regions::Disk ? &disk : &voronoi;
     static_cast<LodResult<Scalar>&>(r) =
-        LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, p.placement);
+        LodResult<Scalar>::Finish(d, samples, p.meshOutput, voronoi, regions, p.placement, progress.Sub(75, 100));
     return r;
   }
 };

@@ -6,6 +6,7 @@
 #include <vector>
 #include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
+#include "mesh_optimization.h"
 #include "quadric_placement.h"
 
 namespace vcg_ext {
@@ -40,16 +41,31 @@ struct LodResult {
   /// The ending every sampler shares: the data of `samples` (point indices of
   /// `d`); with `meshOutput` their geodesic Delaunay triangles, read from
   /// `voronoi` (per point, the rank of its nearest sample), their vertices
-  /// placed as `placement` says; with `regionOwner` (per point, a rank)
-  /// regionOf for every vertex of the input.
+  /// placed as `placement` says (reported to `progress`); with
+  /// `regionOwner` (per point, a rank) regionOf for every vertex of the input.
   static LodResult Finish(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, bool meshOutput,
-                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, Placement placement) {
+                          const std::vector<int>& voronoi, const std::vector<int>* regionOwner, Placement placement,
+                          Progress progress = Progress(nullptr)) {
     LodResult r = Collect(d, samples);
-    if (meshOutput) r.faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
-    if (meshOutput && placement == Placement::Quadric)
-      r.position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
+    if (meshOutput) MeshOf(d, samples, voronoi, placement, r.faces, r.position, progress);
     if (regionOwner) r.SetRegions(d, *regionOwner);
     return r;
+  }
+
+  /// The triangle mesh of `samples` (point indices of `d`): their geodesic
+  /// Delaunay triangles read from `voronoi` (per point, the rank of its nearest
+  /// sample), and `position` (the samples' input points) placed as
+  /// `placement` says, the optimization reported to `progress`.
+  static void MeshOf(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, const std::vector<int>& voronoi,
+                     Placement placement, std::vector<std::array<int, 3>>& faces,
+                     std::vector<vcg::Point3<Scalar>>& position, Progress progress = Progress(nullptr)) {
+    faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
+    if (placement == Placement::InputVertices) return;
+    position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
+    if (placement != Placement::Optimized) return;
+    std::vector<vcg::Point3<Scalar>> normal;
+    for (int i : samples) normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[size_t(i)]));
+    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, normal, position, faces, progress);
   }
 
   /// The data of `samples` (point indices of `d`).

@@ -22,7 +22,8 @@ namespace vcg_ext {
 /// How a mesh LOD's vertices are placed.
 enum class Placement {
   InputVertices = 0,  ///< copies of the input's vertices
-  Quadric = 1         ///< moved to fit the input's triangles of their region (QuadricPlacement)
+  Quadric = 1,        ///< moved to fit the input's triangles of their region (QuadricPlacement)
+  Optimized = 2       ///< so moved, then the mesh fitted to the input's points (MeshOptimization)
 };
 
 template <class Scalar>

@@ -222,7 +222,8 @@ NB_MODULE(_core, m) {
       .value("PointGraph", vcg_ext::GeodesicMode::PointGraph);
   nb::enum_<vcg_ext::Placement>(m, "Placement")
       .value("InputVertices", vcg_ext::Placement::InputVertices)
-      .value("Quadric", vcg_ext::Placement::Quadric);
+      .value("Quadric", vcg_ext::Placement::Quadric)
+      .value("Optimized", vcg_ext::Placement::Optimized);
   nb::enum_<vcg_ext::Regions>(m, "Regions")
       .value("None_", vcg_ext::Regions::None)
       .value("Disk", vcg_ext::Regions::Disk)

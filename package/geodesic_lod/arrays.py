@@ -14,7 +14,7 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 
 from . import _core
-from .docstrings import documented
+from .docstrings import PLACEMENTS, documented
 from .errors import InputError
 
 # The product defaults live in vcg_ext's Param structs; these read them.
@@ -25,7 +25,6 @@ METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metr
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
-PLACEMENTS = {"input": _core.Placement.InputVertices, "fitted": _core.Placement.Quadric}
 
 
 def _name_of(table, value):

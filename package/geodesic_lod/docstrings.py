@@ -45,13 +45,20 @@ MESH_OUTPUT = """mesh_output : bool
         Triangulate the samples over the faces (geodesic Delaunay), in ``faces`` of the result; needs
         ``faces``. Default False."""
 
-PLACEMENT = f"""placement : {{'input', 'fitted'}}, optional
+# The placements by the names placement= takes (here, where they are explained).
+PLACEMENTS = {"optimized": _core.Placement.Optimized, "fitted": _core.Placement.Quadric,
+              "input": _core.Placement.InputVertices}
+DEFAULT_PLACEMENT = next(k for k, v in PLACEMENTS.items() if v == _core.PoissonParam().placement)
+
+PLACEMENT = f"""placement : {{'optimized', 'fitted', 'input'}}, optional
         With ``mesh_output``: where the mesh's vertices go, in ``positions`` of the result (a pyramid's
-        levels: ``level_positions``, each placed for its own level): the input's points, or fitted, each
-        moved to the point nearest (in least squares) to the planes of the input's triangles in its
-        geodesic Voronoi region, never across a border. Default (None):
-        ``'{'input' if _core.PoissonParam().placement == _core.Placement.InputVertices else 'fitted'}'`` with
-        ``mesh_output``; without it the positions are the input's."""
+        levels: ``level_positions``, each placed for its own level). 'fitted': each moved to the point
+        nearest (in least squares) to the planes of the input's triangles in its geodesic Voronoi region,
+        never across a border. 'optimized': so fitted, then the mesh optimized to the input's points,
+        edges flipped (changing ``faces``) and vertices moved by least squares where that brings the
+        triangles nearer to the points. 'input': the input's points. Default (None):
+        ``'{DEFAULT_PLACEMENT}'`` with ``mesh_output``; without it the
+        positions are the input's."""
 
 RAISES = """Raises
     ------

@@ -17,6 +17,7 @@ HEIGHT_FIELD = "generate_height_field_lod"
 MESH_MODE, GRAPH = "Mesh (fast marching)", "Point graph (Dijkstra)"
 TRIANGLES = "Triangle mesh (geodesic Delaunay)"
 ON_INPUT = "Triangle mesh on input vertices"
+FITTED = "Triangle mesh, vertices fitted per region"
 
 
 def grid(n=12, shift=(0.0, 0.0, 0.0)):

@@ -209,28 +209,35 @@ def test_the_gil_is_released_while_sampling():
     assert gaps.max() < 0.5 * (end - start)
 
 
-def test_mesh_vertices_are_fitted_by_default_and_input_points_on_request():
+def test_mesh_vertices_are_optimized_by_default_fitted_or_input_points_on_request():
     pts, faces = grid_mesh(40)
-    fitted = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True)
+    optimized = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True)
+    fitted = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True, placement="fitted")
     kept = gl.poisson_lod(pts, faces=faces, count=150, mesh_output=True, placement="input")
-    np.testing.assert_array_equal(fitted.indices, kept.indices)  # the same samples and triangles
-    np.testing.assert_array_equal(fitted.faces, kept.faces)
+    np.testing.assert_array_equal(fitted.indices, kept.indices)  # the same samples
+    np.testing.assert_array_equal(optimized.indices, kept.indices)
+    np.testing.assert_array_equal(fitted.faces, kept.faces)  # fitted per region: the same triangles too
+    assert len(optimized.faces) == len(kept.faces)  # optimized: as many, some flipped
     np.testing.assert_array_equal(kept.positions, pts[kept.indices])
-    moved = np.linalg.norm(fitted.positions - pts[fitted.indices], axis=1)
-    assert 0 < moved.max() < np.sqrt(1 / 150)  # on the bumps, by less than the LOD's spacing
-    flat = pts[fitted.indices][:, 0] < 0.45  # the flat half: nothing to fit
+    for placed in (fitted, optimized):
+        moved = np.linalg.norm(placed.positions - pts[placed.indices], axis=1)
+        assert 0 < moved.max() < np.sqrt(1 / 150)  # on the bumps, by less than the LOD's spacing
+    flat = pts[fitted.indices][:, 0] < 0.45  # the flat half: nothing to fit per region
     np.testing.assert_allclose(fitted.positions[flat], pts[fitted.indices][flat], atol=1e-12)
 
-    def rms_height_error(lod):  # the grid is a height field: the LOD's height under every input point
-        import matplotlib.tri as mtri
-        tin = mtri.Triangulation(lod.positions[:, 0], lod.positions[:, 1], lod.faces)
-        z = mtri.LinearTriInterpolator(tin, lod.positions[:, 2])(pts[:, 0], pts[:, 1])
-        inside = ~np.ma.getmaskarray(z)
-        return np.sqrt(np.mean((np.asarray(z)[inside] - pts[inside, 2]) ** 2))
-    assert rms_height_error(fitted) < 0.9 * rms_height_error(kept)
+    def rms_distance(lod, steps=16):  # from every input point to the LOD's triangles, densely sampled
+        u, v = np.meshgrid(np.arange(steps + 1), np.arange(steps + 1))
+        keep = u + v <= steps
+        w = np.stack([u[keep], v[keep]], axis=1) / steps
+        corners = lod.positions[lod.faces]
+        surface = (corners[:, None, 0] + w[None, :, :1] * (corners[:, None, 1] - corners[:, None, 0])
+                   + w[None, :, 1:] * (corners[:, None, 2] - corners[:, None, 0])).reshape(-1, 3)
+        return np.sqrt(np.mean(cKDTree(surface).query(pts)[0] ** 2))
+    assert rms_distance(fitted) < rms_distance(kept)
+    assert rms_distance(optimized) < 0.8 * rms_distance(fitted)
     points_only = gl.poisson_lod(pts, faces=faces, count=150)
     np.testing.assert_array_equal(points_only.positions, pts[points_only.indices])
     with pytest.raises(gl.InputError, match="placement='fitted' .* needs mesh_output=True"):
         gl.fps_lod(pts, faces=faces, count=50, placement="fitted")
-    with pytest.raises(gl.InputError, match="placement must be one of 'input', 'fitted'"):
+    with pytest.raises(gl.InputError, match="placement must be one of 'optimized', 'fitted', 'input'"):
         gl.poisson_lod(pts, faces=faces, count=50, mesh_output=True, placement="moved")

@@ -217,24 +217,29 @@ TEST(LodFilters, FpsGivesTheExactCountInOrderWithItsAttribute) {
   }
 }
 
-TEST(LodFilters, MeshVerticesAreFittedOrInputVertices) {
+TEST(LodFilters, MeshVerticesAreOptimizedFittedOrInputVertices) {
   Mesh in;
   Bumpy(in, 40, true);
   MapSource p(in);
-  p.set("output", 1);
   p.set("radius", 0.08);
-  const LodRun fitted = RunPoissonLod(in, p, nullptr);
-  p.set("output", 2);  // Triangle mesh on input vertices
-  const LodRun kept = RunPoissonLod(in, p, nullptr);
+  auto run = [&](int output) {
+    p.set("output", output);
+    return RunPoissonLod(in, p, nullptr);
+  };
+  const LodRun optimized = run(1), kept = run(2), fitted = run(3);  // the default, then as scripts name them
+  ASSERT_EQ(optimized.result.vertIndex, kept.result.vertIndex);
   ASSERT_EQ(fitted.result.vertIndex, kept.result.vertIndex);
-  size_t moved = 0;
+  EXPECT_EQ(fitted.result.faces, kept.result.faces) << "the per-region fit moves vertices, not triangles";
+  size_t moved = 0, optimizedApart = 0;
   for (size_t k = 0; k < kept.result.vertIndex.size(); ++k) {
     const Point3m at = in.vert[size_t(kept.result.vertIndex[k])].cP();
     EXPECT_EQ(kept.result.position[k], at);
     moved += fitted.result.position[k] != at;
     if (at[0] < 0.45) EXPECT_NEAR((fitted.result.position[k] - at).Norm(), 0, 1e-12);  // flat: nothing to fit
+    optimizedApart += optimized.result.position[k] != fitted.result.position[k];
   }
   EXPECT_GT(moved, 0u);
+  EXPECT_GT(optimizedApart, 0u) << "the default optimizes the fitted mesh";
 }
 
 TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
@@ -253,7 +258,7 @@ TEST(LodFilters, TriangleMeshOutputUsesSamplesAsCorners) {
       for (int c = 0; c < 3; ++c) {
         const size_t k = vcg::tri::Index(out, f.cV(c));
         ASSERT_LT(k, size_t(out.vn));
-        EXPECT_EQ(f.cP(c), run.result.position[k]);  // fitted to the surface by default
+        EXPECT_EQ(f.cP(c), run.result.position[k]);  // placed (optimized by default)
         EXPECT_EQ(out.vert[k].cC(), in.vert[run.result.vertIndex[k]].cC());  // the input vertex's data
       }
   }

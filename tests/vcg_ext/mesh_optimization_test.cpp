@@ -1,0 +1,143 @@
+// vcg_ext/mesh_optimization.h: the nearest point of a triangle, and a mesh LOD
+// optimized to the input's points: nearer to them than the per-region fit,
+// as many triangles, none facing away from the surface, no edge in more than
+// two, the same mesh from the same input.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
+#include <vcg_ext/mesh_optimization.h>
+#include "test_mesh.h"
+
+namespace {
+typedef test::TMesh::ScalarType Scalar;
+typedef vcg_ext::MeshOptimization<Scalar> Optimization;
+typedef vcg_ext::GeodesicPoissonLod<Scalar> Poisson;
+using V3 = Eigen::Vector3d;
+
+TEST(MeshOptimization, NearestIsTheTrianglesNearestPoint) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const V3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const V3 q(2 * u(rng), 2 * u(rng), 2 * u(rng));
+    V3 w;
+    const double d = Optimization::Nearest(q, a, b, c, &w);
+    EXPECT_NEAR(w.sum(), 1, 1e-12);
+    EXPECT_GE(w.minCoeff(), -1e-12);
+    EXPECT_NEAR(d, (q - (w[0] * a + w[1] * b + w[2] * c)).squaredNorm(), 1e-12);
+    // No point of the triangle (a fine barycentric grid) is nearer.
+    const int n = 60;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const V3 p = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+        ASSERT_GE((q - p).squaredNorm(), d - 1e-12) << "trial " << trial;
+      }
+  }
+  // A degenerate triangle: its nearest corner or edge point, never a NaN.
+  V3 w;
+  EXPECT_NEAR(Optimization::Nearest(V3(0, 1, 0), V3(0, 0, 0), V3(1, 0, 0), V3(2, 0, 0), &w), 1, 1e-12);
+  EXPECT_TRUE(w.allFinite());
+}
+
+struct Lod {
+  std::vector<vcg::Point3<Scalar>> pos, normal;
+  std::vector<std::array<int, 3>> faces;
+};
+
+Lod LodOf(const test::TMesh& m, vcg_ext::Placement placement) {
+  Poisson::Param p;
+  p.sampleNum = 120;
+  p.meshOutput = true;
+  p.placement = placement;
+  const auto r = vcg_ext::MeshLod<Poisson>(m, p);
+  return {r.position, r.normal, r.faces};
+}
+
+// The sum over the input's vertices of the squared distance to the LOD.
+double SquaredDistance(const test::TMesh& m, const Lod& lod) {
+  double sum = 0;
+  for (const auto& v : m.vert) {
+    const V3 q(v.cP()[0], v.cP()[1], v.cP()[2]);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& f : lod.faces) {
+      auto at = [&](int k) { return V3(lod.pos[size_t(k)][0], lod.pos[size_t(k)][1], lod.pos[size_t(k)][2]); };
+      best = std::min(best, Optimization::Nearest(q, at(f[0]), at(f[1]), at(f[2])));
+    }
+    sum += best;
+  }
+  return sum;
+}
+
+TEST(MeshOptimization, NearerToThePointsThanThePerRegionFitWithoutFoldsOrCrowdedEdges) {
+  test::TMesh m;
+  test::GridMesh(m, 40, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  const Lod fitted = LodOf(m, vcg_ext::Placement::Quadric), optimized = LodOf(m, vcg_ext::Placement::Optimized);
+  ASSERT_EQ(optimized.faces.size(), fitted.faces.size());
+  EXPECT_NE(optimized.faces, fitted.faces) << "no edge flipped on the bumps";
+  EXPECT_LT(SquaredDistance(m, optimized), 0.8 * SquaredDistance(m, fitted));
+  std::map<std::pair<int, int>, int> uses;
+  // No more triangles facing away from the surface at their corners (their normals summed) than before.
+  auto away = [](const Lod& lod) {
+    size_t k = 0;
+    for (const auto& f : lod.faces) {
+      const auto n = (lod.pos[size_t(f[1])] - lod.pos[size_t(f[0])]) ^ (lod.pos[size_t(f[2])] - lod.pos[size_t(f[0])]);
+      k += n * (lod.normal[size_t(f[0])] + lod.normal[size_t(f[1])] + lod.normal[size_t(f[2])]) <= 0;
+    }
+    return k;
+  };
+  EXPECT_LE(away(optimized), away(fitted));
+  EXPECT_LE(away(fitted), 2u) << "a test mesh whose LOD folds";
+  for (const auto& f : optimized.faces) {
+    for (size_t e = 0; e < 3; ++e) ++uses[{std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])}];
+  }
+  for (const auto& u : uses) EXPECT_LE(u.second, 2);
+  const Lod again = LodOf(m, vcg_ext::Placement::Optimized);
+  EXPECT_EQ(again.faces, optimized.faces);
+  EXPECT_EQ(again.pos, optimized.pos);
+}
+
+bool StopAtOnce(int, const char*) { return false; }
+int reported = 0;
+bool Count(int, const char*) {
+  ++reported;
+  return true;
+}
+
+TEST(MeshOptimization, ReportsProgressAndStopsOnRequestLeavingTheMeshAsItWas) {
+  test::TMesh m;
+  test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  Poisson::Param p;
+  p.sampleNum = 60;
+  p.meshOutput = true;
+  p.placement = vcg_ext::Placement::Quadric;
+  p.regions = vcg_ext::Regions::Voronoi;
+  const auto r = vcg_ext::MeshLod<Poisson>(m, p);
+  std::vector<vcg::Point3<Scalar>> pts;
+  for (const auto& v : m.vert) pts.push_back(v.cP());
+  std::vector<vcg::Point3<Scalar>> pos = r.position;
+  std::vector<std::array<int, 3>> faces = r.faces;
+  EXPECT_THROW(Optimization::Compute(pts, r.regionOf, r.normal, pos, faces, vcg_ext::Progress(&StopAtOnce)),
+               vcg_ext::Cancelled);
+  EXPECT_EQ(pos, r.position);
+  EXPECT_EQ(faces, r.faces);
+  Optimization::Compute(pts, r.regionOf, r.normal, pos, faces, vcg_ext::Progress(&Count));
+  EXPECT_GT(reported, 2);
+  EXPECT_NE(pos, r.position);
+}
+
+TEST(MeshOptimization, NoTrianglesLeaveEverythingAsItWas) {
+  std::vector<vcg::Point3<Scalar>> pts = {{0, 0, 0}, {1, 0, 0}}, pos = {{0, 0, 0}};
+  std::vector<std::array<int, 3>> faces;
+  Optimization::Compute(pts, {0, 0}, {{0, 0, 1}}, pos, faces);
+  EXPECT_TRUE(faces.empty());
+  EXPECT_EQ(pos[0], vcg::Point3<Scalar>(0, 0, 0));
+}
+
+}  // namespace
