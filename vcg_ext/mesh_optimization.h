@@ -112,7 +112,6 @@ class MeshOptimization {
  private:
   struct Mesh {
     std::vector<Eigen::Vector3d> q;          // the input's points held by a region
-    std::vector<int> qOwner;                 // their sample
     std::vector<size_t> first;               // sample s holds q[first[s] .. first[s + 1])
     std::vector<Eigen::Vector3d> x;          // per sample, its position
     std::vector<Eigen::Vector3d> up;         // per sample, the surface's normal
@@ -127,13 +126,11 @@ class MeshOptimization {
         if (owner[i] >= 0) ++first[size_t(owner[i]) + 1];
       for (size_t s = 0; s < pos.size(); ++s) first[s + 1] += first[s];
       q.resize(first.back());
-      qOwner.resize(first.back());
       std::vector<size_t> at(first.begin(), first.end() - 1);
       for (size_t i = 0; i < owner.size(); ++i)
         if (owner[i] >= 0) {
           const size_t k = at[size_t(owner[i])]++;
           q[k] = Eigen::Vector3d(pts[i][0], pts[i][1], pts[i][2]);
-          qOwner[k] = owner[i];
         }
       for (const auto& v : pos) x.emplace_back(v[0], v[1], v[2]);
       for (const auto& v : normal) up.emplace_back(v[0], v[1], v[2]);
