@@ -8,6 +8,8 @@
 #include "graph_domain.h"
 #include "test_mesh.h"
 
+namespace bounded_dijkstra_test {
+
 namespace {
 using Domain = vcg_ext::GeodesicDomain<float>;
 using test::GraphDomain;
@@ -52,3 +54,5 @@ TEST(BoundedDijkstra, GraphDistanceBoundsTheStraightLine) {
     EXPECT_LE(dist[i], e * 1.1f + 1e-6f);  // an 8-connected grid path is at most ~8% longer
   }
 }
+
+}  // namespace bounded_dijkstra_test

@@ -8,6 +8,8 @@
 #include <vector>
 #include <vcg_ext/cell_grid.h>
 
+namespace cell_grid_test {
+
 namespace {
 using Grid = vcg_ext::CellGrid<double>;
 using Coord = vcg::Point3<double>;
@@ -57,3 +59,5 @@ TEST(CellGrid, ABlockHoldsEveryPointNearerThanItsMargin) {
   }
 }
 }  // namespace
+
+}  // namespace cell_grid_test

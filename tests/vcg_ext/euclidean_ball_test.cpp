@@ -10,6 +10,8 @@
 #include <vcg_ext/euclidean_ball.h>
 #include "test_mesh.h"
 
+namespace euclidean_ball_test {
+
 namespace {
 typedef vcg::Point3f P3;
 
@@ -104,3 +106,5 @@ TEST(EuclideanBall, CompleteGivesTheUnownedPointsTheirNearestSource) {
     EXPECT_FLOAT_EQ(vcg::Distance(pos[i], pos[size_t(sources[size_t(owner[i])])]), want[i]) << "point " << i;
   }
 }
+
+}  // namespace euclidean_ball_test

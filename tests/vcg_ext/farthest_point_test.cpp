@@ -6,6 +6,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace farthest_point_test {
+
 namespace {
 using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
 using Domain = FPS::Domain;
@@ -82,3 +84,5 @@ TEST(FarthestPoint, EveryPartBeforeASecondSampleAnywhere) {
   EXPECT_TRUE(std::isfinite(r.coveringRadius.back()));
   EXPECT_TRUE(std::isinf(r.coveringRadius[1]));  // two samples leave a part unreached
 }
+
+}  // namespace farthest_point_test

@@ -7,6 +7,8 @@
 #include <vcg_ext/mesh_triangles.h>
 #include "test_mesh.h"
 
+namespace fast_marching_test {
+
 namespace {
 using FMesh = vcg_ext::FastMarchingMesh<float>;
 using FM = vcg_ext::FastMarching<float>;
@@ -95,3 +97,5 @@ TEST(FastMarching, LoweringGivesTheDistanceToTheNearestSource) {
     EXPECT_LE(dist[i], best * 1.0001f + 1e-6f);              // never worse than each source alone ... up to rounding
   }
 }
+
+}  // namespace fast_marching_test

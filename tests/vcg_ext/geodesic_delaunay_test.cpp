@@ -18,6 +18,8 @@
 #include "shared_data.h"
 #include "test_mesh.h"
 
+namespace geodesic_delaunay_test {
+
 namespace {
 typedef test::TMesh::ScalarType Scalar;
 typedef vcg_ext::GeodesicDomain<Scalar> Domain;
@@ -172,3 +174,5 @@ TEST(GeodesicDelaunay, NoEdgeOfMoreThanTwoTrianglesOnTheBunny) {
 }
 
 }  // namespace
+
+}  // namespace geodesic_delaunay_test

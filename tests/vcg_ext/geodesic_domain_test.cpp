@@ -14,6 +14,8 @@
 #include <vcg_ext/mesh_triangles.h>
 #include "test_mesh.h"
 
+namespace geodesic_domain_test {
+
 namespace {
 using Domain = vcg_ext::GeodesicDomain<float>;
 using vcg_ext::GeodesicMode;
@@ -169,3 +171,5 @@ TEST(GeodesicDomain, PointOfVertexMapsBackAndMarksTheMissing) {
     EXPECT_EQ(seen.size(), d.size()) << "every point is some vertex's";
   }
 }
+
+}  // namespace geodesic_domain_test

@@ -10,6 +10,8 @@
 #include "distance_fields.h"
 #include "test_mesh.h"
 
+namespace geodesic_fps_lod_test {
+
 namespace {
 typedef test::TMesh::ScalarType Scalar;
 typedef vcg_ext::GeodesicFpsLod<Scalar> Fps;
@@ -219,3 +221,5 @@ TEST(GeodesicFpsLod, SampleDrawsOnlyFromTheCandidates) {
     EXPECT_NE(std::string(e.what()).find("(" + std::to_string(candidates.size()) + ")"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace geodesic_fps_lod_test

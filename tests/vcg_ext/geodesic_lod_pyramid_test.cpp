@@ -9,6 +9,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace geodesic_lod_pyramid_test {
+
 namespace {
 using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh::ScalarType>;
 using Domain = Pyramid::Domain;
@@ -134,3 +136,5 @@ TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
     }
   }
 }
+
+}  // namespace geodesic_lod_pyramid_test

@@ -9,6 +9,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace geodesic_mesh_test {
+
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
@@ -152,3 +154,5 @@ TEST(GeodesicMesh, DelaunayFacesOnlyWhereSamplesReach) {
   for (const auto& f : vcg_ext::GeodesicDelaunay<float>::Compute(tri, owner))
     for (int c : f) EXPECT_TRUE(c >= 0 && c < 3);
 }
+
+}  // namespace geodesic_mesh_test

@@ -8,6 +8,8 @@
 #include <vector>
 #include <vcg_ext/geodesic_metric.h>
 
+namespace geodesic_metric_test {
+
 namespace {
 using vcg_ext::EdgeLength;
 using vcg_ext::EdgeWeight;
@@ -62,3 +64,5 @@ TEST(GeodesicMetric, EdgeLengthsAreSymmetricAndNeverShorterThanTheSegment) {
     }
 }
 }  // namespace
+
+}  // namespace geodesic_metric_test

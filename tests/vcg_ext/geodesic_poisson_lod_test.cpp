@@ -10,6 +10,8 @@
 #include "distance_fields.h"
 #include "test_mesh.h"
 
+namespace geodesic_poisson_lod_test {
+
 namespace {
 typedef test::TMesh::ScalarType Scalar;
 typedef vcg_ext::GeodesicPoissonLod<Scalar> Poisson;
@@ -285,3 +287,5 @@ TEST(GeodesicPoissonLod, CoreDiagonalLeavesOutAFewStrayPoints) {
   pile.emplace_back(2, 0, 1);
   EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pile), std::sqrt(17.0));
 }
+
+}  // namespace geodesic_poisson_lod_test

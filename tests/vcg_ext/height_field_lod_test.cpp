@@ -8,6 +8,8 @@
 #include <set>
 #include <vcg_ext/height_field_lod.h>
 
+namespace height_field_lod_test {
+
 namespace {
 
 using vcg_ext::HeightFieldLod;
@@ -205,3 +207,5 @@ TEST(HeightFieldLod, RefusesBadInput) {
   EXPECT_EQ(field({0, 0, 0, 1, 1, 5, 2, 2, 1, 3, 3, 0}, 3, 0.3), vcg_ext::Field::Points);  // one line in x, y
   EXPECT_EQ(field({0, 0, 0, 1, 1, 5}, 2, 0.3), vcg_ext::Field::Points);
 }
+
+}  // namespace height_field_lod_test

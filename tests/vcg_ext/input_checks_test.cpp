@@ -8,6 +8,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace input_checks_test {
+
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 
@@ -115,3 +117,5 @@ TEST(InputChecks, ProgressRisesToTheEnd) {
   EXPECT_GE(seen.back(), 99);
   EXPECT_LE(seen.back(), 100);
 }
+
+}  // namespace input_checks_test

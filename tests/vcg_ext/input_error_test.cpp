@@ -5,6 +5,8 @@
 #include <string>
 #include <vcg_ext/input_error.h>
 
+namespace input_error_test {
+
 using vcg_ext::Field;
 
 TEST(InputError, IsAnInvalidArgumentCarryingItsFieldAndPredicate) {
@@ -47,3 +49,5 @@ TEST(InputError, EveryFieldHasItsOwnId) {
   EXPECT_STREQ(vcg_ext::FieldId(Field::Coordinates), "Coordinates");
   EXPECT_STREQ(vcg_ext::FieldId(Field(last + 1)), "Unknown") << "a value past the enum";
 }
+
+}  // namespace input_error_test

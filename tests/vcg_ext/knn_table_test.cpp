@@ -10,6 +10,8 @@
 #include <vector>
 #include <vcg_ext/knn_table.h>
 
+namespace knn_table_test {
+
 namespace {
 typedef vcg::Point3f P;
 
@@ -123,3 +125,5 @@ TEST(KnnTable, TiesByIdDoNotDependOnTheNumbering) {
     for (int c = 0; c < k; ++c) wrong += id[size_t(byId.Row(i)[c])] != plain.Row(size_t(perm[i]))[c];
   EXPECT_EQ(wrong, 0u);
 }
+
+}  // namespace knn_table_test

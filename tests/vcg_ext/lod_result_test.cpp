@@ -10,6 +10,8 @@
 #include <vcg_ext/lod_result.h>
 #include "test_mesh.h"
 
+namespace lod_result_test {
+
 namespace {
 typedef vcg_ext::GeodesicDomain<float> Domain;
 typedef vcg_ext::LodResult<float> Result;
@@ -121,3 +123,5 @@ TEST(LodResult, MeshOutputIsRefusedOnlyWithoutFaces) {
     EXPECT_EQ(e.field, vcg_ext::Field::MeshOutput) << e.what();
   }
 }
+
+}  // namespace lod_result_test

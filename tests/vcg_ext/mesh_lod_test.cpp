@@ -12,6 +12,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace mesh_lod_test {
+
 namespace {
 typedef test::TMesh::ScalarType Scalar;
 typedef vcg_ext::GeodesicPoissonLod<Scalar> Poisson;
@@ -200,3 +202,5 @@ TEST(MeshLod, RefusesABadParameterBeforeBuildingTheDomain) {
   EXPECT_EQ(RefusalOf([&](vcg::CallBackPos* cb) { vcg_ext::MeshLod<Poisson>(mesh, radius, cb); }).first, "no error");
   EXPECT_GT(progressCalls, 0);
 }
+
+}  // namespace mesh_lod_test

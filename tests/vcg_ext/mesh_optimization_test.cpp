@@ -15,6 +15,8 @@
 #include <vcg_ext/mesh_optimization.h>
 #include "test_mesh.h"
 
+namespace mesh_optimization_test {
+
 namespace {
 typedef test::TMesh::ScalarType Scalar;
 typedef vcg_ext::MeshOptimization<Scalar> Optimization;
@@ -141,3 +143,5 @@ TEST(MeshOptimization, NoTrianglesLeaveEverythingAsItWas) {
 }
 
 }  // namespace
+
+}  // namespace mesh_optimization_test

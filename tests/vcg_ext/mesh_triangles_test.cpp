@@ -4,6 +4,8 @@
 #include <vcg_ext/mesh_triangles.h>
 #include "test_mesh.h"
 
+namespace mesh_triangles_test {
+
 namespace {
 typedef vcg::tri::Allocator<test::TMesh> Alloc;
 
@@ -97,3 +99,5 @@ TEST(MeshTriangles, PointsOnlyInSkippedFacesAreUnreferenced) {
   EXPECT_EQ(none.skipped, 0u);
   EXPECT_EQ(none.unreferenced, 36u);
 }
+
+}  // namespace mesh_triangles_test

@@ -4,6 +4,8 @@
 #include "graph_domain.h"
 #include "test_mesh.h"
 
+namespace neighbour_graph_test {
+
 namespace {
 using Domain = vcg_ext::GeodesicDomain<float>;
 using test::GraphDomain;
@@ -117,3 +119,5 @@ TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
       }
   }
 }
+
+}  // namespace neighbour_graph_test

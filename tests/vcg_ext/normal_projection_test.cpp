@@ -7,6 +7,8 @@
 #include <vcg_ext/normal_projection.h>
 #include "test_mesh.h"
 
+namespace normal_projection_test {
+
 namespace {
 using NP = vcg_ext::NormalProjection<test::TMesh>;
 
@@ -117,3 +119,5 @@ TEST(NormalProjection, NamesBadInputs) {
 }
 
 }  // namespace
+
+}  // namespace normal_projection_test

@@ -5,6 +5,8 @@
 #include <vcg_ext/point_set.h>
 #include "test_mesh.h"
 
+namespace normal_variation_test {
+
 namespace {
 using Normals = vcg_ext::PointNormals<float>;
 
@@ -66,3 +68,5 @@ TEST(NormalVariation, HigherOnTheBumpyHalf) {
   EXPECT_LT(flat / nf, 1e-4);
   EXPECT_GT(bumpy / nb, 100 * (flat / nf + 1e-6));
 }
+
+}  // namespace normal_variation_test

@@ -15,6 +15,8 @@
 #include <vcg_ext/parallel.h>
 #include "on_threads.h"
 
+namespace parallel_test {
+
 namespace {
 
 using test::OnThreads;
@@ -148,3 +150,5 @@ TEST(Parallel, AThreadWaitingForAnotherLeavesTheProcessorToOthers) {
     EXPECT_LT(busy, 0.1) << "processor seconds used in 0.8 s of waiting";
   });
 }
+
+}  // namespace parallel_test

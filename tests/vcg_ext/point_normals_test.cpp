@@ -4,6 +4,8 @@
 #include <vcg_ext/point_set.h>
 #include "test_mesh.h"
 
+namespace point_normals_test {
+
 using Normals = vcg_ext::PointNormals<float>;
 
 TEST(PointNormals, EstimatedOnASphereAreUnitAndOutward) {
@@ -64,3 +66,5 @@ TEST(PointNormals, OrientOnTheTablesFirstColumnsGivesComputesNormals) {
   EXPECT_TRUE(r.fittedOfKept.empty());
   for (size_t i = 0; i < ps.size(); ++i) ASSERT_EQ(r.normal[i], want.normal[i]) << i;
 }
+
+}  // namespace point_normals_test

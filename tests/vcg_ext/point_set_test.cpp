@@ -12,6 +12,8 @@
 #include "vcg_ext/point_set.h"
 #include "test_mesh.h"
 
+namespace point_set_test {
+
 namespace {
 template <class Scalar>
 void JoinsExactlyTheCoincidentPoints(const std::vector<vcg::Point3<Scalar>>& pos) {
@@ -119,3 +121,5 @@ TEST(PointSetFromMesh, CountsEveryNonFinitePointAcrossChunks) {
     EXPECT_NE(std::string(e.what()).find("holds 3 points with NaN or infinite coordinates"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace point_set_test

@@ -6,6 +6,8 @@
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
 
+namespace poisson_disk_test {
+
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
@@ -192,3 +194,5 @@ TEST(PoissonDisk, EuclideanDisksHoldTheirCentreRimAndCopiesAtAnyRadius) {
              vcg::Distance(m.vert[0].P(), m.vert[1].P()), [&](int i, float) { rim.insert(d.points.vertIndex[i]); });
   EXPECT_EQ(rim, (std::set<int>{0, 1, 8})) << "the centre and both neighbours on the rim";
 }
+
+}  // namespace poisson_disk_test

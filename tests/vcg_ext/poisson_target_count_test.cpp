@@ -10,6 +10,8 @@
 #include "shared_data.h"
 #include "test_mesh.h"
 
+namespace poisson_target_count_test {
+
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
@@ -167,3 +169,5 @@ TEST(TargetCount, ExactCountsOnTheBunnyScan) {
     RecordProperty("iterations_" + std::to_string(n), r.iterations);
   }
 }
+
+}  // namespace poisson_target_count_test

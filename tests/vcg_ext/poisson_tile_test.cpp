@@ -10,6 +10,8 @@
 #include <vcg_ext/poisson_tile.h>
 #include "test_mesh.h"
 
+namespace poisson_tile_test {
+
 namespace {
 
 typedef vcg_ext::PoissonTile<double> Tile;
@@ -166,3 +168,5 @@ TEST(PoissonTile, SettleTakesAnOpenPointIffNoneOfItsCoverersIsASample) {
   Tile::Settle({2, 3, 4}, {0, 1, 2, 3}, {0, 1, 3}, status);
   EXPECT_EQ(status, (std::vector<int8_t>{Tile::In, Tile::Out, Tile::Out, Tile::In, Tile::Out}));
 }
+
+}  // namespace poisson_tile_test

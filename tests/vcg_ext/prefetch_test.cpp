@@ -7,6 +7,8 @@
 #include <vector>
 #include <vcg_ext/prefetch.h>
 
+namespace prefetch_test {
+
 namespace {
 // A readable page followed by one that faults on any access: a prefetch
 // past the end of a row must not touch it as a load would.
@@ -62,3 +64,5 @@ TEST(Prefetch, NeverFaultsAtTheEndOfAMapping) {
   vcg_ext::PrefetchRange(g.end(), g.end() + 64);      // even a range inside the guard page is only a hint
   EXPECT_EQ(std::memcmp(before.data(), g.base, g.page), 0);
 }
+
+}  // namespace prefetch_test

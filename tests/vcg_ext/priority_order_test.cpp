@@ -7,6 +7,8 @@
 #include <vector>
 #include <vcg_ext/priority_order.h>
 
+namespace priority_order_test {
+
 TEST(PriorityOrder, ASubsetKeepsTheWholeSetsOrder) {
   std::vector<uint64_t> all(5000);
   for (size_t i = 0; i < all.size(); ++i) all[i] = 7 * i + 3;
@@ -50,3 +52,5 @@ TEST(PriorityOrder, DistinctIdsNeverTieAndEqualIdsKeepTheirNumbering) {
     EXPECT_TRUE(p0 < p1 || (p0 == p1 && o[k - 1] < o[k]));
   }
 }
+
+}  // namespace priority_order_test

@@ -7,6 +7,8 @@
 #include <vector>
 #include <vcg_ext/progress.h>
 
+namespace progress_test {
+
 namespace {
 // What the callback was given, from plain functions as vcglib wants.
 std::vector<int> reported;
@@ -96,3 +98,5 @@ TEST(Progress, WithoutACallbackNothingIsReportedOrThrown) {
     for (size_t d = 0; d <= 50; ++d) sub(d, 50, "sub");
   });
 }
+
+}  // namespace progress_test

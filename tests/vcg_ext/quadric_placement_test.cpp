@@ -6,6 +6,8 @@
 #include <functional>
 #include <vcg_ext/quadric_placement.h>
 
+namespace quadric_placement_test {
+
 namespace {
 
 typedef vcg::Point3d P;
@@ -97,3 +99,5 @@ TEST(QuadricPlacement, ABorderSampleStaysOnItsBorder) {
   EXPECT_LT(placed[0][2], 0.0);  // out of the convex surface, as inside the region
   EXPECT_NEAR(placed[0][0], g.pos[size_t(s)][0], 1e-9);  // free along the border
 }
+
+}  // namespace quadric_placement_test

@@ -6,6 +6,8 @@
 #include <vector>
 #include "vcg_ext/radix_heap.h"
 
+namespace radix_heap_test {
+
 namespace {
 // Pops against a binary min-heap of (distance, point) under a Dijkstra-like
 // load: every push at or above the last pop, with many equal distances.
@@ -63,3 +65,5 @@ TEST(RadixHeap, PopsInTheBinaryHeapsOrderOverManySmallRuns) {
   MatchesTheBinaryHeap<double>(3, 50);
   MatchesTheBinaryHeap<float>(4, 50);
 }
+
+}  // namespace radix_heap_test

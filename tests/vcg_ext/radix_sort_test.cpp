@@ -11,6 +11,8 @@
 #endif
 #include "vcg_ext/radix_sort.h"
 
+namespace radix_sort_test {
+
 namespace {
 void MatchesAComparisonSort(std::vector<uint64_t> key) {
   std::vector<std::pair<uint64_t, int>> want(key.size());
@@ -64,3 +66,5 @@ TEST(SortKeys, TheSameOnOneAndThreeThreads) {
   AllShapes();
 #endif
 }
+
+}  // namespace radix_sort_test

@@ -4,6 +4,8 @@
 #include "vcg_ext/knn_table.h"
 #include "vcg_ext/realloc_array.h"
 
+namespace realloc_array_test {
+
 // Resizing keeps the prefix and zero-fills what it adds, as std::vector does:
 // the graph build grows the kNN table into its rows and relies on both.
 TEST(ReallocArray, ResizeKeepsThePrefixAndZeroFillsTheRest) {
@@ -52,3 +54,5 @@ TEST(KnnTable, KeepColumnsKeepsEachRowsNearest) {
     EXPECT_EQ(t.Row(i)[1], int(i * 5 + 1));
   }
 }
+
+}  // namespace realloc_array_test

@@ -5,6 +5,8 @@
 #include <limits>
 #include <vcg_ext/sample_counts.h>
 
+namespace sample_counts_test {
+
 using vcg_ext::PercentOf;
 
 TEST(SampleCounts, HalvesRoundAwayFromZero) {
@@ -43,3 +45,5 @@ TEST(SampleCounts, StaysADoubleBeyondAnyCount) {
   EXPECT_TRUE(std::isnan(PercentOf(std::nan(""), 10)));
   EXPECT_TRUE(std::isinf(PercentOf(std::numeric_limits<double>::infinity(), 10)));
 }
+
+}  // namespace sample_counts_test

@@ -8,6 +8,8 @@
 #include <vcg_ext/sample_elimination.h>
 #include "test_mesh.h"
 
+namespace sample_elimination_test {
+
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using Domain = LOD::Domain;
@@ -105,3 +107,5 @@ TEST(SampleElimination, CompletedFieldsEqualASearchFromEachSource) {
       });
     }
 }
+
+}  // namespace sample_elimination_test

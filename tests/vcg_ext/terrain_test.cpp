@@ -5,6 +5,8 @@
 #include <vcg_ext/geodesic_domain.h>
 #include "shared_data.h"
 
+namespace terrain_test {
+
 TEST(Terrain, MeshFastMarchingAndPointGraphAgree) {
   test::TMesh m;
   READ_SHARED_SCAN_OR_SKIP("terrain_n44w072_crop301x301.ply", m);
@@ -40,3 +42,5 @@ TEST(Terrain, MeshFastMarchingAndPointGraphAgree) {
     RecordProperty("median_rel_diff_" + std::to_string(src), std::to_string(median));
   }
 }
+
+}  // namespace terrain_test

@@ -12,6 +12,8 @@
 #include "on_threads.h"
 #include "test_mesh.h"
 
+namespace threads_test {
+
 namespace {
 using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
@@ -120,3 +122,5 @@ TEST(Threads, BesideRunsBothAndRethrowsAfterBoth) {
     });
   }
 }
+
+}  // namespace threads_test

@@ -3,6 +3,8 @@
 #include <vcg_ext/vertex_subset.h>
 #include "test_mesh.h"
 
+namespace vertex_subset_test {
+
 TEST(VertexSubset, CopiesPositionsDataAndNamedAttributes) {
   test::TMesh src;
   test::Sphere(src, 100);
@@ -37,3 +39,5 @@ TEST(VertexSubset, CopiesPositionsDataAndNamedAttributes) {
     EXPECT_EQ(pa[pick[k]], pd[k]);
   }
 }
+
+}  // namespace vertex_subset_test
