@@ -15,6 +15,7 @@
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/sample_counts.h>
 #include "array_input.h"
 #include "call_support.h"
@@ -110,17 +111,17 @@ Domain BuildFrom(const Array2& points, std::optional<Array2> normals, std::optio
   return Domain::Build(std::move(ps), std::move(tris), p, progress);
 }
 
-// A sampler's LOD of arrays, as vcg_ext::MeshLod's of a mesh: the parameters
-// checked first, then the domain built and sampled.
+// A sampler's LOD of arrays: vcg_ext::LodOf on their points and, when given, their faces.
 template <class Sampler>
 typename Sampler::Result LodOf(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                                const typename Sampler::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
   return pp.Run([&](vcg_ext::Progress pr) {
-    Sampler::CheckParam(p, faces && faces->shape(0) > 0);
-    const Domain d = BuildFrom(points, normals, faces, p.domain, pr.Sub(0, 50));
-    return Sampler::Compute(d, p, pr.Sub(50, 100));
+    vcg_ext::PointSet<double> ps = ReadPoints(points, normals ? &*normals : nullptr);
+    vcg_ext::MeshTriangles tris;
+    if (faces) tris = ReadFaces(*faces, ps.size());
+    return vcg_ext::LodOf<Sampler>(std::move(ps), std::move(tris), p, pr);
   });
 }
 
