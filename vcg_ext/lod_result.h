@@ -65,7 +65,8 @@ struct LodResult {
     if (placement != Placement::Optimized) return;
     std::vector<vcg::Point3<Scalar>> normal;
     for (int i : samples) normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[size_t(i)]));
-    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, normal, position, faces, progress);
+    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, TriangleBorders::Points(d.triangles, d.size()), normal,
+                                      position, faces, progress);
   }
 
   /// The data of `samples` (point indices of `d`).

@@ -4,8 +4,10 @@
 // Mesh Optimization, SIGGRAPH 1993, without collapses and splits). Each round
 // flips the edges whose flip lowers the squared distance to the LOD of the
 // input points in the four regions around them, then fits the vertex
-// positions by least squares to those points' nearest LOD triangles, with a
-// spring on every edge and a weak pull to where they were. A flip never makes
+// positions by least squares to those points' nearest LOD triangles (the
+// input's border points to the LOD's nearest border edge), with a spring on
+// every edge and a weak pull to where they were; a border vertex is also held
+// to its nearest input border point, as no point lies beyond a border. A flip never makes
 // an edge of more than two triangles, never makes a triangle facing away from
 // either of the two it replaces, and keeps the orientation; a fit never turns a triangle
 // over (a vertex that would stays where it was).
@@ -20,6 +22,7 @@
 #include <vector>
 #include <vcg/space/point3.h>
 #include "progress.h"
+#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -32,20 +35,22 @@ class MeshOptimization {
     int fitIterations = 3;    ///< nearest triangles found again, positions solved again
     double spring = 1e-2;     ///< weight of an edge's spring against one point's distance
     double anchor = 1e-6;     ///< weight of a vertex's pull to where it was
+    double border = 1;           ///< weight of a border vertex's pull to its nearest input border point, as one point's
   };
 
   /// `pts`: the input's points; `owner`: per point, the rank of the sample
-  /// whose region holds it (-1: none); `normal`: per sample, the surface's
+  /// whose region holds it (-1: none); `onBorder`: per point, whether it ends
+  /// a border edge of the input's triangles; `normal`: per sample, the surface's
   /// normal there; `pos`: per sample, its position
   /// (replaced by the fitted one); `faces`: triangles over the samples
   /// (replaced by the flipped ones, as many, in the same slots). Throws
   /// Cancelled (leaving both as they were) when `progress` asks to stop.
   static void Compute(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner,
-                      const std::vector<vcg::Point3<Scalar>>& normal, std::vector<vcg::Point3<Scalar>>& pos,
+                      const std::vector<char>& onBorder, const std::vector<vcg::Point3<Scalar>>& normal, std::vector<vcg::Point3<Scalar>>& pos,
                       std::vector<std::array<int, 3>>& faces,
                       Progress progress = Progress(nullptr), const Param& p = Param()) {
     if (faces.empty()) return;
-    Mesh m(pts, owner, normal, pos, faces);
+    Mesh m(pts, owner, onBorder, normal, pos, faces);
     const size_t steps = size_t(p.rounds) * size_t(p.flipPasses + p.fitIterations);
     size_t step = 0;
     for (int round = 0; round < p.rounds; ++round) {
@@ -59,7 +64,7 @@ class MeshOptimization {
         }
       }
       for (int it = 0; it < p.fitIterations; ++it) {
-        m.Fit(p.spring, p.anchor);
+        m.Fit(p.spring, p.anchor, p.border);
         progress(++step, steps, "Optimizing the mesh");
       }
     }
@@ -112,13 +117,14 @@ class MeshOptimization {
  private:
   struct Mesh {
     std::vector<Eigen::Vector3d> q;          // the input's points held by a region
+    std::vector<char> qBorder;               // per q, whether it is on the input's border
     std::vector<size_t> first;               // sample s holds q[first[s] .. first[s + 1])
     std::vector<Eigen::Vector3d> x;          // per sample, its position
     std::vector<Eigen::Vector3d> up;         // per sample, the surface's normal
     std::vector<std::array<int, 3>> faces;
     std::vector<std::vector<int>> around;    // per sample, its faces
 
-    Mesh(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner,
+    Mesh(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner, const std::vector<char>& onBorder,
          const std::vector<vcg::Point3<Scalar>>& normal, const std::vector<vcg::Point3<Scalar>>& pos,
          const std::vector<std::array<int, 3>>& f)
         : first(pos.size() + 1, 0), faces(f), around(pos.size()) {
@@ -126,11 +132,13 @@ class MeshOptimization {
         if (owner[i] >= 0) ++first[size_t(owner[i]) + 1];
       for (size_t s = 0; s < pos.size(); ++s) first[s + 1] += first[s];
       q.resize(first.back());
+      qBorder.resize(first.back());
       std::vector<size_t> at(first.begin(), first.end() - 1);
       for (size_t i = 0; i < owner.size(); ++i)
         if (owner[i] >= 0) {
           const size_t k = at[size_t(owner[i])]++;
           q[k] = Eigen::Vector3d(pts[i][0], pts[i][1], pts[i][2]);
+          qBorder[k] = onBorder[i];
         }
       for (const auto& v : pos) x.emplace_back(v[0], v[1], v[2]);
       for (const auto& v : normal) up.emplace_back(v[0], v[1], v[2]);
@@ -228,9 +236,14 @@ class MeshOptimization {
     }
 
     // Each point's nearest triangle among those of its sample and its
-    // sample's neighbours, then the positions that fit those points best.
-    void Fit(double spring, double anchor) {
+    // sample's neighbours (a border point's nearest border edge among theirs),
+    // then the positions that fit those points best.
+    void Fit(double spring, double anchor, double border) {
       const size_t n = x.size();
+      std::vector<std::vector<std::array<int, 2>>> borderAt(n);  // per sample, the LOD's border edges at it
+      for (const auto& e : TriangleBorders::Edges(faces))
+        for (int v : {e.u, e.v}) borderAt[size_t(v)].push_back({e.u, e.v});
+      std::vector<std::array<int, 2>> nearEdges;
       std::vector<Eigen::Triplet<double>> a;
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(Eigen::Index(n), 3);
       std::vector<int> near;
@@ -242,7 +255,31 @@ class MeshOptimization {
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
         if (near.empty()) continue;
+        nearEdges.clear();
+        for (int t : around[s])
+          for (int v : faces[size_t(t)]) nearEdges.insert(nearEdges.end(), borderAt[size_t(v)].begin(), borderAt[size_t(v)].end());
         for (size_t i = first[s]; i < first[s + 1]; ++i) {
+          if (qBorder[i] && !nearEdges.empty()) {  // the LOD's border follows the input's
+            double best = std::numeric_limits<double>::infinity(), bestT = 0;
+            std::array<int, 2> bestEdge{};
+            for (const auto& e : nearEdges) {
+              const Eigen::Vector3d ab = x[size_t(e[1])] - x[size_t(e[0])];
+              const double len2 = ab.squaredNorm();
+              const double u = len2 > 0 ? std::clamp((q[i] - x[size_t(e[0])]).dot(ab) / len2, 0.0, 1.0) : 0.0;
+              const double dd = (q[i] - x[size_t(e[0])] - u * ab).squaredNorm();
+              if (dd < best) {
+                best = dd;
+                bestT = u;
+                bestEdge = e;
+              }
+            }
+            const double w[2] = {1 - bestT, bestT};
+            for (int r = 0; r < 2; ++r) {
+              for (int c = 0; c < 2; ++c) a.emplace_back(bestEdge[size_t(r)], bestEdge[size_t(c)], w[r] * w[c]);
+              rhs.row(bestEdge[size_t(r)]) += w[r] * q[i].transpose();
+            }
+            continue;
+          }
           double best = std::numeric_limits<double>::infinity();
           int bestFace = -1;
           Eigen::Vector3d w, bestW;
@@ -261,6 +298,23 @@ class MeshOptimization {
             rhs.row(f[size_t(r)]) += bestW[r] * q[i].transpose();
           }
         }
+      }
+      // No point lies beyond a border, so nothing above keeps a border vertex from drifting off the
+      // surface there: the nearest input border point among its own and its neighbours' regions holds it.
+      for (size_t s = 0; s < n; ++s) {
+        if (borderAt[s].empty()) continue;
+        double best = std::numeric_limits<double>::infinity();
+        Eigen::Vector3d nearest;
+        for (int t : around[s])
+          for (int v : faces[size_t(t)])
+            for (size_t i = first[size_t(v)]; i < first[size_t(v) + 1]; ++i)
+              if (qBorder[i] && (q[i] - x[s]).squaredNorm() < best) {
+                best = (q[i] - x[s]).squaredNorm();
+                nearest = q[i];
+              }
+        if (best == std::numeric_limits<double>::infinity()) continue;  // a border the input does not have
+        a.emplace_back(int(s), int(s), border);
+        rhs.row(Eigen::Index(s)) += border * nearest.transpose();
       }
       for (const auto& t : faces)
         for (size_t e = 0; e < 3; ++e) {

@@ -13,9 +13,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <tuple>
 #include <vector>
 #include <vcg/space/point3.h>
+#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -51,36 +51,21 @@ class QuadricPlacement {
     };
     auto at = [&](int i) { return Eigen::Vector3d(double(pos[size_t(i)][0]), double(pos[size_t(i)][1]), double(pos[size_t(i)][2])); };
     // Each triangle's plane, a third of its area to each corner's region.
-    std::vector<std::tuple<int, int, size_t>> edges;  // (lower, higher point, face)
-    edges.reserve(3 * tri.size());
     for (size_t f = 0; f < tri.size(); ++f) {
       const Eigen::Vector3d a = at(tri[f][0]), c = (at(tri[f][1]) - a).cross(at(tri[f][2]) - a);
       const double twiceArea = c.norm();
       if (!(twiceArea > 0)) continue;
       const Eigen::Vector3d n = c / twiceArea;
       for (int corner = 0; corner < 3; ++corner) add(tri[f][size_t(corner)], n, -n.dot(a), twiceArea / 6);
-      for (int e = 0; e < 3; ++e) {
-        const int u = tri[f][size_t(e)], v = tri[f][size_t((e + 1) % 3)];
-        edges.emplace_back(std::min(u, v), std::max(u, v), f);
-      }
     }
     // Border edges (in one triangle only): the direction across them, in the plane of the triangle.
-    std::sort(edges.begin(), edges.end());
-    for (size_t s = 0; s < edges.size();) {
-      size_t e = s + 1;
-      while (e < edges.size() && std::get<0>(edges[e]) == std::get<0>(edges[s]) &&
-             std::get<1>(edges[e]) == std::get<1>(edges[s]))
-        ++e;
-      if (e == s + 1) {
-        const int u = std::get<0>(edges[s]), v = std::get<1>(edges[s]);
-        const auto& t = tri[std::get<2>(edges[s])];
-        const Eigen::Vector3d along = at(v) - at(u);
-        const Eigen::Vector3d m = along.cross((at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0])));
-        if (m.norm() > 0)
-          for (int w : {u, v})
-            if (owner[size_t(w)] >= 0) across[size_t(owner[size_t(w)])] += m.normalized() * m.normalized().transpose();
-      }
-      s = e;
+    for (const auto& e : TriangleBorders::Edges(tri)) {
+      const auto& t = tri[e.face];
+      const Eigen::Vector3d along = at(e.v) - at(e.u);
+      const Eigen::Vector3d m = along.cross((at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0])));
+      if (m.norm() > 0)
+        for (int w : {e.u, e.v})
+          if (owner[size_t(w)] >= 0) across[size_t(owner[size_t(w)])] += m.normalized() * m.normalized().transpose();
     }
     std::vector<vcg::Point3<Scalar>> placed(k);
     for (size_t r = 0; r < k; ++r) {

@@ -1,18 +1,21 @@
 // vcg_ext/mesh_optimization.h: the nearest point of a triangle, and a mesh LOD
 // optimized to the input's points: nearer to them than the per-region fit,
 // as many triangles, none facing away from the surface, no edge in more than
-// two, the same mesh from the same input.
+// two, the same mesh from the same input; its border held on the input's.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <utility>
 #include <vector>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/mesh_optimization.h>
+#include <vcg_ext/triangle_borders.h>
 #include "test_mesh.h"
 
 namespace mesh_optimization_test {
@@ -125,19 +128,75 @@ TEST(MeshOptimization, ReportsProgressAndStopsOnRequestLeavingTheMeshAsItWas) {
   for (const auto& v : m.vert) pts.push_back(v.cP());
   std::vector<vcg::Point3<Scalar>> pos = r.position;
   std::vector<std::array<int, 3>> faces = r.faces;
-  EXPECT_THROW(Optimization::Compute(pts, r.regionOf, r.normal, pos, faces, vcg_ext::Progress(&StopAtOnce)),
+  EXPECT_THROW(Optimization::Compute(pts, r.regionOf, std::vector<char>(pts.size(), 0), r.normal, pos, faces, vcg_ext::Progress(&StopAtOnce)),
                vcg_ext::Cancelled);
   EXPECT_EQ(pos, r.position);
   EXPECT_EQ(faces, r.faces);
-  Optimization::Compute(pts, r.regionOf, r.normal, pos, faces, vcg_ext::Progress(&Count));
+  Optimization::Compute(pts, r.regionOf, std::vector<char>(pts.size(), 0), r.normal, pos, faces, vcg_ext::Progress(&Count));
   EXPECT_GT(reported, 2);
   EXPECT_NE(pos, r.position);
+}
+
+// Per vertex of the LOD's border (edges of one triangle) that is `held`, its distance to the nearest of the
+// segments `border`.
+std::vector<double> BorderGaps(const std::vector<vcg::Point3<Scalar>>& pos, const std::vector<std::array<int, 3>>& faces,
+                               const std::vector<std::pair<V3, V3>>& border, const std::vector<char>& held) {
+  std::vector<double> gaps;
+  const std::vector<char> on = vcg_ext::TriangleBorders::Points(faces, pos.size());
+  for (size_t s = 0; s < pos.size(); ++s) {
+    if (!on[s] || !held[s]) continue;
+    const V3 x(pos[s][0], pos[s][1], pos[s][2]);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& b : border) best = std::min(best, Optimization::Nearest(x, b.first, b.second, b.second));
+    gaps.push_back(std::sqrt(best));
+  }
+  return gaps;
+}
+
+TEST(MeshOptimization, TheLodsBorderStaysOnTheInputsBorder) {
+  // A bumpy open patch: no point lies beyond its border to keep the fit from moving the LOD's border off it.
+  test::TMesh m;
+  const int n = 40;
+  test::GridMesh(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  Poisson::Param p;
+  p.sampleNum = 120;
+  p.meshOutput = true;
+  p.placement = vcg_ext::Placement::Quadric;
+  p.regions = vcg_ext::Regions::Voronoi;
+  const auto r = vcg_ext::MeshLod<Poisson>(m, p);
+  std::vector<vcg::Point3<Scalar>> pts;
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& v : m.vert) pts.push_back(v.cP());
+  for (const auto& f : m.face)
+    tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
+  std::vector<std::pair<V3, V3>> border;
+  auto at = [&](int i) { return V3(pts[size_t(i)][0], pts[size_t(i)][1], pts[size_t(i)][2]); };
+  for (const auto& e : vcg_ext::TriangleBorders::Edges(tri)) border.emplace_back(at(e.u), at(e.v));
+  const std::vector<char> onBorder = vcg_ext::TriangleBorders::Points(tri, pts.size());
+  std::vector<char> regionOnBorder(r.position.size(), 0);  // the samples whose region holds border points
+  for (size_t i = 0; i < pts.size(); ++i)
+    if (onBorder[i]) regionOnBorder[size_t(r.regionOf[i])] = 1;
+  ASSERT_EQ(border.size(), size_t(4 * (n - 1)));
+  auto optimized = [&](double weight) {
+    std::vector<vcg::Point3<Scalar>> pos = r.position;
+    std::vector<std::array<int, 3>> faces = r.faces;
+    Optimization::Param op;
+    op.border = weight;
+    Optimization::Compute(pts, r.regionOf, onBorder, r.normal, pos, faces, vcg_ext::Progress(nullptr), op);
+    return BorderGaps(pos, faces, border, regionOnBorder);
+  };
+  const std::vector<double> held = optimized(Optimization::Param().border), free = optimized(0);
+  ASSERT_EQ(held.size(), free.size());
+  ASSERT_GT(held.size(), 20u);
+  auto mean = [](const std::vector<double>& g) { return std::accumulate(g.begin(), g.end(), 0.0) / double(g.size()); };
+  EXPECT_LT(mean(held), 0.75 * mean(free)) << "the border vertices drift off the input's border";
+  EXPECT_LE(*std::max_element(held.begin(), held.end()), *std::max_element(free.begin(), free.end()));
 }
 
 TEST(MeshOptimization, NoTrianglesLeaveEverythingAsItWas) {
   std::vector<vcg::Point3<Scalar>> pts = {{0, 0, 0}, {1, 0, 0}}, pos = {{0, 0, 0}};
   std::vector<std::array<int, 3>> faces;
-  Optimization::Compute(pts, {0, 0}, {{0, 0, 1}}, pos, faces);
+  Optimization::Compute(pts, {0, 0}, {0, 0}, {{0, 0, 1}}, pos, faces);
   EXPECT_TRUE(faces.empty());
   EXPECT_EQ(pos[0], vcg::Point3<Scalar>(0, 0, 0));
 }
