@@ -108,6 +108,16 @@ TEST(MeshOptimization, NearerToThePointsThanThePerRegionFitWithoutFoldsOrCrowded
   EXPECT_EQ(again.pos, optimized.pos);
 }
 
+// A Poisson LOD of `count` samples with the per-region fit and the regions: what the optimization starts from.
+Poisson::Result FittedWithRegions(const test::TMesh& m, int count) {
+  Poisson::Param p;
+  p.sampleNum = count;
+  p.meshOutput = true;
+  p.placement = vcg_ext::Placement::Quadric;
+  p.regions = vcg_ext::Regions::Voronoi;
+  return vcg_ext::MeshLod<Poisson>(m, p);
+}
+
 bool StopAtOnce(int, const char*) { return false; }
 int reported = 0;
 bool Count(int, const char*) {
@@ -118,12 +128,7 @@ bool Count(int, const char*) {
 TEST(MeshOptimization, ReportsProgressAndStopsOnRequestLeavingTheMeshAsItWas) {
   test::TMesh m;
   test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
-  Poisson::Param p;
-  p.sampleNum = 60;
-  p.meshOutput = true;
-  p.placement = vcg_ext::Placement::Quadric;
-  p.regions = vcg_ext::Regions::Voronoi;
-  const auto r = vcg_ext::MeshLod<Poisson>(m, p);
+  const auto r = FittedWithRegions(m, 60);
   std::vector<vcg::Point3<Scalar>> pts;
   for (const auto& v : m.vert) pts.push_back(v.cP());
   std::vector<vcg::Point3<Scalar>> pos = r.position;
@@ -158,12 +163,7 @@ TEST(MeshOptimization, TheLodsBorderStaysOnTheInputsBorder) {
   test::TMesh m;
   const int n = 40;
   test::GridMesh(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
-  Poisson::Param p;
-  p.sampleNum = 120;
-  p.meshOutput = true;
-  p.placement = vcg_ext::Placement::Quadric;
-  p.regions = vcg_ext::Regions::Voronoi;
-  const auto r = vcg_ext::MeshLod<Poisson>(m, p);
+  const auto r = FittedWithRegions(m, 120);
   std::vector<vcg::Point3<Scalar>> pts;
   std::vector<std::array<int, 3>> tri;
   for (const auto& v : m.vert) pts.push_back(v.cP());
