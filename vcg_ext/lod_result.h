@@ -6,6 +6,7 @@
 #include <vector>
 #include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
+#include "hole_closing.h"
 #include "mesh_optimization.h"
 #include "quadric_placement.h"
 
@@ -54,19 +55,24 @@ struct LodResult {
 
   /// The triangle mesh of `samples` (point indices of `d`): their geodesic
   /// Delaunay triangles read from `voronoi` (per point, the rank of its nearest
-  /// sample), and `position` (the samples' input points) placed as
+  /// sample), small holes the input lacks closed (HoleClosing), and `position` (the samples' input points) placed as
   /// `placement` says, the optimization reported to `progress`.
   static void MeshOf(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, const std::vector<int>& voronoi,
                      Placement placement, std::vector<std::array<int, 3>>& faces,
                      std::vector<vcg::Point3<Scalar>>& position, Progress progress = Progress(nullptr)) {
     faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
+    // The holes the read-off leaves where regions wrap a thin part close; the input's own stay open.
+    const std::vector<char> inputBorder = TriangleBorders::Points(d.triangles, d.size());
+    std::vector<char> stayOpen(samples.size(), 0);
+    for (size_t i = 0; i < inputBorder.size(); ++i)
+      if (inputBorder[i] && voronoi[i] >= 0) stayOpen[size_t(voronoi[i])] = 1;
+    HoleClosing<Scalar>::Compute(position, stayOpen, faces);
     if (placement == Placement::InputVertices) return;
     position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
     if (placement != Placement::Optimized) return;
     std::vector<vcg::Point3<Scalar>> normal;
     for (int i : samples) normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[size_t(i)]));
-    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, TriangleBorders::Points(d.triangles, d.size()), normal,
-                                      position, faces, progress);
+    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, inputBorder, normal, position, faces, progress);
   }
 
   /// The data of `samples` (point indices of `d`).
