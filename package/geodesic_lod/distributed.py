@@ -282,16 +282,24 @@ def _worker_rss() -> int:
 
 def check_worker_memory(client) -> None:
     """Refuses workers whose memory limit their own footprint already fills past Dask's pause
-    threshold: they would pause before any task and the job would wait for ever."""
+    threshold: they would pause before any task and the job would wait for ever. A worker lost while
+    asked (its nanny restarts it past its limit) is refused the same way."""
     import dask
     pause = dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0
-    used = client.run(_worker_rss)
-    for addr, w in client.scheduler_info()["workers"].items():
+    workers = client.scheduler_info()["workers"]
+    used = client.run(_worker_rss, on_error="return")
+    for addr, w in workers.items():
         limit = w.get("memory_limit") or 0
-        if limit and used.get(addr, 0) >= pause * limit:
+        rss = used.get(addr, 0)
+        if not limit:
+            continue
+        if isinstance(rss, BaseException):
+            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: "
+                                  f"the worker was lost before any task ({rss}); give workers more memory")
+        if rss >= pause * limit:
             raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
-                             f"takes {used[addr] / 1e6:.0f} MB before any task; give workers at least "
-                             f"{2 * used[addr] / 1e6:.0f} MB")
+                                  f"takes {rss / 1e6:.0f} MB before any task; give workers at least "
+                                  f"{2 * rss / 1e6:.0f} MB")
 
 
 def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
