@@ -309,24 +309,6 @@ def test_a_cluster_run_without_dask_names_the_extra_to_install(cloud, tmp_path):
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "pip install 'geodesic-lod[dask]'" in r.stderr, r.stderr
 
 
-def test_a_worker_lost_during_the_memory_check_is_named_with_its_limit():
-    """A worker whose nanny restarts it past its memory limit can be lost while the check asks its footprint."""
-    from distributed.comm.core import CommClosedError
-
-    class Cluster:
-        def scheduler_info(self):
-            return {"workers": {"tcp://127.0.0.1:1": {"memory_limit": 50e6}}}
-
-        def run(self, function, on_error="raise"):
-            lost = CommClosedError("Stream is closed")
-            if on_error == "raise":
-                raise lost
-            return {"tcp://127.0.0.1:1": lost}
-
-    with pytest.raises(gl.ClusterJobError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
-        dist.check_worker_memory(Cluster())
-
-
 def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_path):
     with dist.local_cluster(1, memory_limit="50MB") as cluster, Client(cluster) as c:
         with pytest.raises(gl.ClusterJobError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):

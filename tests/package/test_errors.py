@@ -73,12 +73,15 @@ def test_the_command_turns_them_into_one_line_and_exit_2(tmp_path):
 
 class _Client:
     """What lod_files asks of a Dask client, answered as a cluster in trouble answers: workers whose own
-    footprint (`rss`) fills their memory `limit`; past that, every task lost with its worker again and again."""
+    footprint (`rss`) fills their memory `limit`, or who are lost while asked it (`rss` an exception: a nanny
+    restarts a worker past its limit); past that, every task lost with its worker again and again."""
 
     def __init__(self, rss, limit):
         self.rss, self.limit = rss, limit
 
-    def run(self, fn):
+    def run(self, fn, on_error="raise"):
+        if isinstance(self.rss, Exception) and on_error == "raise":
+            raise self.rss
         return {"tcp://127.0.0.1:1": self.rss}
 
     def scheduler_info(self):
@@ -108,8 +111,10 @@ def test_lod_files_raises_input_errors(tmp_path, npy_cloud):
 
 @pytest.mark.parametrize("client, words", [
     (_Client(rss=60e6, limit=50e6), r"a worker's memory limit \(50 MB\) is below what it needs"),
+    (_Client(rss=ConnectionError("Stream is closed"), limit=50e6),
+     r"a worker's memory limit \(50 MB\) is below what it needs"),
     (_Client(rss=1e6, limit=4e9), "memory may be too small for tiles of 1000 points"),
-], ids=["workers too small", "tasks lost"])
+], ids=["workers too small", "a worker lost while asked", "tasks lost"])
 def test_lod_files_raises_a_cluster_job_error_for_the_clusters_failure(tmp_path, npy_cloud, client, words):
     pytest.importorskip("dask.distributed")
     from geodesic_lod import distributed
