@@ -7,10 +7,10 @@
 // positions by least squares to those points' nearest LOD triangles (the
 // input's border points to the LOD's nearest border edge), with a spring on
 // every edge and a weak pull to where they were; a border vertex is also held
-// to its nearest input border point, as no point lies beyond a border. A flip never makes
-// an edge of more than two triangles, never makes a triangle facing away from
-// either of the two it replaces, and keeps the orientation; a fit never turns a triangle
-// over (a vertex that would stays where it was).
+// to its nearest input border point, as no point lies beyond a border. A
+// flip never makes an edge of more than two triangles, never makes a triangle
+// facing away from either of the two it replaces, and keeps the orientation; a
+// fit never turns a triangle over (a vertex that would stays where it was).
 // Cost per round: the flips, O(edges x points of four regions x triangles
 // around them) per pass; the fit, O(points x triangles around their sample)
 // and a sparse Cholesky factorization of a samples x samples system.
@@ -35,7 +35,7 @@ class MeshOptimization {
     int fitIterations = 3;    ///< nearest triangles found again, positions solved again
     double spring = 1e-2;     ///< weight of an edge's spring against one point's distance
     double anchor = 1e-6;     ///< weight of a vertex's pull to where it was
-    double border = 1;           ///< weight of a border vertex's pull to its nearest input border point, as one point's
+    double border = 1;        ///< weight of a border vertex's pull to its nearest input border point, as a point's
   };
 
   /// `pts`: the input's points; `owner`: per point, the rank of the sample
@@ -46,8 +46,8 @@ class MeshOptimization {
   /// (replaced by the flipped ones, as many, in the same slots). Throws
   /// Cancelled (leaving both as they were) when `progress` asks to stop.
   static void Compute(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner,
-                      const std::vector<char>& onBorder, const std::vector<vcg::Point3<Scalar>>& normal, std::vector<vcg::Point3<Scalar>>& pos,
-                      std::vector<std::array<int, 3>>& faces,
+                      const std::vector<char>& onBorder, const std::vector<vcg::Point3<Scalar>>& normal,
+                      std::vector<vcg::Point3<Scalar>>& pos, std::vector<std::array<int, 3>>& faces,
                       Progress progress = Progress(nullptr), const Param& p = Param()) {
     if (faces.empty()) return;
     Mesh m(pts, owner, onBorder, normal, pos, faces);
@@ -262,21 +262,19 @@ class MeshOptimization {
           if (qBorder[i] && !nearEdges.empty()) {  // the LOD's border follows the input's
             double best = std::numeric_limits<double>::infinity(), bestT = 0;
             std::array<int, 2> bestEdge{};
-            for (const auto& e : nearEdges) {
-              const Eigen::Vector3d ab = x[size_t(e[1])] - x[size_t(e[0])];
-              const double len2 = ab.squaredNorm();
-              const double u = len2 > 0 ? std::clamp((q[i] - x[size_t(e[0])]).dot(ab) / len2, 0.0, 1.0) : 0.0;
-              const double dd = (q[i] - x[size_t(e[0])] - u * ab).squaredNorm();
+            Eigen::Vector3d w;
+            for (const auto& e : nearEdges) {  // the segment as a triangle with two corners at its end
+              const double dd = Nearest(q[i], x[size_t(e[0])], x[size_t(e[1])], x[size_t(e[1])], &w);
               if (dd < best) {
                 best = dd;
-                bestT = u;
+                bestT = 1 - w[0];
                 bestEdge = e;
               }
             }
-            const double w[2] = {1 - bestT, bestT};
+            const double side[2] = {1 - bestT, bestT};
             for (int r = 0; r < 2; ++r) {
-              for (int c = 0; c < 2; ++c) a.emplace_back(bestEdge[size_t(r)], bestEdge[size_t(c)], w[r] * w[c]);
-              rhs.row(bestEdge[size_t(r)]) += w[r] * q[i].transpose();
+              for (int c = 0; c < 2; ++c) a.emplace_back(bestEdge[size_t(r)], bestEdge[size_t(c)], side[r] * side[c]);
+              rhs.row(bestEdge[size_t(r)]) += side[r] * q[i].transpose();
             }
             continue;
           }
