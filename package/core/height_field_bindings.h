@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
-#include <vcg_ext/height_field_lod.h>
 #include "array_input.h"
 #include "call_support.h"
 #include "python_progress.h"
+#include "samplers.h"
 
 namespace geodesic_lod_package {
 
@@ -37,7 +37,7 @@ inline nb::dict HeightFieldLod(const Array2& points, const vcg_ext::HeightFieldL
   PythonProgress pp(std::move(progress));
   const auto r = pp.Run([&](vcg_ext::Progress pr) {
     const std::vector<double> xyz = FlatPoints(points);
-    return vcg_ext::HeightFieldLod::Compute(xyz.data(), xyz.size() / 3, p, pr);
+    return HeightField(xyz, p, pr);
   });
   nb::dict d;
   d["indices"] = ToNumpy(std::vector<int64_t>(r.samples.begin(), r.samples.end()), {r.samples.size()});
@@ -60,7 +60,7 @@ inline nb::ndarray<nb::numpy, int64_t> HeightFieldTin(
     s[k] = int(subset(k));
   }
   nb::gil_scoped_release unlocked;
-  return Triangles(vcg_ext::HeightFieldLod::Triangulate(xyz.data(), s));
+  return Triangles(TinOfSubset(xyz, s));
 }
 
 inline void BindHeightField(nb::module_& m) {

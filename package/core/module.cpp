@@ -12,16 +12,13 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-#include <vcg_ext/geodesic_fps_lod.h>
-#include <vcg_ext/geodesic_lod_pyramid.h>
-#include <vcg_ext/geodesic_poisson_lod.h>
-#include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/sample_counts.h>
 #include "array_input.h"
 #include "call_support.h"
 #include "height_field_bindings.h"
 #include "tile_bindings.h"
 #include "python_progress.h"
+#include "samplers.h"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -29,11 +26,6 @@ using namespace geodesic_lod_package;
 
 namespace {
 
-// Double coordinates, as MeshLab 2025.07's: the same LOD as the plugin's.
-typedef vcg_ext::GeodesicPoissonLod<double> Poisson;
-typedef vcg_ext::GeodesicFpsLod<double> Fps;
-typedef vcg_ext::GeodesicLodPyramid<double> Pyramid;
-typedef vcg_ext::GeodesicDomain<double> Domain;
 typedef vcg_ext::LodResult<double> LodResult;
 
 template <class T>
@@ -108,12 +100,12 @@ Domain BuildFrom(const Array2& points, std::optional<Array2> normals, std::optio
   vcg_ext::PointSet<double> ps = ReadPoints(points, normals ? &*normals : nullptr);
   vcg_ext::MeshTriangles tris;
   if (faces) tris = ReadFaces(*faces, ps.size());
-  return Domain::Build(std::move(ps), std::move(tris), p, progress);
+  return geodesic_lod_package::BuildDomain(std::move(ps), std::move(tris), p, progress);
 }
 
 // A sampler's LOD of arrays: vcg_ext::LodOf on their points and, when given, their faces.
 template <class Sampler>
-typename Sampler::Result LodOf(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+typename Sampler::Result LodOfArrays(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                                const typename Sampler::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
@@ -121,28 +113,28 @@ typename Sampler::Result LodOf(const Array2& points, std::optional<Array2> norma
     vcg_ext::PointSet<double> ps = ReadPoints(points, normals ? &*normals : nullptr);
     vcg_ext::MeshTriangles tris;
     if (faces) tris = ReadFaces(*faces, ps.size());
-    return vcg_ext::LodOf<Sampler>(std::move(ps), std::move(tris), p, pr);
+    return geodesic_lod_package::LodOf(std::move(ps), std::move(tris), p, pr);
   });
 }
 
 nb::dict PoissonLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                     const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
-  return PoissonDict(LodOf<Poisson>(points, normals, faces, p, threads, std::move(progress)));
+  return PoissonDict(LodOfArrays<Poisson>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 nb::dict FpsLod(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                 const Fps::Param& p, std::optional<int> threads, nb::object progress) {
-  return FpsDict(LodOf<Fps>(points, normals, faces, p, threads, std::move(progress)));
+  return FpsDict(LodOfArrays<Fps>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 nb::dict LodPyramid(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                     const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
-  return PyramidDict(LodOf<Pyramid>(points, normals, faces, p, threads, std::move(progress)));
+  return PyramidDict(LodOfArrays<Pyramid>(points, normals, faces, p, threads, std::move(progress)));
 }
 
 // One input's normals, eq. 1 and geodesic search structure, built once for
 // several LODs (the Python Domain holds it; it owns copies of the arrays).
-Domain BuildDomain(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
+Domain DomainOfArrays(const Array2& points, std::optional<Array2> normals, std::optional<Array2> faces,
                    const Domain::Param& p, std::optional<int> threads, nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
@@ -151,23 +143,23 @@ Domain BuildDomain(const Array2& points, std::optional<Array2> normals, std::opt
 
 // A sampler's LOD of a domain built before.
 template <class Sampler>
-typename Sampler::Result LodOn(const Domain& d, const typename Sampler::Param& p, std::optional<int> threads,
+typename Sampler::Result LodOnDomain(const Domain& d, const typename Sampler::Param& p, std::optional<int> threads,
                                nb::object progress) {
   Threads team(threads);
   PythonProgress pp(std::move(progress));
-  return pp.Run([&](vcg_ext::Progress pr) { return Sampler::Compute(d, p, pr); });
+  return pp.Run([&](vcg_ext::Progress pr) { return geodesic_lod_package::LodOn(d, p, pr); });
 }
 
 nb::dict PoissonOn(const Domain& d, const Poisson::Param& p, std::optional<int> threads, nb::object progress) {
-  return PoissonDict(LodOn<Poisson>(d, p, threads, std::move(progress)));
+  return PoissonDict(LodOnDomain<Poisson>(d, p, threads, std::move(progress)));
 }
 
 nb::dict FpsOn(const Domain& d, const Fps::Param& p, std::optional<int> threads, nb::object progress) {
-  return FpsDict(LodOn<Fps>(d, p, threads, std::move(progress)));
+  return FpsDict(LodOnDomain<Fps>(d, p, threads, std::move(progress)));
 }
 
 nb::dict PyramidOn(const Domain& d, const Pyramid::Param& p, std::optional<int> threads, nb::object progress) {
-  return PyramidDict(LodOn<Pyramid>(d, p, threads, std::move(progress)));
+  return PyramidDict(LodOnDomain<Pyramid>(d, p, threads, std::move(progress)));
 }
 
 // Eq. 1 and the normals of every point, in the input's order.
@@ -296,7 +288,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("estimated_normals", [](const Domain& d) { return d.estimatedNormals; })
       .def_prop_ro("left_out", [](const Domain& d) { return d.leftOut; })
       .def_prop_ro("nbytes", [](const Domain& d) { return d.MemoryBytes(); });
-  m.def("build_domain", &BuildDomain, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
+  m.def("build_domain", &DomainOfArrays, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());
   m.def("poisson_on", &PoissonOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
   m.def("fps_on", &FpsOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());

@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <vector>
 #include <vcg_ext/poisson_target_count.h>
-#include <vcg_ext/poisson_tile.h>
 #include "array_input.h"
 #include "call_support.h"
 #include "python_progress.h"
+#include "samplers.h"
 
 namespace geodesic_lod_package {
 
@@ -27,7 +27,6 @@ typedef nb::ndarray<const uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> 
 typedef nb::ndarray<const bool, nb::ndim<1>, nb::c_contig, nb::device::cpu> Flags;
 typedef nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Int64s;
 typedef nb::ndarray<int8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Statuses;
-typedef vcg_ext::PoissonTile<double> Tile;
 
 inline vcg::Box3d Box(const std::array<double, 6>& b) {
   return vcg::Box3d(vcg::Point3d(b[0], b[1], b[2]), vcg::Point3d(b[3], b[4], b[5]));
@@ -52,11 +51,6 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
   Threads team(threads);
   PythonProgress pp(std::move(progress));
   Tile::Result r = pp.Run([&](vcg_ext::Progress pr) {
-    vcg_ext::GeodesicDomain<double>::Param dp = domain;
-    dp.keepReach = true;
-    dp.mode = vcg_ext::GeodesicMode::PointGraph;
-    auto d = vcg_ext::GeodesicDomain<double>::Build(ReadPoints(points, normals ? &*normals : nullptr), {}, dp,
-                                                     pr.Sub(0, 70));
     Tile::Param tp;
     tp.radius = radius;
     tp.seed = seed;
@@ -69,7 +63,7 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
       may.assign(candidate->data(), candidate->data() + rows);
       tp.candidate = &may;
     }
-    return Tile::Compute(d, id, isCore, tp, pr.Sub(70, 100));
+    return SampleTile(ReadPoints(points, normals ? &*normals : nullptr), domain, id, isCore, tp, pr);
   });
   nb::dict out;
   out["certified"] = r.certified;

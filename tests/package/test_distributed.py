@@ -149,9 +149,10 @@ def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
         assert "tiles, radius 0.5" in r.stderr
         check_equal(tmp_path / "lod", points, records, 4)
     finally:
-        for p in procs:
+        # Workers first: a worker whose scheduler is gone keeps trying to reach it well past SIGTERM.
+        for p in reversed(procs):
             p.terminate()
-        for p in procs:
+        for p in reversed(procs):
             try:
                 p.wait(20)
             except subprocess.TimeoutExpired:

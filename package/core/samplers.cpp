@@ -1,0 +1,58 @@
+#include "samplers.h"
+
+#include <utility>
+#include <vcg_ext/mesh_lod.h>
+
+namespace geodesic_lod_package {
+
+Poisson::Result LodOf(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, const Poisson::Param& p,
+                      vcg_ext::Progress progress) {
+  return vcg_ext::LodOf<Poisson>(std::move(ps), std::move(tris), p, progress);
+}
+
+Fps::Result LodOf(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, const Fps::Param& p,
+                  vcg_ext::Progress progress) {
+  return vcg_ext::LodOf<Fps>(std::move(ps), std::move(tris), p, progress);
+}
+
+Pyramid::Result LodOf(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, const Pyramid::Param& p,
+                      vcg_ext::Progress progress) {
+  return vcg_ext::LodOf<Pyramid>(std::move(ps), std::move(tris), p, progress);
+}
+
+Poisson::Result LodOn(const Domain& d, const Poisson::Param& p, vcg_ext::Progress progress) {
+  return Poisson::Compute(d, p, progress);
+}
+
+Fps::Result LodOn(const Domain& d, const Fps::Param& p, vcg_ext::Progress progress) {
+  return Fps::Compute(d, p, progress);
+}
+
+Pyramid::Result LodOn(const Domain& d, const Pyramid::Param& p, vcg_ext::Progress progress) {
+  return Pyramid::Compute(d, p, progress);
+}
+
+Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, const Domain::Param& p,
+                   vcg_ext::Progress progress) {
+  return Domain::Build(std::move(ps), std::move(tris), p, progress);
+}
+
+Tile::Result SampleTile(vcg_ext::PointSet<double> ps, const Domain::Param& domain, const std::vector<uint64_t>& id,
+                        const std::vector<char>& core, const Tile::Param& p, vcg_ext::Progress progress) {
+  Domain::Param dp = domain;
+  dp.keepReach = true;
+  dp.mode = vcg_ext::GeodesicMode::PointGraph;
+  const Domain d = Domain::Build(std::move(ps), {}, dp, progress.Sub(0, 70));
+  return Tile::Compute(d, id, core, p, progress.Sub(70, 100));
+}
+
+vcg_ext::HeightFieldLod::Result HeightField(const std::vector<double>& xyz, const vcg_ext::HeightFieldLod::Param& p,
+                                            vcg_ext::Progress progress) {
+  return vcg_ext::HeightFieldLod::Compute(xyz.data(), xyz.size() / 3, p, progress);
+}
+
+std::vector<std::array<int, 3>> TinOfSubset(const std::vector<double>& xyz, const std::vector<int>& subset) {
+  return vcg_ext::HeightFieldLod::Triangulate(xyz.data(), subset);
+}
+
+}  // namespace geodesic_lod_package
