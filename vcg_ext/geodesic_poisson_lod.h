@@ -14,6 +14,7 @@
 #include "poisson_disk.h"
 #include "poisson_target_count.h"
 #include "priority_order.h"
+#include "prominence.h"
 
 namespace vcg_ext {
 
@@ -39,6 +40,9 @@ class GeodesicPoissonLod {
     /// finer level's samples here: each level is the Poisson set of its radius
     /// among them, in the same visiting order, with geodesics over every point.
     std::vector<int> within;
+    /// Which point of a neighbourhood a disk keeps: any order keeps separation
+    /// and coverage (Prominence: the most prominent at the disk's scale first).
+    VisitOrder order = VisitOrder::Random;
   };
   struct Result : LodResult<Scalar> {
     double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
@@ -54,9 +58,17 @@ class GeodesicPoissonLod {
   }
 
   /// The Poisson visiting order of the domain's points: by the seed and each
-  /// point's input index, so the same point has the same rank in any subset.
-  static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {}) {
-    std::vector<int> order = PriorityOrder(d.points.vertIndex, seed);
+  /// point's input index, so the same point has the same rank in any subset;
+  /// with VisitOrder::Prominence first by their prominence at `scale`.
+  static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
+                                        VisitOrder visit = VisitOrder::Random, double scale = 0) {
+    std::vector<int> order =
+        visit == VisitOrder::Prominence
+            ? Prominence<Scalar>::Order(
+                  Prominence<Scalar>::Compute(d.points.pos, d.normal, scale,
+                                              Prominence<Scalar>::SmoothingRadius(d.points.pos, scale)),
+                  d.points.vertIndex, seed)
+            : PriorityOrder(d.points.vertIndex, seed);
     if (within.empty()) return order;
     std::vector<char> may;
     for (int v : within) {
@@ -74,9 +86,10 @@ class GeodesicPoissonLod {
 
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
-                                    Progress progress = Progress(nullptr), const std::vector<int>& within = {}) {
+                                    Progress progress = Progress(nullptr), const std::vector<int>& within = {},
+                                    VisitOrder visit = VisitOrder::Random) {
     CheckRadius(radius);
-    const std::vector<int> order = VisitingOrder(d, seed, within);
+    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -92,13 +105,14 @@ class GeodesicPoissonLod {
     tp.tolerance = p.tolerance;
     tp.maxIterations = p.maxIterations;
     tp.seed = p.seed;
-    const std::vector<int> order = VisitingOrder(d, p.seed, p.within);
-    tp.order = &order;
     // The metric is never shorter than the Euclidean one: start where disks of
     // this radius would about tile the diagonal plane of the box holding the
     // middle 98% of the points on each axis (a few stray points far away would
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
+    // One order for every run of the search: prominence at the first radius's scale.
+    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius);
+    tp.order = &order;
     PoissonTargetCount::Result r;
     // Its runs compute each edge's length as they go, as one run does: disks
     // skip most edges by their straight length, so kept weights (4 bytes an
@@ -152,7 +166,7 @@ class GeodesicPoissonLod {
       r.trimmed = t.trimmed;
       r.coveringRadius = t.coveringRadius;
     } else {
-      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within);
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, p.order);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

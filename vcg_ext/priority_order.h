@@ -11,6 +11,9 @@
 
 namespace vcg_ext {
 
+/// The order Poisson-disk sampling visits points in (Prominence: prominence.h).
+enum class VisitOrder { Random = 0, Prominence = 1 };
+
 /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every bit.
 inline uint64_t Mix64(uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;

@@ -217,6 +217,9 @@ NB_MODULE(_core, m) {
       .value("InputVertices", vcg_ext::Placement::InputVertices)
       .value("Quadric", vcg_ext::Placement::Quadric)
       .value("Optimized", vcg_ext::Placement::Optimized);
+  nb::enum_<vcg_ext::VisitOrder>(m, "VisitOrder")
+      .value("Random", vcg_ext::VisitOrder::Random)
+      .value("Prominence", vcg_ext::VisitOrder::Prominence);
   nb::enum_<vcg_ext::Regions>(m, "Regions")
       .value("None_", vcg_ext::Regions::None)
       .value("Disk", vcg_ext::Regions::Disk)
@@ -243,6 +246,7 @@ NB_MODULE(_core, m) {
       .def_rw("mesh_output", &Poisson::Param::meshOutput)
       .def_rw("placement", &Poisson::Param::placement)
       .def_rw("regions", &Poisson::Param::regions)
+      .def_rw("order", &Poisson::Param::order)
       .def_prop_rw(
           "within", [](const Poisson::Param& p) { return p.within; },
           [](Poisson::Param& p, const nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>& v) {

@@ -1,0 +1,109 @@
+// Prominence at a scale, and Poisson-disk sampling that visits points by it:
+// peaks come first, separation and coverage hold, the same samples on any
+// number of threads.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vcg_ext/bounded_dijkstra.h>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/prominence.h>
+#include "on_threads.h"
+#include "test_mesh.h"
+
+namespace prominence_test {
+
+namespace {
+using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+using Domain = LOD::Domain;
+using Prominence = vcg_ext::Prominence<test::TMesh::ScalarType>;
+
+// A plane with a narrow peak at (0.3, 0.3) and a broad hill at (0.7, 0.7).
+float PeakAndHill(float x, float y) {
+  const float peak = 0.08f * std::exp(-((x - 0.3f) * (x - 0.3f) + (y - 0.3f) * (y - 0.3f)) / 0.002f);
+  const float hill = 0.08f * std::exp(-((x - 0.7f) * (x - 0.7f) + (y - 0.7f) * (y - 0.7f)) / 0.05f);
+  return peak + hill;
+}
+
+Domain PeakDomain(int n = 61) {
+  test::TMesh m;
+  test::HeightField(m, n, PeakAndHill);
+  return Domain::FromMesh(m, Domain::Param());
+}
+
+int Nearest(const Domain& d, float x, float y) {
+  int best = 0;
+  for (size_t i = 0; i < d.size(); ++i) {
+    const auto& p = d.points.pos[i];
+    const auto& q = d.points.pos[size_t(best)];
+    if (std::hypot(p[0] - x, p[1] - y) < std::hypot(q[0] - x, q[1] - y)) best = int(i);
+  }
+  return best;
+}
+}  // namespace
+
+TEST(Prominence, APeakStandsOutAtItsScaleAndAPlaneDoesNot) {
+  const Domain d = PeakDomain();
+  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03);
+  const int peak = Nearest(d, 0.3f, 0.3f), flat = Nearest(d, 0.1f, 0.9f);
+  EXPECT_EQ(std::max_element(p.begin(), p.end()) - p.begin(), peak);
+  EXPECT_LT(p[size_t(flat)], 0.01f * p[size_t(peak)]);
+  // At a scale far wider than the peak, the broad hill's top stands out too.
+  const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
+  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, 0.25, 0.075);
+  EXPECT_GT(wide[size_t(hill)], wide[size_t(side)]);
+}
+
+TEST(Prominence, OrderIsByProminenceThenBySeededPriority) {
+  const std::vector<float> p = {0.5f, 0.f, 0.5f, 0.9f, 0.f};
+  const std::vector<int> id = {10, 11, 12, 13, 14};
+  const std::vector<int> a = Prominence::Order(p, id, 3), b = Prominence::Order(p, id, 4);
+  EXPECT_EQ(a[0], 3);
+  EXPECT_EQ(std::vector<int>({a[1], a[2]}) == std::vector<int>({0, 2}) ||
+                std::vector<int>({a[1], a[2]}) == std::vector<int>({2, 0}),
+            true);
+  // Equal prominences follow the seed's priorities, as the random order does.
+  const bool firstBefore = vcg_ext::Priority(3, 10) < vcg_ext::Priority(3, 12);
+  EXPECT_EQ(a[1], firstBefore ? 0 : 2);
+  const bool firstBefore4 = vcg_ext::Priority(4, 10) < vcg_ext::Priority(4, 12);
+  EXPECT_EQ(b[1], firstBefore4 ? 0 : 2);
+}
+
+TEST(Prominence, PoissonByProminenceKeepsThePeakSeparatesAndCovers) {
+  const Domain d = PeakDomain();
+  const double r = 0.12;
+  const auto s = test::OnThreads(1, [&] {
+    return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence).samples;
+  });
+  ASSERT_GT(s.size(), 10u);
+  EXPECT_EQ(s[0], Nearest(d, 0.3f, 0.3f));  // the peak is visited first, so it is a sample
+  // Separation and coverage in the domain's metric: full Dijkstra from every sample.
+  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
+  std::vector<float> nearest(d.size(), std::numeric_limits<float>::infinity());
+  for (int a : s) {
+    const auto dist = search.Distances(a);
+    for (int b : s)
+      if (b != a) EXPECT_GT(dist[size_t(b)], float(r)) << "samples " << a << " and " << b << " too close";
+    for (size_t i = 0; i < dist.size(); ++i) nearest[i] = std::min(nearest[i], dist[i]);
+  }
+  EXPECT_LE(*std::max_element(nearest.begin(), nearest.end()), float(r));
+  const auto two = test::OnThreads(2, [&] {
+    return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence).samples;
+  });
+  EXPECT_EQ(s, two);
+}
+
+TEST(Prominence, ACountIsMetExactlyInProminenceOrder) {
+  const Domain d = PeakDomain();
+  LOD::Param p;
+  p.sampleNum = 60;
+  p.order = vcg_ext::VisitOrder::Prominence;
+  const auto a = test::OnThreads(1, [&] { return LOD::Compute(d, p); });
+  const auto b = test::OnThreads(2, [&] { return LOD::Compute(d, p); });
+  EXPECT_EQ(a.vertIndex.size(), 60u);
+  EXPECT_EQ(a.vertIndex, b.vertIndex);
+  p.order = vcg_ext::VisitOrder::Random;
+  EXPECT_NE(LOD::Compute(d, p).vertIndex, a.vertIndex);
+}
+
+}  // namespace prominence_test
