@@ -6,12 +6,11 @@
 // mean of the points within R. Poisson-disk sampling that visits the most prominent
 // points first keeps the peaks, ridges and valley floors a disk would
 // otherwise cut, with the same separation and coverage as any order. Cost
-// O(n m) for m points within 2R along each axis of a point, on all threads;
-// the same values on any thread count.
+// O(n m) for m points in the 27 cells of side R around a point, on all
+// threads; the same values on any thread count.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 #include <vcg/space/point3.h>
 #include "cell_grid.h"
