@@ -1,54 +1,71 @@
 """Which point a Poisson disk keeps: our default sampler (curvature-density metric, exact count, seed 0)
 visiting points in random order against by prominence (vcg_ext/prominence.h), on the quality
-benchmark's models and normals, scored by its reconstruction error (bench/quality.py).
+benchmark's models and normals, scored by its reconstruction error (bench/quality.py). With --tune: the
+prominence's noise discount swept on the quality benchmark's tuning models instead.
 
-usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py   (writes docs/visit_order.json)
+usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py [--tune]
+       (writes docs/visit_order.json, or docs/visit_order_tuning.json)
 """
+import argparse
 import time
 
 import numpy as np
 
 import quality
 from host import load_plugin
+from quality_config import MODELS, TUNING_MODELS
 from results import publish
 
-MODELS = ["bunny", "dragon", "bunny scans", "terrain"]
 RATES = [0.10, 0.05, 0.02]
+NOISE_SWEEP = [0, 1, 2, 3]
 
 
-def lod(model, target, order):
+def lod(model, target, order, noise=None):
     from geodesic_lod import _core, arrays
     p, n, _, _ = arrays.input_arrays(model.points, model.normals, None)
     param = _core.PoissonParam()
     param.domain = arrays.DomainOptions().param(len(p), False)
     param.sample_num = target
     param.order = order
+    if noise is not None:
+        param.prominence_noise = noise
     t = time.perf_counter()
     idx = np.asarray(_core.poisson_lod(p, n, None, param, None, None)["indices"])
     return idx, time.perf_counter() - t
 
 
 def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--tune", action="store_true", help="sweep the noise discount on the tuning models")
+    tune = ap.parse_args().tune
     load_plugin()  # the reconstruction error's measure
     from geodesic_lod import _core
+    runs = [("random", _core.VisitOrder.Random, None)]
+    runs += ([(f"noise {k:g}", _core.VisitOrder.Prominence, k) for k in NOISE_SWEEP] if tune
+             else [("prominence", _core.VisitOrder.Prominence, None)])
     rows = []
-    for key in MODELS:
+    for key in (TUNING_MODELS if tune else MODELS):
         model = quality.Model(key)
         for rate in RATES:
             target = int(round(rate * len(model.points)))
             row = dict(model=key, rate=rate, target=target)
-            for name, order in (("random", _core.VisitOrder.Random), ("prominence", _core.VisitOrder.Prominence)):
-                idx, seconds = lod(model, target, order)
+            for name, order, noise in runs:
+                idx, seconds = lod(model, target, order, noise)
                 err, _ = quality.reconstruction_error(model, dict(points=model.points[idx],
                                                                   normals=model.normals[idx]))
                 row[name] = dict(count=len(idx), seconds=seconds, recon_mean=err["mean"])
             rows.append(row)
             print(row, flush=True)
-    publish("visit_order", rows, [
-        ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"),
-        ("random (‰)", lambda r: f"{1000 * r['random']['recon_mean']:.3f}"),
-        ("prominence (‰)", lambda r: f"{1000 * r['prominence']['recon_mean']:.3f}"),
-        ("prominence / random", lambda r: f"{r['prominence']['recon_mean'] / r['random']['recon_mean']:.3f}")])
+    columns = [("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"),
+               ("random (‰)", lambda r: f"{1000 * r['random']['recon_mean']:.3f}")]
+    for name, _, _ in runs[1:]:
+        columns.append((f"{name} / random",
+                        lambda r, name=name: f"{r[name]['recon_mean'] / r['random']['recon_mean']:.3f}"))
+    if tune:
+        for name, _, _ in runs[1:]:
+            ratios = [r[name]["recon_mean"] / r["random"]["recon_mean"] for r in rows]
+            print(f"{name}: geometric mean {np.exp(np.mean(np.log(ratios))):.4f}, largest {max(ratios):.3f}")
+    publish("visit_order_tuning" if tune else "visit_order", rows, columns)
 
 
 if __name__ == "__main__":

@@ -38,9 +38,12 @@ class Prominence {
     return std::max(kSmoothing * R, std::min(spacing, R));
   }
 
-  /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in units of R.
+  /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
+  /// units of R, less `noise` standard errors of the smoothed position along
+  /// the normal (at least 0): where a raw scan's overlapping layers scatter the
+  /// points, only a shape that stands out of that scatter comes first.
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
-                                    double R, double s) {
+                                    double R, double s, double noise) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
@@ -48,7 +51,9 @@ class Prominence {
     ParallelFor(pos.size(), 256, [&](size_t r) {
       const int i = grid.Point(r);
       const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
+      const vcg::Point3d n = vcg::Point3d::Construct(normal[size_t(i)]);
       vcg::Point3d sumNear(0, 0, 0), sumFar(0, 0, 0);
+      double sxx = 0;
       size_t nNear = 0, nFar = 0;
       grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
         for (int k = begin; k < end; ++k) {
@@ -56,11 +61,17 @@ class Prominence {
           const double d2 = q.SquaredNorm();
           if (d2 > far2) continue;
           sumFar += q, ++nFar;
-          if (d2 <= near2) sumNear += q, ++nNear;
+          if (d2 <= near2) {
+            sumNear += q, ++nNear;
+            const double x = q * n;
+            sxx += x * x;
+          }
         }
       });
-      const vcg::Point3d gap = sumNear / double(nNear) - sumFar / double(nFar);  // both hold the point itself
-      out[size_t(i)] = float(std::abs(gap * vcg::Point3d::Construct(normal[size_t(i)])) / R);
+      const vcg::Point3d mean = sumNear / double(nNear);
+      const double sigma = std::sqrt(std::max(0.0, sxx / double(nNear) - (mean * n) * (mean * n)));
+      const vcg::Point3d gap = mean - sumFar / double(nFar);  // both hold the point itself
+      out[size_t(i)] = float(std::max(0.0, std::abs(gap * n) - noise * sigma / std::sqrt(double(nNear))) / R);
     });
     return out;
   }

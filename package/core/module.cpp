@@ -247,6 +247,7 @@ NB_MODULE(_core, m) {
       .def_rw("placement", &Poisson::Param::placement)
       .def_rw("regions", &Poisson::Param::regions)
       .def_rw("order", &Poisson::Param::order)
+      .def_rw("prominence_noise", &Poisson::Param::prominenceNoise)
       .def_prop_rw(
           "within", [](const Poisson::Param& p) { return p.within; },
           [](Poisson::Param& p, const nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>& v) {

@@ -44,14 +44,36 @@ int Nearest(const Domain& d, float x, float y) {
 
 TEST(Prominence, APeakStandsOutAtItsScaleAndAPlaneDoesNot) {
   const Domain d = PeakDomain();
-  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03);
+  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 0);
   const int peak = Nearest(d, 0.3f, 0.3f), flat = Nearest(d, 0.1f, 0.9f);
   EXPECT_EQ(std::max_element(p.begin(), p.end()) - p.begin(), peak);
   EXPECT_LT(p[size_t(flat)], 0.01f * p[size_t(peak)]);
   // At a scale far wider than the peak, the broad hill's top stands out too.
   const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
-  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, 0.25, 0.075);
+  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, 0.25, 0.075, 0);
   EXPECT_GT(wide[size_t(hill)], wide[size_t(side)]);
+}
+
+TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
+  test::TMesh m;
+  test::HeightField(m, 61, [](float x, float y) {
+    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
+    return PeakAndHill(x, y) + 0.004f * (h - std::floor(h) - 0.5f);  // a scatter of +-2 per mille
+  });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const int peak = Nearest(d, 0.3f, 0.3f);
+  auto flatShare = [&](const std::vector<float>& p) {  // of the points far from the peak and the hill
+    size_t flat = 0, zero = 0;
+    for (size_t i = 0; i < d.size(); ++i)
+      if (d.points.pos[i][0] < 0.15f && d.points.pos[i][1] > 0.5f) ++flat, zero += p[i] == 0;
+    return double(zero) / double(flat);
+  };
+  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 0);
+  const std::vector<float> discounted = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 2);
+  EXPECT_LT(flatShare(raw), 0.01);
+  EXPECT_GT(flatShare(discounted), 0.5);
+  EXPECT_GT(discounted[size_t(peak)], 0.5f * raw[size_t(peak)]);
+  EXPECT_EQ(std::max_element(discounted.begin(), discounted.end()) - discounted.begin(), peak);
 }
 
 TEST(Prominence, OrderIsByProminenceThenBySeededPriority) {
