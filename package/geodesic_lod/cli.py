@@ -5,6 +5,7 @@
     geodesic-lod scan.laz -o lod.laz --levels 50%,10%,2%  (lod_50pct.laz, lod_10pct.laz, lod_2pct.laz)
     geodesic-lod tiles/*.laz -o lod/ --radius 0.5 --workers 4   (many files as one cloud, on Dask)
     geodesic-lod tiles/ -o lod/ --levels 10%,2% --workers 4       (lod/level_10pct/, lod/level_2pct/)
+    geodesic-lod scan.laz -o scan.copc.laz   (every point, in octree depths that are nested LODs, for viewers)
 
 Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130. Output files
 appear only when complete.
@@ -61,8 +62,10 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("input", nargs="+", help="the point file (.ply, .las, .laz or .npy); several files, a folder "
                    "or a glob are sampled as one cloud on a Dask cluster")
     p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "
-                   "file is derived from (lod.laz gives lod_50pct.laz, ...); on a cluster, a folder")
-    size = p.add_mutually_exclusive_group(required=True)
+                   "file is derived from (lod.laz gives lod_50pct.laz, ...); on a cluster, a folder; a name "
+                   "ending in .copc.laz (from a LAS/LAZ input, no size option): a COPC file holding every point, "
+                   "its octree depths nested LODs whose spacing halves per depth")
+    size = p.add_mutually_exclusive_group()
     size.add_argument("--rate", help="a percentage of the points, such as 10%%: exactly that many samples")
     size.add_argument("--count", help="exactly this many samples")
     size.add_argument("--radius", help="the Poisson-disk radius: a length, or a percentage of the bounding box "
@@ -114,6 +117,8 @@ def _on_cluster(args) -> bool:
 def _run_on_cluster(args, request: dict) -> int:
     """Many files, or a cloud too large for one machine: tiles on Dask workers."""
     from . import distributed
+    if "copc" in request:
+        raise ValueError(f"a COPC file ({args.output}) is written from one LAS/LAZ file on one machine")
     if args.fps or args.height_field:
         raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
                          "one machine)")
@@ -203,8 +208,21 @@ class _Bar:
             self.bar.close()
 
 
+SIZE_OPTIONS = ("--rate", "--count", "--radius", "--levels")
+
+
 def _request(args) -> dict:
     """The options that need no input, checked before the file is read (a bad one fails at once)."""
+    given = [o for o in SIZE_OPTIONS if getattr(args, o[2:]) is not None]
+    if point_files.is_copc(args.output):
+        extra = given + [o for o, on in (("--fps", args.fps), ("--height-field", args.height_field),
+                                         ("--tolerance", args.tolerance is not None)) if on]
+        if extra:
+            raise ValueError(f"a COPC output ({args.output}) holds every point, its octree's depths the nested LODs "
+                             f"(spacing halving per depth): drop {', '.join(extra)}")
+    elif not given:
+        raise ValueError(f"give one of {', '.join(SIZE_OPTIONS)} (or an output ending in "
+                         f"{point_files.COPC_SUFFIX})")
     if args.fps and args.rate is None and args.count is None:
         raise ValueError("--fps takes --rate or --count" + (": --levels are nested Poisson-disk sets"
                                                             if args.levels is not None else ""))
@@ -221,6 +239,8 @@ def _request(args) -> dict:
     if args.threads is not None:
         arrays.whole_number(args.threads, "--threads", 1)
     arrays.whole_number(args.seed, "--seed", 0, 2 ** 64 - 1)
+    if point_files.is_copc(args.output):
+        return {"copc": True}
     if args.levels is not None:
         return {"levels": arrays.level_items(args.levels, "--levels")}
     if args.rate is not None:
@@ -245,6 +265,11 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
     n = source.points.shape[0]
+    if "copc" in request:
+        from .octree_lod import octree_lod
+        return [octree_lod(source.points, source.normals, metric=args.metric, adaptivity=args.adaptivity,
+                           recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
+                           progress=progress)]
     if args.height_field:
         return _height_field_levels(request, source, progress)
     if "levels" in request:
@@ -298,6 +323,19 @@ def _height_field_levels(request: dict, source: point_files.PointFile, progress)
     return [np.sort(indices[:c]) for c in counts]
 
 
+def _write_levels(source: point_files.PointFile, paths: list, chosen: list) -> list:
+    """Each level's file; a summary line each."""
+    point_files.write_all(source, list(zip(paths, chosen)))
+    return [f"{path}: {len(indices):,} of {len(source.points):,} points" for path, indices in zip(paths, chosen)]
+
+
+def _write_copc(source: point_files.PointFile, path, lod) -> list:
+    """The COPC file; its summary line."""
+    nodes = point_files.write_copc(source, path, lod)
+    return [f"{path}: {len(source.points):,} points in {sum(1 for e in nodes if e[4]):,} octree nodes, depths 0 to "
+            f"{int(lod.depth.max())}, spacing {lod.octree.spacing:.6g} at depth 0"]
+
+
 def _stop_on_sigterm():
     """SIGTERM stops a run as Ctrl-C does: files being written are removed."""
     import signal
@@ -334,11 +372,11 @@ def main(argv=None) -> int:
         except ValueError as e:  # the input's data or a value that depends on it
             raise point_files.PointFileError(source.path, str(e)) from None
         bar.close()
-        outputs = list(zip(paths, chosen))
-        point_files.write_all(source, outputs)
+        summary = _write_copc(source, paths[0], chosen[0]) if "copc" in request else _write_levels(source, paths,
+                                                                                                  chosen)
         if not args.quiet:
-            for path, indices in outputs:
-                print(f"{PROG}: {path}: {len(indices):,} of {n:,} points", file=sys.stderr)
+            for line in summary:
+                print(f"{PROG}: {line}", file=sys.stderr)
             print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
         return 0
     except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks

@@ -443,6 +443,47 @@ TEXTS = {
     >>> tin.shape[1], int(tin.max()) < 10
     (3, True)
     """,
+    "octree_lod": f"""Nested LODs as the depths of an octree (a COPC file's): the points of depths 0 to d are
+    the Poisson-disk set of radius ``spacing / 2**d`` in the metric among those of depth d + 1, and the
+    deepest depth takes every point left, so each point has one depth.
+
+    The octree is PDAL's: a cube from the points' lowest corner with their bounding box's longest side,
+    ``spacing`` its side / 128, the spacing viewers assume for depth 0, halving per depth. The Poisson
+    depths go on until the radius falls to the points' spacing.
+
+    Parameters
+    ----------
+    {INPUTS}
+    {METRIC}
+    {RUN}
+
+    Returns
+    -------
+    OctreeLod
+        ``depth`` per point, the ``octree``, the ``radii`` per depth.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> rng = np.random.default_rng(0)
+    >>> lod = gl.octree_lod(np.column_stack([rng.random((4000, 2)) * 100, np.zeros(4000)]))
+    >>> cut = lod.cut(1)  # the nested LOD of radius lod.radii[1]
+    >>> len(cut) < 4000, bool(np.all(lod.depth[cut] <= 1))
+    (True, True)
+    """,
+    "OctreeLod": """What ``octree_lod`` returns.
+
+    Attributes
+    ----------
+    octree : copc_files.Octree
+        The cube: ``center``, ``halfsize`` and ``spacing`` (depth 0's point spacing).
+    depth : (n,) ndarray of int32
+        Per input row, its depth: 0 for the coarsest LOD's points, ``len(radii)`` for those in no LOD.
+    radii : list of float
+        Per Poisson depth d, the radius of its LOD, ``octree.spacing / 2**d``, in the metric.
+    """,
     "Domain": f"""One input's normals, curvature (eq. 1) and geodesic structure, built once for several LODs.
 
     The arrays are copied: changing them afterwards changes nothing here. The domain holds its memory

@@ -18,6 +18,7 @@ import numpy as np
 from . import las_files
 from .errors import PointFileError
 
+COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
 FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
 # The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table).
 WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".npy",)}
@@ -70,6 +71,9 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
         out = pathlib.Path(path)
         format_of(out, "output")
         for kind in kinds:
+            if is_copc(out) and kind != "las":
+                raise PointFileError(out, f"a COPC file keeps LAS point records: a {kind.upper()} input can be "
+                                     f"written as {', '.join(WRITABLE[kind])}")
             if out.suffix.lower() not in WRITABLE[kind]:
                 *first, last = WRITABLE[kind]
                 raise PointFileError(out, f"a {kind.upper()} input can be written as {', '.join(first)} or {last}")
@@ -111,9 +115,16 @@ def check_writable(source: "PointFile", outputs: Sequence) -> None:
     """Writes one record of the input in each output's format to memory, before the computation, so a
     file the writer cannot produce (such as an unsupported header) is refused at once."""
     import io
-    for ext in sorted({pathlib.Path(p).suffix.lower() for p in outputs}):
+    from . import copc_files
+    first = np.zeros(min(1, len(source.points)), dtype=np.int64)
+    kinds = {COPC_SUFFIX if is_copc(p) else pathlib.Path(p).suffix.lower() for p in outputs}
+    for ext in sorted(kinds):
         try:
-            _write(source, np.zeros(min(1, len(source.points)), dtype=np.int64), ext, io.BytesIO())
+            if ext == COPC_SUFFIX:
+                copc_files.write(io.BytesIO(), source.source, source.rows[first], source.points[first],
+                                 np.zeros(len(first), np.int32), copc_files.Octree.around(source.points[:1]))
+            else:
+                _write(source, first, ext, io.BytesIO())
         except PointFileError:
             raise
         except Exception as e:
@@ -233,14 +244,38 @@ def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
 
     Every file is first written under a temporary name beside it; the names asked for appear only
     once all are complete."""
+    _write_files([(path, lambda f, path=path, indices=indices: _write(
+        source, np.asarray(indices, dtype=np.int64), pathlib.Path(path).suffix.lower(), f))
+        for path, indices in outputs])
+
+
+def is_copc(path) -> bool:
+    """Whether an output name asks for a COPC file."""
+    return str(path).lower().endswith(COPC_SUFFIX)
+
+
+def write_copc(source: PointFile, path, lod) -> list:
+    """Writes every record of a LAS/LAZ input as a COPC file, each in the octree node of its depth in
+    `lod` (an OctreeLod), under a temporary name renamed once complete. Returns the hierarchy's entries
+    (copc_files.write)."""
+    from . import copc_files
+    entries = []
+    _write_files([(path, lambda f: entries.extend(copc_files.write(f, source.source, source.rows, source.points,
+                                                                    lod.depth, lod.octree)))])
+    return entries
+
+
+def _write_files(items: Sequence[tuple]) -> None:
+    """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
+    any failure or interruption the temporary files are removed and nothing else is touched."""
     done = []
     try:
-        for path, indices in outputs:
+        for path, write in items:
             path = pathlib.Path(path)
             tmp = _partial(path)
             done.append((tmp, path))
             with open(tmp, "r+b") as f:
-                _write(source, np.asarray(indices, dtype=np.int64), path.suffix.lower(), f)
+                write(f)
         for tmp, path in done:
             os.replace(tmp, path)
     except BaseException:

@@ -42,11 +42,12 @@ def ply_mesh(path, n=30, quads=False):
 WKT = b'PROJCS["ETRS89 / UTM zone 32N",GEOGCS["ETRS89"],UNIT["metre",1]]\x00'
 
 
-def las_cloud(path, n=3000, version="1.4", point_format=7):
+def las_cloud(path, n=3000, version="1.4", point_format=7, points=None):
     """A LAS cloud (by default 1.4, point format 7) 5,000 km from the origin with millimetre scales, GPS
     times, colours where the format has them, and in LAS 1.4 an extra dimension, a WKT CRS record and an
-    EVLR."""
-    p = bumpy_sphere(n)
+    EVLR; its points a bumpy sphere of radius 10 m, or `points` (in metres)."""
+    p = bumpy_sphere(n) if points is None else np.asarray(points) / 10
+    n = len(p)
     header = laspy.LasHeader(point_format=point_format, version=version)
     header.scales = [0.001] * 3
     header.offsets = [500000.0, 5000000.0, 100.0]
@@ -67,6 +68,15 @@ def las_cloud(path, n=3000, version="1.4", point_format=7):
                                                           record_data=b"evlr data")])
     las.write(str(path))
     return path
+
+
+def wavy_strip(n=12000, length=1000.0, width=10.0, seed=0):
+    """n points on a strip `length` by `width` metres with waves of a few metres and, on one half, ripples:
+    long and thin, so that an octree over it has several depths with few points."""
+    rng = np.random.default_rng(seed)
+    x, y = rng.random(n) * length, rng.random(n) * width
+    z = 3 * np.sin(x / 40) + np.where(x > length / 2, 0.5 * np.sin(x / 2) * np.sin(y), 0.0)
+    return np.column_stack([x, y, z])
 
 
 def las_points(path):

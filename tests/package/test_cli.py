@@ -132,7 +132,7 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "10%,50%"], "levels must get strictly coarser"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,10%", "--fps"], "--fps takes"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--fps"], "--fps takes --rate or --count"),
-    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "one of the arguments --rate --count --radius --levels"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "give one of --rate, --count, --radius, --levels"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--height-field"],
      "--height-field takes --rate, --count or --levels"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "9", "--height-field", "--tolerance", "1"],

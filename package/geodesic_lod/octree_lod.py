@@ -1,0 +1,80 @@
+"""Octree LODs: each point's depth in a streaming hierarchy (COPC) whose depth-d cut is a nested Poisson-disk
+LOD of radius spacing / 2^d, the spacing viewers assume for depth d."""
+from __future__ import annotations
+
+import dataclasses
+import functools
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from .arrays import (DEFAULT_GEODESICS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, Progress, point_arrays,
+                     run_options)
+from .copc_files import CELLS, Octree
+from .docstrings import documented
+from .domain import Domain
+
+
+@documented
+@dataclass
+class OctreeLod:
+    octree: Octree
+    depth: np.ndarray
+    radii: list
+
+    def cut(self, d: int) -> np.ndarray:
+        """The rows of depths 0 to d, in increasing order: the nested LOD of radius ``radii[d]``."""
+        return np.flatnonzero(self.depth <= d)
+
+
+MAX_DEPTH = 14  # CELLS 2^14 = 2^21 cells per axis at the deepest depth: three fit in 63 bits
+
+
+def depth_count(octree: Octree, points: np.ndarray) -> int:
+    """The Poisson depths: until the cells of side spacing / 2^D that hold points are at least half as
+    many as the points (a Poisson set of that radius keeps about one point per such cell), where depth D
+    takes every point left. Counting occupied cells follows where the points are, however unevenly."""
+    n = points.shape[0]
+    if n < 2:
+        return 0
+    distinct = len(np.unique(points, axis=0))
+    lo = octree.center - octree.halfsize
+    for d in range(MAX_DEPTH + 1):
+        side = octree.spacing / 2 ** d
+        k = np.minimum(np.floor((points - lo) / side).astype(np.int64), (CELLS << d) - 1)
+        if len(np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2])) * 2 >= distinct:
+            return d
+    return MAX_DEPTH
+
+
+@documented
+def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
+               adaptivity: float = DOMAIN_DEFAULTS.adaptivity,
+               curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
+               normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors,
+               graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
+               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, seed: int = 0,
+               threads: Optional[int] = None, progress: Progress = None) -> OctreeLod:
+    p, n = point_arrays(points, normals)
+    options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
+                            curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
+                            graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
+    options.param(p.shape[0])  # checked before any work, however many depths there are
+    seed, threads = run_options(seed, threads, progress, False, False)
+    part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
+    octree = Octree.around(p) if len(p) else Octree(np.zeros(3), 0.5, 1 / 128)
+    depths = depth_count(octree, p)
+    radii = [octree.spacing / 2 ** d for d in range(depths)]
+    depth = np.full(p.shape[0], depths, dtype=np.int32)
+    if depths:
+        dom = Domain(p, n, **dataclasses.asdict(options), threads=threads, progress=part(0.0, 0.4))
+        finer = None
+        for k, d in enumerate(reversed(range(depths))):  # finest first: each level among the finer one's samples
+            lod = dom.poisson_lod(radius=radii[d], seed=seed, within=finer, threads=threads,
+                                  progress=part(0.4 + 0.6 * k / depths, 0.4 + 0.6 * (k + 1) / depths))
+            finer = np.sort(lod.indices)
+            depth[finer] = d
+    elif progress is not None:
+        progress(1.0)
+    return OctreeLod(octree, depth, radii)

@@ -1,0 +1,159 @@
+"""COPC output (geodesic_lod.copc_files, `geodesic-lod IN -o OUT.copc.laz`): a file two independent readers
+(laspy's CopcReader and copclib) accept, holding every input record once (bit for bit for point formats 6
+to 8), with the input's own VLRs and EVLRs, whose depth-d cut is the octree LOD's; refused with one line
+for what it cannot hold, and never left half-written."""
+import copclib
+import laspy
+import numpy as np
+import pytest
+
+import geodesic_lod as gl
+from point_file_inputs import las_cloud, las_points, ply_cloud, wavy_strip
+from test_cli import digest, names, run
+from test_las_files import CORPUS, corpus_file, own_records
+
+
+def record_bytes(array) -> list:
+    """The records as a sorted list of their bytes: a multiset to compare."""
+    a = np.ascontiguousarray(array)
+    return sorted(a.view(np.dtype((np.void, a.dtype.itemsize))).tolist())
+
+
+@pytest.fixture(scope="module")
+def strip_copc(tmp_path_factory):
+    d = tmp_path_factory.mktemp("strip")
+    src = las_cloud(d / "strip.laz", points=wavy_strip())
+    out = d / "strip.copc.laz"
+    r = run(src, "-o", out, "-q")
+    assert r.returncode == 0, r.stderr
+    return src, out
+
+
+def test_laspy_reads_every_record_once_in_the_depth_of_the_octree_lod(strip_copc):
+    src, out = strip_copc
+    las = laspy.read(str(src))
+    lod = gl.octree_lod(las_points(src))
+    assert len(lod.radii) >= 3
+    with laspy.CopcReader.open(str(out)) as reader:
+        info = reader.copc_info
+        assert np.allclose(info.center, lod.octree.center) and np.isclose(info.halfsize, lod.octree.halfsize)
+        assert np.isclose(info.spacing, lod.octree.spacing)
+        assert record_bytes(reader.query().array) == record_bytes(las.points.array)
+        for d in range(len(lod.radii) + 1):
+            got = reader.query(level=range(0, d + 1)).array
+            assert record_bytes(got) == record_bytes(las.points.array[lod.cut(d)]), f"depth {d}"
+            # A viewer asks by resolution: depth d holds points about spacing / 2^d apart.
+            by_resolution = reader.query(resolution=info.spacing / 2 ** d * 1.01).array
+            assert record_bytes(by_resolution) == record_bytes(got)
+        lo, hi = las.header.mins + [300, 0, -10], las.header.mins + [420, 10, 10]
+        box = reader.query(bounds=laspy.copc.Bounds(lo, hi)).array
+        x = np.asarray(las.x)
+        inside = (x >= lo[0]) & (x <= hi[0])
+        assert record_bytes(box) == record_bytes(las.points.array[inside])
+
+
+def test_copclib_reads_the_same_nodes(strip_copc):
+    src, out = strip_copc
+    lod = gl.octree_lod(las_points(src))
+    reader = copclib.FileReader(str(out))
+    assert reader.ValidateSpatialBounds(False)
+    nodes = reader.GetAllNodes()
+    assert sum(n.point_count for n in nodes) == len(lod.depth)
+    assert reader.GetMaxDepth() == len(lod.radii)
+    per_depth = np.bincount([n.key.d for n in nodes for _ in range(n.point_count)], minlength=len(lod.radii) + 1)
+    assert np.array_equal(per_depth, np.bincount(lod.depth))
+    las = laspy.read(str(src))
+    xyz = np.concatenate([np.column_stack([p.x, p.y, p.z]) for p in map(reader.GetPoints, nodes) if len(p)])
+    assert np.array_equal(np.unique(xyz, axis=0), np.unique(np.column_stack([las.x, las.y, las.z]), axis=0))
+
+
+def test_the_inputs_own_records_are_kept(strip_copc):
+    src, out = strip_copc
+    assert own_records(out) == own_records(src)
+    h = laspy.read(str(out)).header
+    s = laspy.read(str(src)).header
+    assert np.array_equal(h.scales, s.scales) and np.array_equal(h.offsets, s.offsets)
+    assert h.global_encoding.wkt and h.point_format.id == s.point_format.id and str(h.version) == "1.4"
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+def test_every_shared_lidar_file_becomes_a_copc_file(tmp_path, name):
+    src = corpus_file(name)
+    out = tmp_path / "lod.copc.laz"
+    before = digest(src)
+    r = run(src, "-o", out, "-q")
+    assert r.returncode == 0, r.stderr
+    assert digest(src) == before
+    las = laspy.read(str(src))
+    with laspy.CopcReader.open(str(out)) as reader:
+        got = reader.query()
+    assert len(got) == len(las.points)
+    if las.header.point_format.id >= 6:
+        assert record_bytes(got.array) == record_bytes(las.points.array)
+    for dim in ("X", "Y", "Z", "intensity", "return_number", "classification", "gps_time"):
+        if dim in las.point_format.dimension_names:
+            assert np.array_equal(np.sort(np.asarray(got[dim])), np.sort(np.asarray(las[dim]))), dim
+    assert own_records(out) == own_records(src)
+    assert copclib.FileReader(str(out)).ValidateSpatialBounds(False)
+
+
+def test_formats_0_to_5_are_converted_with_their_values(tmp_path):
+    src = las_cloud(tmp_path / "in.las", version="1.2", point_format=3)
+    out = tmp_path / "lod.copc.laz"
+    r = run(src, "-o", out, "-q")
+    assert r.returncode == 0, r.stderr
+    las = laspy.read(str(src))
+    got = laspy.read(str(out))
+    assert got.header.point_format.id == 7
+    order = np.lexsort((np.asarray(got.gps_time),))
+    for dim in ("X", "Y", "Z", "intensity", "classification", "red", "green", "blue"):
+        assert np.array_equal(np.asarray(got[dim])[order], np.asarray(las[dim])[np.argsort(las.gps_time)]), dim
+
+
+REFUSED = [
+    ("a size option", lambda d: [las_cloud(d / "in.laz"), "-o", d / "out.copc.laz", "--rate", "10%"],
+     "drop --rate"),
+    ("--fps", lambda d: [las_cloud(d / "in.laz"), "-o", d / "out.copc.laz", "--fps"], "drop --fps"),
+    ("a PLY input", lambda d: [ply_cloud(d / "in.ply"), "-o", d / "out.copc.laz"], "keeps LAS point records"),
+    ("no size option for a flat LOD", lambda d: [las_cloud(d / "in.laz"), "-o", d / "out.laz"],
+     "give one of --rate, --count, --radius, --levels"),
+    ("a cluster", lambda d: [las_cloud(d / "in.laz"), las_cloud(d / "in2.laz"), "-o", d / "out.copc.laz"],
+     "on one machine"),
+]
+
+
+@pytest.mark.parametrize("what, args, problem", REFUSED, ids=[r[0] for r in REFUSED])
+def test_what_a_copc_file_cannot_hold_is_refused_in_one_line(tmp_path, what, args, problem):
+    r = run(*args(tmp_path))
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert problem in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert not list(tmp_path.glob("out*"))
+
+
+def test_an_existing_file_is_kept_and_nothing_else_is_written(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    mine = tmp_path / "lod.copc.laz"
+    mine.write_bytes(b"the user's own file")
+    r = run(src, "-o", mine)
+    assert r.returncode == 2 and "exists" in r.stderr
+    assert mine.read_bytes() == b"the user's own file"
+    assert names(tmp_path) == ["in.laz", "lod.copc.laz"]
+    r = run(src, "-o", mine, "--overwrite", "-q")
+    assert r.returncode == 0, r.stderr
+    assert names(tmp_path) == ["in.laz", "lod.copc.laz"]
+    with laspy.CopcReader.open(str(mine)) as reader:
+        assert len(reader.query()) == 3000
+
+
+def test_a_write_stopped_midway_leaves_no_file(tmp_path, monkeypatch):
+    from geodesic_lod import copc_files, point_files
+    src = point_files.read(las_cloud(tmp_path / "in.laz"))
+    lod = gl.octree_lod(src.points)
+
+    def stopped(f, *args):
+        f.write(b"half a file")
+        raise KeyboardInterrupt
+    monkeypatch.setattr(copc_files, "write", stopped)
+    with pytest.raises(KeyboardInterrupt):
+        point_files.write_copc(src, tmp_path / "lod.copc.laz", lod)
+    assert names(tmp_path) == ["in.laz"]
