@@ -1,0 +1,76 @@
+"""The COPC viewer (viewer/) in headless Chromium on a COPC file geodesic-lod wrote: the page loads,
+draws points, fetches deeper nodes when the camera comes closer, and logs no error. The screenshots are
+kept in out/viewer/ for a person to look at."""
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import laspy
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+VIEWER = ROOT / "viewer"
+ARTEFACTS = ROOT / "out" / "viewer"
+BACKGROUND = np.array([0x10, 0x14, 0x18]) / 255  # viewer/src/main.js
+
+
+def needs(ok, what):
+    if not ok:
+        pytest.skip(f"needs {what} (scripts/setup installs it)")
+
+
+@pytest.fixture(scope="module")
+def snapshots(tmp_path_factory):
+    needs(shutil.which("node"), "Node.js")
+    needs(pathlib.Path("/usr/bin/chromium").is_file(), "Debian's chromium")
+    needs((VIEWER / "dist" / "viewer.js").is_file(), "the built viewer (scripts/build)")
+    d = tmp_path_factory.mktemp("viewer")
+    # A hilly terrain of 200,000 points over 1 km: an octree of three depths.
+    rng = np.random.default_rng(0)
+    xy = rng.random((200_000, 2)) * 1000
+    z = 40 * np.sin(xy[:, 0] / 150) * np.cos(xy[:, 1] / 200) + 3 * np.sin(xy[:, 0] / 9)
+    header = laspy.LasHeader(point_format=6, version="1.4")
+    header.scales, header.offsets = [0.01] * 3, [300000.0, 5000000.0, 0.0]
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = 300000 + xy[:, 0], 5000000 + xy[:, 1], z
+    las.write(str(d / "hills.laz"))
+    copc = d / "hills.copc.laz"
+    r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(d / "hills.laz"), "-o", str(copc), "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    ARTEFACTS.mkdir(parents=True, exist_ok=True)
+    sys.path.insert(0, str(VIEWER))
+    import serve
+    state = serve.snapshots(copc, ARTEFACTS)
+    with laspy.CopcReader.open(str(copc)) as reader:
+        depths = max(int(k.level) for k in reader.root_page.entries) + 1
+    return state, depths
+
+
+def drawn_fraction(png):
+    import matplotlib.image
+    rgb = matplotlib.image.imread(str(png))[40:, :, :3]  # below the status line
+    return float(np.mean(np.any(np.abs(rgb - BACKGROUND) > 0.05, axis=2)))
+
+
+def test_the_page_draws_the_coarse_depths_from_afar(snapshots):
+    state, depths = snapshots
+    assert depths >= 3
+    far = state["far"]
+    assert far["ready"] and far["drawnPoints"] > 0 and far["maxDepth"] < depths - 1
+    assert drawn_fraction(ARTEFACTS / "far.png") > 0.02
+
+
+def test_coming_closer_loads_deeper_nodes(snapshots):
+    state, depths = snapshots
+    far, near = state["far"], state["near"]
+    assert near["ready"] and near["loadedNodes"] > far["loadedNodes"] and near["maxDepth"] > far["maxDepth"]
+    assert near["requests"] > far["requests"]
+    assert near["drawnPoints"] > far["drawnPoints"] and drawn_fraction(ARTEFACTS / "near.png") > 0.02
+
+
+def test_no_error_is_logged(snapshots):
+    state, _ = snapshots
+    assert state["errors"] == [] and state["far"]["errors"] == [] and state["near"]["errors"] == []

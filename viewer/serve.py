@@ -1,0 +1,132 @@
+"""Serves the COPC viewer (viewer/dist, built by `npm run build`) and one COPC file on 127.0.0.1, with the
+HTTP range requests a streaming viewer makes.
+
+usage: python3 viewer/serve.py scan.copc.laz [--port 8000]   (then open the address it prints)
+       python3 viewer/serve.py scan.copc.laz --snapshots DIR (far.png and near.png from headless Chromium)
+"""
+import argparse
+import functools
+import http.server
+import os
+import pathlib
+import json
+import re
+import subprocess
+import sys
+import threading
+
+DIST = pathlib.Path(__file__).resolve().parent / "dist"
+DATA_NAME = "data.copc.laz"  # the name the page asks for by default (viewer/src/main.js)
+
+
+class Handler(http.server.SimpleHTTPRequestHandler):
+    """Static files from DIST, the COPC file as /data.copc.laz, and byte ranges of both."""
+
+    def __init__(self, *args, copc: pathlib.Path, **kwargs):
+        self.copc = copc
+        super().__init__(*args, directory=str(DIST), **kwargs)
+
+    def translate_path(self, path):
+        if path.split("?", 1)[0] == "/" + DATA_NAME:
+            return str(self.copc)
+        return super().translate_path(path)
+
+    def end_headers(self):
+        self.send_header("Accept-Ranges", "bytes")
+        self.send_header("Cache-Control", "no-store")
+        super().end_headers()
+
+    def send_head(self):
+        m = re.fullmatch(r"bytes=(\d+)-(\d*)", self.headers.get("Range", ""))
+        path = self.translate_path(self.path)
+        if m is None or not os.path.isfile(path):
+            return super().send_head()
+        size = os.path.getsize(path)
+        first = int(m.group(1))
+        last = min(int(m.group(2)) if m.group(2) else size - 1, size - 1)
+        if first > last:
+            self.send_error(416, "range not satisfiable")
+            return None
+        f = open(path, "rb")
+        f.seek(first)
+        self.send_response(206)
+        self.send_header("Content-Type", self.guess_type(path))
+        self.send_header("Content-Range", f"bytes {first}-{last}/{size}")
+        self.send_header("Content-Length", str(last - first + 1))
+        self.end_headers()
+        self.range_left = last - first + 1
+        return f
+
+    def copyfile(self, source, outputfile):
+        left = getattr(self, "range_left", None)
+        if left is None:
+            return super().copyfile(source, outputfile)
+        while left > 0:
+            chunk = source.read(min(left, 1 << 20))
+            if not chunk:
+                break
+            outputfile.write(chunk)
+            left -= len(chunk)
+
+    def guess_type(self, path):
+        return "application/wasm" if str(path).endswith(".wasm") else super().guess_type(path)
+
+    def log_message(self, *args):  # quiet: a viewer makes hundreds of requests
+        pass
+
+
+def server(copc, port: int = 0) -> http.server.ThreadingHTTPServer:
+    """A server on 127.0.0.1 (port 0: any free one) for the viewer and the COPC file."""
+    copc = pathlib.Path(copc).resolve()
+    if not copc.is_file():
+        raise ValueError(f"{copc}: no such file")
+    if not (DIST / "viewer.js").is_file():
+        raise ValueError(f"{DIST} holds no built viewer: run `npm ci && npm run build` in {DIST.parent}")
+    return http.server.ThreadingHTTPServer(("127.0.0.1", port), functools.partial(Handler, copc=copc))
+
+
+def snapshots(copc, folder, timeout: float = 300) -> dict:
+    """Serves copc on a free port of 127.0.0.1 while screenshot.mjs views it in headless Chromium, far and
+    near; returns the viewer's state at both and the errors it logged, and stops the server."""
+    httpd = server(copc)
+    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
+    thread.start()
+    try:
+        url = f"http://127.0.0.1:{httpd.server_address[1]}/"
+        proc = subprocess.run(["node", str(DIST.parent / "screenshot.mjs"), url, str(folder)], capture_output=True,
+                              text=True, timeout=timeout, cwd=DIST.parent)
+        if proc.returncode != 0:
+            raise RuntimeError(f"screenshot.mjs failed: {proc.stderr.strip()}")
+        return json.loads(proc.stdout.strip().splitlines()[-1])
+    finally:
+        httpd.shutdown()
+        httpd.server_close()
+        thread.join()
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("copc", help="a COPC file, such as geodesic-lod's scan.copc.laz")
+    ap.add_argument("--port", type=int, default=8000)
+    ap.add_argument("--snapshots", metavar="DIR", help="screenshots from headless Chromium into DIR, then stop")
+    args = ap.parse_args(argv)
+    if args.snapshots:
+        print(json.dumps(snapshots(args.copc, args.snapshots)))
+        return 0
+    try:
+        httpd = server(args.copc, args.port)
+    except (ValueError, OSError) as e:
+        print(f"serve.py: error: {e}", file=sys.stderr)
+        return 2
+    print(f"http://127.0.0.1:{httpd.server_address[1]}/ (Ctrl-C stops)", flush=True)
+    try:
+        httpd.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        httpd.server_close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
