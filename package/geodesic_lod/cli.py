@@ -265,11 +265,6 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
     n = source.points.shape[0]
-    if "copc" in request:
-        from .octree_lod import octree_lod
-        return [octree_lod(source.points, source.normals, metric=args.metric, adaptivity=args.adaptivity,
-                           recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
-                           progress=progress)]
     if args.height_field:
         return _height_field_levels(request, source, progress)
     if "levels" in request:
@@ -329,11 +324,23 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list) -> l
     return [f"{path}: {len(indices):,} of {len(source.points):,} points" for path, indices in zip(paths, chosen)]
 
 
-def _write_copc(source: point_files.PointFile, path, lod) -> list:
-    """The COPC file; its summary line."""
-    nodes = point_files.write_copc(source, path, lod)
-    return [f"{path}: {len(source.points):,} points in {sum(1 for e in nodes if e[4]):,} octree nodes, depths 0 to "
-            f"{int(lod.depth.max())}, spacing {lod.octree.spacing:.6g} at depth 0"]
+def _copc(args, progress) -> list:
+    """The COPC file (write_copc: its checks, the octree LOD, the file); its summary line."""
+    from .octree_lod import write_copc
+    lod = write_copc(args.input[0], args.output, metric=args.metric, adaptivity=args.adaptivity,
+                     recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
+                     overwrite=args.overwrite, progress=progress)
+    per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
+    return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
+            f"{lod.octree.spacing:.6g} at depth 0"]
+
+
+def _done(args, summary: list, start: float) -> int:
+    if not args.quiet:
+        for line in summary:
+            print(f"{PROG}: {line}", file=sys.stderr)
+        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+    return 0
 
 
 def _stop_on_sigterm():
@@ -357,6 +364,11 @@ def main(argv=None) -> int:
         request = _request(args)
         if _on_cluster(args):
             return _run_on_cluster(args, request)
+        if "copc" in request:
+            bar = _Bar(args.quiet, "sampling")
+            summary = _copc(args, bar if bar.bar is not None else None)
+            bar.close()
+            return _done(args, summary, start)
         paths = _outputs(args, request)
         point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
         source = point_files.read(args.input[0])
@@ -372,13 +384,7 @@ def main(argv=None) -> int:
         except ValueError as e:  # the input's data or a value that depends on it
             raise point_files.PointFileError(source.path, str(e)) from None
         bar.close()
-        summary = _write_copc(source, paths[0], chosen[0]) if "copc" in request else _write_levels(source, paths,
-                                                                                                  chosen)
-        if not args.quiet:
-            for line in summary:
-                print(f"{PROG}: {line}", file=sys.stderr)
-            print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
-        return 0
+        return _done(args, _write_levels(source, paths, chosen), start)
     except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
         _fail(str(e))
     except KeyboardInterrupt:

@@ -473,6 +473,37 @@ TEXTS = {
     >>> len(cut) < 4000, bool(np.all(lod.depth[cut] <= 1))
     (True, True)
     """,
+    "write_copc": f"""Writes a LAS/LAZ file as a COPC file whose octree depths are ``octree_lod``'s: every
+    record once, in the node of its depth that contains it, as ``geodesic-lod IN -o OUT.copc.laz`` writes it.
+
+    Records of point formats 6 to 8 are kept bit for bit, those of 0 to 5 converted to 6 or 7 (COPC allows
+    no other); the header's fields and the input's own VLRs and EVLRs (CRS, extra bytes) are kept. The
+    file is written under a temporary name beside ``output`` and renamed once complete; the input is
+    never modified.
+
+    Parameters
+    ----------
+    input : str or path
+        A LAS or LAZ file (COPC too).
+    output : str or path
+        The COPC file, named ``*.copc.laz``; never an input.
+    metric, adaptivity, recompute_normals, seed, threads, progress
+        As in ``octree_lod``.
+    overwrite : bool
+        Replace ``output`` if it exists. Default False.
+
+    Returns
+    -------
+    OctreeLod
+        Each record's depth, the octree and the radii.
+
+    Raises
+    ------
+    PointFileError
+        A file that cannot be read or written (a ValueError naming it), before any work.
+    InputError
+        A bad argument.
+    """,
     "OctreeLod": """What ``octree_lod`` returns.
 
     Attributes

@@ -78,3 +78,29 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
     elif progress is not None:
         progress(1.0)
     return OctreeLod(octree, depth, radii)
+
+
+@documented
+def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float = DOMAIN_DEFAULTS.adaptivity,
+               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, seed: int = 0,
+               threads: Optional[int] = None, overwrite: bool = False, progress: Progress = None) -> OctreeLod:
+    from . import point_files
+    from .arrays import too_few_points
+    from .errors import PointFileError
+    if not point_files.is_copc(output):
+        raise PointFileError(output, f"a COPC file's name ends in {point_files.COPC_SUFFIX}")
+    point_files.check_outputs([input], [output], overwrite=overwrite)
+    source = point_files.read(input)
+    problem = too_few_points(len(source.points), max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors))
+    if problem:
+        raise PointFileError(source.path, problem)
+    point_files.check_writable(source, [output])
+    try:
+        lod = octree_lod(source.points, source.normals, metric=metric, adaptivity=adaptivity,
+                         recompute_normals=recompute_normals, seed=seed, threads=threads, progress=progress)
+    except PointFileError:
+        raise
+    except ValueError as e:  # the input's data or a value that depends on it
+        raise PointFileError(source.path, str(e)) from None
+    point_files.write_copc(source, output, lod)
+    return lod

@@ -254,15 +254,12 @@ def is_copc(path) -> bool:
     return str(path).lower().endswith(COPC_SUFFIX)
 
 
-def write_copc(source: PointFile, path, lod) -> list:
+def write_copc(source: PointFile, path, lod) -> None:
     """Writes every record of a LAS/LAZ input as a COPC file, each in the octree node of its depth in
-    `lod` (an OctreeLod), under a temporary name renamed once complete. Returns the hierarchy's entries
-    (copc_files.write)."""
+    `lod` (an OctreeLod), under a temporary name renamed once complete."""
     from . import copc_files
-    entries = []
-    _write_files([(path, lambda f: entries.extend(copc_files.write(f, source.source, source.rows, source.points,
-                                                                    lod.depth, lod.octree)))])
-    return entries
+    _write_files([(path, lambda f: copc_files.write(f, source.source, source.rows, source.points, lod.depth,
+                                                    lod.octree))])
 
 
 def _write_files(items: Sequence[tuple]) -> None:

@@ -157,3 +157,17 @@ def test_a_write_stopped_midway_leaves_no_file(tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         point_files.write_copc(src, tmp_path / "lod.copc.laz", lod)
     assert names(tmp_path) == ["in.laz"]
+
+
+def test_python_writes_the_file_the_command_writes(tmp_path, strip_copc):
+    src, out = strip_copc
+    lod = gl.write_copc(src, tmp_path / "api.copc.laz")
+    assert (tmp_path / "api.copc.laz").read_bytes() == out.read_bytes()
+    assert np.array_equal(lod.depth, gl.octree_lod(las_points(src)).depth)
+    with pytest.raises(ValueError, match="exists"):
+        gl.write_copc(src, tmp_path / "api.copc.laz")
+    with pytest.raises(ValueError, match="ends in .copc.laz"):
+        gl.write_copc(src, tmp_path / "api.laz")
+    with pytest.raises(ValueError, match="is an input"):
+        gl.write_copc(out, out, overwrite=True)
+    assert names(tmp_path) == ["api.copc.laz"]
