@@ -20,7 +20,7 @@ from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVar
                      level_counts, lod_pyramid, normal_variation, poisson_lod)
 from .domain import Domain
 from .height_field import HeightFieldLod, height_field_lod
-from .octree_lod import OctreeLod, octree_lod, write_copc
+from .octree import OctreeLod, octree_lod, write_copc
 from .errors import ClusterJobError, InputError, PointFileError
 
 __all__ = ["InputError", "PointFileError", "ClusterJobError",

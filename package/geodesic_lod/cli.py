@@ -326,7 +326,7 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list) -> l
 
 def _copc(args, progress) -> list:
     """The COPC file (write_copc: its checks, the octree LOD, the file); its summary line."""
-    from .octree_lod import write_copc
+    from .octree import write_copc
     lod = write_copc(args.input[0], args.output, metric=args.metric, adaptivity=args.adaptivity,
                      recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                      overwrite=args.overwrite, progress=progress)

@@ -449,7 +449,8 @@ TEXTS = {
 
     The octree is PDAL's: a cube from the points' lowest corner with their bounding box's longest side,
     ``spacing`` its side / 128, the spacing viewers assume for depth 0, halving per depth. The Poisson
-    depths go on until the radius falls to the points' spacing.
+    depths go on until the occupied cells of a depth's spacing are half as many as the points and no
+    node of that depth holds more than 100,000 points.
 
     Parameters
     ----------

@@ -29,21 +29,27 @@ class OctreeLod:
 
 
 MAX_DEPTH = 14  # CELLS 2^14 = 2^21 cells per axis at the deepest depth: three fit in 63 bits
+NODE_BUDGET = 100_000  # the most points of a node at the deepest depth: what a viewer loads at once
 
 
 def depth_count(octree: Octree, points: np.ndarray) -> int:
-    """The Poisson depths: until the cells of side spacing / 2^D that hold points are at least half as
-    many as the points (a Poisson set of that radius keeps about one point per such cell), where depth D
-    takes every point left. Counting occupied cells follows where the points are, however unevenly."""
+    """The Poisson depths D: the first depth whose cells (side spacing / 2^D) that hold points are at least
+    half as many as the points (a Poisson set of that radius keeps about one point per such cell) and whose
+    nodes hold at most NODE_BUDGET points each, as depth D takes every point left. Counting occupied cells
+    follows where the points are, however unevenly; the budget splits dense parts further."""
     n = points.shape[0]
     if n < 2:
         return 0
     distinct = len(np.unique(points, axis=0))
     lo = octree.center - octree.halfsize
+    bits = CELLS.bit_length() - 1  # a node of depth d is CELLS cells of its depth across
     for d in range(MAX_DEPTH + 1):
         side = octree.spacing / 2 ** d
         k = np.minimum(np.floor((points - lo) / side).astype(np.int64), (CELLS << d) - 1)
-        if len(np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2])) * 2 >= distinct:
+        occupied = len(np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2]))
+        k >>= bits
+        fullest = np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2], return_counts=True)[1].max()
+        if occupied * 2 >= distinct and fullest <= NODE_BUDGET:
             return d
     return MAX_DEPTH
 

@@ -74,3 +74,20 @@ def test_a_cloud_sparser_than_the_root_spacing_is_all_depth_0():
 def test_bad_input_is_named():
     with pytest.raises(ValueError, match="metric"):
         gl.octree_lod(wavy_strip(200), metric="manhattan")
+
+
+def test_a_dense_part_goes_deeper_until_its_nodes_keep_the_budget(monkeypatch):
+    from geodesic_lod import octree as module
+    monkeypatch.setattr(module, "NODE_BUDGET", 3000)
+    rng = np.random.default_rng(2)
+    sparse = np.column_stack([rng.random((2000, 2)) * 1000, np.zeros(2000)])
+    dense = np.column_stack([500 + rng.random((20000, 2)), np.zeros(20000)])  # a metre square
+    p = np.vstack([sparse, dense])
+    lod = gl.octree_lod(p, metric="euclidean")
+    last = len(lod.radii)
+    side = 2 * lod.octree.halfsize / 2 ** last
+    rest = p[lod.depth == last]
+    nodes = np.floor((rest - (lod.octree.center - lod.octree.halfsize)) / side).astype(np.int64)
+    assert np.unique(nodes, axis=0, return_counts=True)[1].max() <= 3000
+    monkeypatch.setattr(module, "NODE_BUDGET", 10 ** 9)
+    assert len(gl.octree_lod(p, metric="euclidean").radii) < last
