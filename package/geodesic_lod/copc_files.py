@@ -21,6 +21,8 @@ from .las_files import LasSource
 # COPC allows point formats 6 to 8: the format each input format is written in.
 COPC_FORMAT = {0: 6, 1: 6, 2: 7, 3: 7, 4: 6, 5: 7, 6: 6, 7: 7, 8: 8}
 CELLS = 128  # the root node's side over its spacing (PDAL's and untwine's convention, which viewers assume)
+MAX_DEPTH = 14  # the deepest depth; its cells, CELLS 2^14 = 2^21 across, make keys of three 21-bit parts
+FINEST_BITS = (CELLS << MAX_DEPTH).bit_length() - 1
 INFO_VLR = ("copc", 1, 160)  # user id, record id, size
 HIERARCHY_EVLR = ("copc", 1000)
 ENTRY = struct.Struct("<iiiiQii")  # a hierarchy entry: the node's key (depth, x, y, z), offset, bytes, points
@@ -48,15 +50,25 @@ class Octree:
     def around(cls, points: np.ndarray) -> "Octree":
         """The cube from the points' lowest corner with their bounding box's longest side, as PDAL's and
         untwine's files have it (copclib finds nodes' boxes from the header's bounds that way)."""
-        lo, hi = points.min(axis=0), points.max(axis=0)
-        half = 0.5 * float(np.max(hi - lo)) or 0.5  # one point, or many at one place: any cube holds them
-        return cls(lo + half, half, 2 * half / CELLS)
+        return cls.of_bounds(points.min(axis=0), points.max(axis=0))
+
+    @classmethod
+    def of_bounds(cls, lo: np.ndarray, hi: np.ndarray) -> "Octree":
+        """The cube of points whose bounding box is [lo, hi]."""
+        half = 0.5 * float(np.max(np.asarray(hi) - lo)) or 0.5  # one point, or many at one place: any cube
+        return cls(np.asarray(lo, np.float64) + half, half, 2 * half / CELLS)
+
+    def finest(self, points: np.ndarray) -> np.ndarray:
+        """(n, 3) int64: each point's cell of the deepest depth, CELLS 2^MAX_DEPTH = 2^FINEST_BITS per axis.
+        Every coarser cell and node is a shift of it, so that a point's cells and nodes at all depths nest
+        exactly, whatever the rounding (a tile of the cloud and the whole cloud find the same ones)."""
+        side = 2 * self.halfsize / 2 ** FINEST_BITS
+        k = np.floor((points - (self.center - self.halfsize)) / side).astype(np.int64)
+        return np.clip(k, 0, 2 ** FINEST_BITS - 1)
 
     def keys(self, points: np.ndarray, depth: np.ndarray) -> np.ndarray:
         """(n, 3) int64: the x, y, z of each point's node at its depth."""
-        side = 2 * self.halfsize / np.exp2(depth.astype(np.float64))
-        k = np.floor((points - (self.center - self.halfsize)) / side[:, None]).astype(np.int64)
-        return np.clip(k, 0, (np.int64(1) << depth.astype(np.int64))[:, None] - 1)
+        return self.finest(points) >> (FINEST_BITS - depth.astype(np.int64))[:, None]
 
 
 def copc_records(records, point_format_id: int):
@@ -73,29 +85,95 @@ def copc_records(records, point_format_id: int):
     return out
 
 
+def laz_vlr(fmt):
+    """LASzip's record for variable-size chunks (one per node) of records of point format fmt."""
+    import lazrs
+    return lazrs.LazVlr.new_for_compression(fmt.id, fmt.num_extra_bytes, True)
+
+
+def nodes_of(octree: Octree, points: np.ndarray, depth: np.ndarray) -> tuple:
+    """(order, keys, counts): the records in node order (by depth, then key; a node keeps its records in
+    the given order, lexsort being stable), each node's (depth, x, y, z) and its number of records."""
+    k = octree.keys(points, depth)
+    order = np.lexsort((k[:, 2], k[:, 1], k[:, 0], depth))
+    node = np.column_stack([depth[order], k[order]])
+    starts = np.flatnonzero(np.r_[True, np.any(node[1:] != node[:-1], axis=1)]) if len(order) else np.zeros(0, int)
+    return order, node[starts], np.diff(np.r_[starts, len(order)])
+
+
+def compress_nodes(array: np.ndarray, counts: np.ndarray, fmt) -> tuple:
+    """The records (in node order, counts[k] per node) as LASzip chunks, one per node: (their bytes one
+    after the other, each chunk's size). Chunks are independent, so those of different runs can be
+    concatenated into one file."""
+    import io
+    import lazrs
+    if len(counts) == 0:
+        return b"", np.zeros(0, np.int64)
+    vlr = laz_vlr(fmt)
+    buffer = io.BytesIO()
+    compressor = lazrs.LasZipCompressor(buffer, vlr)
+    starts = np.r_[0, np.cumsum(counts)]
+    for k in range(len(counts)):
+        if k:
+            compressor.finish_current_chunk()
+        compressor.compress_many(array[starts[k]:starts[k + 1]].tobytes())
+    compressor.done()  # finishes the last chunk
+    buffer.seek(0)
+    table = lazrs.read_chunk_table(buffer, vlr)
+    if len(table) != len(counts):
+        raise RuntimeError(f"LASzip wrote {len(table)} chunks for {len(counts)} octree nodes")
+    sizes = np.array([size for _, size in table], np.int64)
+    return buffer.getvalue()[8:8 + int(sizes.sum())], sizes
+
+
+def record_stats(records) -> dict:
+    """What the header says of records, in a form parts of a cloud add up in (merge_stats)."""
+    a = records.array if hasattr(records, "array") else records
+    if len(a) == 0:
+        return {"count": 0}
+    ret = np.bincount(np.asarray(records["return_number"], np.int64), minlength=16)[1:16]
+    return {"count": len(a), "lo": [int(a[c].min()) for c in "XYZ"], "hi": [int(a[c].max()) for c in "XYZ"],
+            "returns": ret.tolist(), "gps": [float(np.min(records["gps_time"])), float(np.max(records["gps_time"]))]}
+
+
+def merge_stats(parts) -> dict:
+    parts = [p for p in parts if p["count"]]
+    if not parts:
+        return {"count": 0}
+    return {"count": sum(p["count"] for p in parts), "lo": np.min([p["lo"] for p in parts], axis=0).tolist(),
+            "hi": np.max([p["hi"] for p in parts], axis=0).tolist(),
+            "returns": np.sum([p["returns"] for p in parts], axis=0).tolist(),
+            "gps": [min(p["gps"][0] for p in parts), max(p["gps"][1] for p in parts)]}
+
+
 def write(f: BinaryIO, source: LasSource, records, points: np.ndarray, depth: np.ndarray, octree: Octree) -> list:
     """Writes every record (a laspy.PackedPointRecord of the source's format), each in the node of its
     depth containing its point, as a COPC file to f (seekable, from its start). Returns the hierarchy's
     entries: (depth, x, y, z, points) of every node, those without points included."""
+    records = copc_records(records, records.point_format.id)
+    order, keys, counts = nodes_of(octree, points, depth)
+    data, sizes = compress_nodes(records.array[order], counts, records.point_format)
+    return assemble(f, source, records.point_format, record_stats(records), octree,
+                    [(keys, counts, sizes, lambda out: out.write(data))])
+
+
+def assemble(f: BinaryIO, source: LasSource, fmt, stats: dict, octree: Octree, parts) -> list:
+    """Writes a COPC file to f from parts of compressed nodes: each (keys, counts, sizes, write), where
+    write(f) writes those nodes' chunks one after the other. Returns the hierarchy's entries."""
     import laspy
     import lazrs
     from laspy.header import Version
     from laspy.vlrs.vlrlist import VLRList
-    records = copc_records(records, records.point_format.id)
-    fmt = records.point_format
-    keys = octree.keys(points, depth)
-    # Nodes by depth, then key; a node keeps its records in the input's order (lexsort is stable).
-    order = np.lexsort((keys[:, 2], keys[:, 1], keys[:, 0], depth))
-    node_keys = np.column_stack([depth[order], keys[order]])
-    starts = np.flatnonzero(np.r_[True, np.any(node_keys[1:] != node_keys[:-1], axis=1)])
-    ends = np.r_[starts[1:], len(order)]
-
     header = copy.deepcopy(source.header)
     header.set_version_and_point_format(Version(1, 4), copy.deepcopy(fmt))
-    header.update(records)
+    header.point_count = stats["count"]
+    if stats["count"]:
+        header.mins = np.array(stats["lo"]) * header.scales + header.offsets
+        header.maxs = np.array(stats["hi"]) * header.scales + header.offsets
+        header.number_of_points_by_return = np.array(stats["returns"], np.int64)
     header.are_points_compressed = True
     header.global_encoding.wkt = True  # LAS 1.4 asks it of formats 6 to 10; the CRS records stay the input's bytes
-    laz = lazrs.LazVlr.new_for_compression(fmt.id, fmt.num_extra_bytes, True)
+    laz = laz_vlr(fmt)
     info = laspy.VLR(INFO_VLR[0], INFO_VLR[1], "COPC info", bytes(INFO_VLR[2]))
     header._vlrs = VLRList([info, laspy.VLR("laszip encoded", 22204, "lazrs variable-size chunks",
                                             laz.record_data())] + copy.copy(source.vlrs))
@@ -103,23 +181,21 @@ def write(f: BinaryIO, source: LasSource, records, points: np.ndarray, depth: np
     header.start_of_first_evlr = 0
     header.write_to(f)
 
-    array = records.array[order]
-    compressor = lazrs.LasZipCompressor(f, laz)
-    for k, (b, e) in enumerate(zip(starts, ends)):
-        if k:
-            compressor.finish_current_chunk()
-        compressor.compress_many(array[b:e].tobytes())
-    compressor.done()  # finishes the last chunk
+    entries, table = {}, []
+    at = header.offset_to_point_data + 8  # after the chunk table's offset
+    f.seek(at)
+    for keys, counts, sizes, write in parts:
+        write(f)
+        for key, count, size in zip(keys, counts, sizes):
+            entries[tuple(int(v) for v in key)] = (at, int(size), int(count))
+            table.append((int(count), int(size)))
+            at += int(size)
+    if f.tell() != at:
+        raise RuntimeError("the nodes' chunks are not the size their parts said")
+    lazrs.write_chunk_table(f, table, laz)
     end = f.tell()
     f.seek(header.offset_to_point_data)
-    table = lazrs.read_chunk_table(f, laz)
-    if len(table) != len(starts):
-        raise RuntimeError(f"LASzip wrote {len(table)} chunks for {len(starts)} octree nodes")
-    sizes = np.array([s for _, s in table], np.int64)
-    offsets = header.offset_to_point_data + 8 + np.r_[0, np.cumsum(sizes)[:-1]]
-
-    entries = {tuple(int(v) for v in node_keys[b]): (int(o), int(s), int(e - b))
-               for b, e, o, s in zip(starts, ends, offsets, sizes)}
+    f.write(struct.pack("<q", at))  # where the chunk table starts
     for key in list(entries):  # every ancestor of a node is in the hierarchy, so a reader walks down to it
         d, x, y, z = key
         while d > 0:
@@ -129,13 +205,12 @@ def write(f: BinaryIO, source: LasSource, records, points: np.ndarray, depth: np
 
     f.seek(end)
     header.start_of_first_evlr = end
-    hierarchy_offset = end + 60
     f.write(_evlr(*HIERARCHY_EVLR, "EPT hierarchy", page))
     for v in source.evlrs:
         f.write(_evlr(v.user_id, v.record_id, v.description, v.record_data))
-    gps = np.asarray(records["gps_time"], np.float64) if len(records) else np.zeros(1)
-    info.record_data = struct.pack("<5d2Q2d88x", *octree.center, octree.halfsize, octree.spacing,
-                                   hierarchy_offset, len(page), float(gps.min()), float(gps.max()))
+    gps = stats.get("gps", [0.0, 0.0])
+    info.record_data = struct.pack("<5d2Q2d88x", *octree.center, octree.halfsize, octree.spacing, end + 60,
+                                   len(page), gps[0], gps[1])
     f.seek(0)
     header.write_to(f, ensure_same_size=True)
     return [(k[0], k[1], k[2], k[3], v[2]) for k, v in sorted(entries.items())]

@@ -11,7 +11,7 @@ import numpy as np
 
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, Progress, point_arrays,
                      run_options)
-from .copc_files import CELLS, Octree
+from .copc_files import CELLS, MAX_DEPTH, Octree
 from .docstrings import documented
 from .domain import Domain
 
@@ -28,28 +28,33 @@ class OctreeLod:
         return np.flatnonzero(self.depth <= d)
 
 
-MAX_DEPTH = 14  # CELLS 2^14 = 2^21 cells per axis at the deepest depth: three fit in 63 bits
 NODE_BUDGET = 100_000  # the most points of a node at the deepest depth: what a viewer loads at once
+CELL_BITS = CELLS.bit_length() - 1  # a node of depth d is CELLS cells of its depth across
+
+
+def deep_enough(occupied: int, distinct: int, fullest: int) -> bool:
+    """Whether depth d can take every point left: its cells (side spacing / 2^d) that hold points are at
+    least half as many as the distinct points (a Poisson set of that radius keeps about one point per such
+    cell), and its fullest node holds at most NODE_BUDGET points."""
+    return occupied * 2 >= distinct and fullest <= NODE_BUDGET
+
+
+def packed(k: np.ndarray) -> np.ndarray:
+    """(n, 3) keys of up to 21 bits each as one int64 each."""
+    return (k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2]
 
 
 def depth_count(octree: Octree, points: np.ndarray) -> int:
-    """The Poisson depths D: the first depth whose cells (side spacing / 2^D) that hold points are at least
-    half as many as the points (a Poisson set of that radius keeps about one point per such cell) and whose
-    nodes hold at most NODE_BUDGET points each, as depth D takes every point left. Counting occupied cells
-    follows where the points are, however unevenly; the budget splits dense parts further."""
-    n = points.shape[0]
-    if n < 2:
+    """The Poisson depths D: the first depth deep enough (deep_enough) to take every point left. Counting
+    occupied cells follows where the points are, however unevenly; the budget splits dense parts further."""
+    if points.shape[0] < 2:
         return 0
     distinct = len(np.unique(points, axis=0))
-    lo = octree.center - octree.halfsize
-    bits = CELLS.bit_length() - 1  # a node of depth d is CELLS cells of its depth across
+    finest = octree.finest(points)
     for d in range(MAX_DEPTH + 1):
-        side = octree.spacing / 2 ** d
-        k = np.minimum(np.floor((points - lo) / side).astype(np.int64), (CELLS << d) - 1)
-        occupied = len(np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2]))
-        k >>= bits
-        fullest = np.unique((k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2], return_counts=True)[1].max()
-        if occupied * 2 >= distinct and fullest <= NODE_BUDGET:
+        occupied = len(np.unique(packed(finest >> (MAX_DEPTH - d))))
+        fullest = np.unique(packed(finest >> (MAX_DEPTH - d + CELL_BITS)), return_counts=True)[1].max()
+        if deep_enough(occupied, distinct, fullest):
             return d
     return MAX_DEPTH
 
