@@ -63,7 +63,7 @@ def parser() -> argparse.ArgumentParser:
                    "or a glob are sampled as one cloud on a Dask cluster")
     p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "
                    "file is derived from (lod.laz gives lod_50pct.laz, ...); on a cluster, a folder; a name "
-                   "ending in .copc.laz (from a LAS/LAZ input, no size option): a COPC file holding every point, "
+                   "ending in .copc.laz (LAS/LAZ input, no size option): a COPC file holding every point, "
                    "its octree depths nested LODs whose spacing halves per depth")
     size = p.add_mutually_exclusive_group()
     size.add_argument("--rate", help="a percentage of the points, such as 10%%: exactly that many samples")
@@ -117,8 +117,7 @@ def _on_cluster(args) -> bool:
 def _run_on_cluster(args, request: dict) -> int:
     """Many files, or a cloud too large for one machine: tiles on Dask workers."""
     from . import distributed
-    if "copc" in request:
-        raise ValueError(f"a COPC file ({args.output}) is written from one LAS/LAZ file on one machine")
+    copc = "copc" in request
     if args.fps or args.height_field:
         raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
                          "one machine)")
@@ -127,7 +126,8 @@ def _run_on_cluster(args, request: dict) -> int:
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
             if any(b >= a for a, b in zip(values, values[1:])):
                 raise ValueError(f"--levels must get strictly coarser, finest first: {args.levels}")
-    for flag, given in (("--recompute-normals", args.recompute_normals), ("--overwrite", args.overwrite)):
+    for flag, given in (("--recompute-normals", args.recompute_normals),
+                        ("--overwrite", args.overwrite and not copc)):
         if given:
             raise ValueError(f"{flag} runs on one machine (a cluster run replaces only its own earlier output, and "
                              "estimates normals where a file has none)")
@@ -144,7 +144,10 @@ def _run_on_cluster(args, request: dict) -> int:
                          "pip install '.[dask]')") from None
     from .cloud_files import expand_inputs
     from .output_folder import OutputFolder
-    OutputFolder(args.output, expand_inputs(args.input))  # checked before a cluster starts
+    if copc:  # checked before a cluster starts
+        point_files.check_outputs(expand_inputs(args.input), [args.output], overwrite=args.overwrite)
+    else:
+        OutputFolder(args.output, expand_inputs(args.input))
     start = time.perf_counter()
     cluster = None
     if args.scheduler:
@@ -170,17 +173,27 @@ def _run_on_cluster(args, request: dict) -> int:
             if bar is not None:
                 bar.total = total
                 bar.update(done - bar.n)
-        index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
-                                      adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
-                                      threads=args.threads, progress=progress,
-                                      tolerance=1.0 if args.tolerance is None else args.tolerance)
+        if copc:
+            from .copc_cluster import copc_file
+            made = copc_file(args.input, args.output, seed=args.seed, metric=args.metric, adaptivity=args.adaptivity,
+                             tile_points=args.tile_points, client=client, threads=args.threads,
+                             overwrite=args.overwrite, progress=progress)
+        else:
+            index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
+                                          adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
+                                          threads=args.threads, progress=progress,
+                                          tolerance=1.0 if args.tolerance is None else args.tolerance)
     finally:
         if bar is not None:
             bar.close()
         client.close()
         if cluster is not None:
             cluster.close()
-    if not args.quiet:
+    if not args.quiet and copc:
+        print(f"{PROG}: {args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
+              f"{made['spacing']:.6g} at depth 0, from {made['tiles']} tiles", file=sys.stderr)
+        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+    elif not args.quiet:
         for level in index.get("levels", [index]):
             where = pathlib.Path(args.output) / pathlib.Path(level["tiles"][0]["file"]).parent if level["tiles"] \
                 else pathlib.Path(args.output)

@@ -71,15 +71,20 @@ class Octree:
         return self.finest(points) >> (FINEST_BITS - depth.astype(np.int64))[:, None]
 
 
+def copc_format(point_format):
+    """The point format COPC writes records of point_format in, its extra dimensions kept."""
+    import laspy
+    fmt = laspy.PointFormat(COPC_FORMAT[point_format.id])
+    fmt.dimensions.extend(point_format.extra_dimensions)
+    return fmt
+
+
 def copc_records(records, point_format_id: int):
     """The records in the COPC point format of their format: the same array for formats 6 to 8."""
     import laspy
-    target = COPC_FORMAT[point_format_id]
-    if target == point_format_id:
+    if COPC_FORMAT[point_format_id] == point_format_id:
         return records
-    fmt = laspy.PointFormat(target)
-    fmt.dimensions.extend(records.point_format.extra_dimensions)
-    out = laspy.PackedPointRecord.from_point_record(records, fmt)
+    out = laspy.PackedPointRecord.from_point_record(records, copc_format(records.point_format))
     # Formats 0 to 5 keep the scan angle in whole degrees, 6 to 10 in steps of 0.006 degrees.
     out["scan_angle"] = np.round(np.asarray(records["scan_angle_rank"], np.float64) / 0.006).astype(np.int16)
     return out

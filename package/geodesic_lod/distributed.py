@@ -116,8 +116,8 @@ def seams(d: Optional[tiles.Decision]):
 
 def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str,
                ids_path: Optional[str] = None) -> Optional[dict]:
-    """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order, and
-    with `ids_path` their ids for the next level."""
+    """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order (path
+    None: not written), and with `ids_path` their ids for the next level."""
     ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
         tmp = f"{ids_path}.partial-{os.getpid()}.npy"
@@ -125,6 +125,8 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
         os.replace(tmp, ids_path)
     if d is None:
         return None
+    if path is None:
+        return {"file": None, "count": int(len(ids))}
     if len(ids) == 0:
         return {"file": None, "count": 0}
     source = cloud_files.read_records(job.srcs, ids)

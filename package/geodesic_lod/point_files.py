@@ -244,7 +244,7 @@ def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
 
     Every file is first written under a temporary name beside it; the names asked for appear only
     once all are complete."""
-    _write_files([(path, lambda f, path=path, indices=indices: _write(
+    write_files([(path, lambda f, path=path, indices=indices: _write(
         source, np.asarray(indices, dtype=np.int64), pathlib.Path(path).suffix.lower(), f))
         for path, indices in outputs])
 
@@ -258,11 +258,11 @@ def write_copc(source: PointFile, path, lod) -> None:
     """Writes every record of a LAS/LAZ input as a COPC file, each in the octree node of its depth in
     `lod` (an OctreeLod), under a temporary name renamed once complete."""
     from . import copc_files
-    _write_files([(path, lambda f: copc_files.write(f, source.source, source.rows, source.points, lod.depth,
+    write_files([(path, lambda f: copc_files.write(f, source.source, source.rows, source.points, lod.depth,
                                                     lod.octree))])
 
 
-def _write_files(items: Sequence[tuple]) -> None:
+def write_files(items: Sequence[tuple]) -> None:
     """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
     any failure or interruption the temporary files are removed and nothing else is touched."""
     done = []

@@ -117,8 +117,6 @@ REFUSED = [
     ("a PLY input", lambda d: [ply_cloud(d / "in.ply"), "-o", d / "out.copc.laz"], "keeps LAS point records"),
     ("no size option for a flat LOD", lambda d: [las_cloud(d / "in.laz"), "-o", d / "out.laz"],
      "give one of --rate, --count, --radius, --levels"),
-    ("a cluster", lambda d: [las_cloud(d / "in.laz"), las_cloud(d / "in2.laz"), "-o", d / "out.copc.laz"],
-     "on one machine"),
 ]
 
 

@@ -1,0 +1,78 @@
+"""COPC files from a Dask cluster (geodesic_lod.copc_cluster, `geodesic-lod FILES -o OUT.copc.laz --workers N`):
+every node holds the records the single-machine file's node holds, for several tilings and worker counts;
+the output folder keeps the user's files, and no work file is left."""
+import laspy
+import numpy as np
+import pytest
+from dask.distributed import Client
+
+import copclib
+import geodesic_lod as gl
+from geodesic_lod import copc_cluster
+from geodesic_lod import distributed as dist
+from point_file_inputs import wavy_strip
+from test_cli import names, run
+from test_distributed import write_parts
+
+
+def nodes(path) -> dict:
+    """Per node (depth, x, y, z), its records' bytes, sorted; copclib validates the file on the way."""
+    reader = copclib.FileReader(str(path))
+    assert reader.ValidateSpatialBounds(False)
+    size = reader.copc_config.las_header.point_record_length
+    out = {}
+    for n in reader.GetAllNodes():
+        data = bytes(reader.GetPointData(n))
+        out[(n.key.d, n.key.x, n.key.y, n.key.z)] = sorted(data[i:i + size] for i in range(0, len(data), size))
+    return out
+
+
+@pytest.fixture(scope="module")
+def strip(tmp_path_factory):
+    """The strip as LAZ parts (the cluster's input) and as one LAZ of the same records (one machine's)."""
+    d = tmp_path_factory.mktemp("strip")
+    parts = write_parts(d / "parts", wavy_strip(30000), scales=(1e-3,) * 3)
+    records = np.concatenate([laspy.read(str(f)).points.array for f in sorted(parts.glob("*.laz"))])
+    las = laspy.read(str(parts / "part0.laz"))
+    las.points = laspy.PackedPointRecord(records, las.point_format)
+    las.write(str(d / "all.laz"))
+    gl.write_copc(d / "all.laz", d / "one.copc.laz")
+    return parts, nodes(d / "one.copc.laz")
+
+
+@pytest.fixture(scope="module")
+def client():
+    with dist.local_cluster(2) as cluster, Client(cluster) as c:
+        yield c
+
+
+@pytest.mark.parametrize("tile_points", [2000, 7000, 10 ** 6])
+def test_any_tiling_gives_the_single_machine_nodes(strip, client, tmp_path, tile_points):
+    parts, one = strip
+    made = copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=tile_points, client=client)
+    assert made["depths"] >= 3 and (made["tiles"] > 1) == (tile_points < 30000)
+    assert nodes(tmp_path / "lod.copc.laz") == one
+    assert names(tmp_path) == ["lod.copc.laz"]
+
+
+def test_one_worker_gives_the_same_nodes(strip, tmp_path):
+    parts, one = strip
+    with dist.local_cluster(1) as cluster, Client(cluster) as c:
+        copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=5000, client=c)
+    assert nodes(tmp_path / "lod.copc.laz") == one
+
+
+def test_the_command_on_a_local_cluster_keeps_the_users_files(strip, tmp_path):
+    parts, one = strip
+    mine = tmp_path / "notes.txt"
+    mine.write_text("the user's own")
+    out = tmp_path / "lod.copc.laz"
+    r = run(parts, "-o", out, "--workers", "2", "--tile-points", "5000", "-q")
+    assert r.returncode == 0, r.stderr
+    assert nodes(out) == one
+    assert names(tmp_path) == ["lod.copc.laz", "notes.txt"] and mine.read_text() == "the user's own"
+    r = run(parts, "-o", out, "--workers", "1", "-q")
+    assert r.returncode == 2 and "exists" in r.stderr
+    r = run(parts, "-o", out, "--workers", "1", "--overwrite", "-q")
+    assert r.returncode == 0, r.stderr
+    assert nodes(out) == one
