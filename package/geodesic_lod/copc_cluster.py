@@ -25,7 +25,7 @@ import numpy as np
 from . import arrays, cloud_files, las_files, point_files, tiles
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
-from .distributed import (Job, _poisson_run, _Ticks, check_worker_memory, domain_fields, finer_samples,
+from .distributed import (Job, poisson_run, Ticks, check_worker_memory, domain_fields, finer_samples,
                           write_tile)
 from .errors import InputError
 from .octree import CELL_BITS, NODE_BUDGET, deep_enough, packed
@@ -155,7 +155,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     for d in reversed(range(len(levels))):  # levels[d]: the level of depth d, coarser ones nested in it
         depth[finer_samples(dataclasses.replace(job, within=levels[d]), lo, hi, ids)] = d
     source = cloud_files.read_records(job.srcs, ids)
-    records = copc_records(source.rows, source.rows.point_format.id)
+    records = copc_records(source.rows)
     deep = depth >= t
     order, keys, counts = nodes_of(octree, points[deep], depth[deep])
     data, sizes = compress_nodes(records.array[deep][order], counts, records.point_format)
@@ -203,13 +203,13 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     out = pathlib.Path(output)
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
                                          dir=out.parent))
-    ticks = _Ticks(progress)
+    ticks = Ticks(progress)
     try:
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
             job = dataclasses.replace(job, radius=radii[d], halo=tiles.first_halo(radii[d], spacing))
-            run = _poisson_run(client, job, boxes, ticks)
+            run = poisson_run(client, job, boxes, ticks)
             folder = work / f"level_{d}"
             folder.mkdir()
             owned = [np.empty(0, np.uint64) if p is None else run.settled[np.isin(run.settled, p.open_ids)]

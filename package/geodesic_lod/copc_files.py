@@ -79,10 +79,11 @@ def copc_format(point_format):
     return fmt
 
 
-def copc_records(records, point_format_id: int):
-    """The records in the COPC point format of their format: the same array for formats 6 to 8."""
+def copc_records(records):
+    """The records (a laspy.PackedPointRecord) in the COPC point format of their format: the same records
+    for formats 6 to 8."""
     import laspy
-    if COPC_FORMAT[point_format_id] == point_format_id:
+    if COPC_FORMAT[records.point_format.id] == records.point_format.id:
         return records
     out = laspy.PackedPointRecord.from_point_record(records, copc_format(records.point_format))
     # Formats 0 to 5 keep the scan angle in whole degrees, 6 to 10 in steps of 0.006 degrees.
@@ -132,8 +133,9 @@ def compress_nodes(array: np.ndarray, counts: np.ndarray, fmt) -> tuple:
 
 
 def record_stats(records) -> dict:
-    """What the header says of records, in a form parts of a cloud add up in (merge_stats)."""
-    a = records.array if hasattr(records, "array") else records
+    """What the header says of records (a laspy.PackedPointRecord), in a form parts of a cloud add up in
+    (merge_stats)."""
+    a = records.array
     if len(a) == 0:
         return {"count": 0}
     ret = np.bincount(np.asarray(records["return_number"], np.int64), minlength=16)[1:16]
@@ -142,6 +144,7 @@ def record_stats(records) -> dict:
 
 
 def merge_stats(parts) -> dict:
+    """The record_stats of parts' records taken together."""
     parts = [p for p in parts if p["count"]]
     if not parts:
         return {"count": 0}
@@ -155,7 +158,7 @@ def write(f: BinaryIO, source: LasSource, records, points: np.ndarray, depth: np
     """Writes every record (a laspy.PackedPointRecord of the source's format), each in the node of its
     depth containing its point, as a COPC file to f (seekable, from its start). Returns the hierarchy's
     entries: (depth, x, y, z, points) of every node, those without points included."""
-    records = copc_records(records, records.point_format.id)
+    records = copc_records(records)
     order, keys, counts = nodes_of(octree, points, depth)
     data, sizes = compress_nodes(records.array[order], counts, records.point_format)
     return assemble(f, source, records.point_format, record_stats(records), octree,

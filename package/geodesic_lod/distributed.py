@@ -209,7 +209,8 @@ class _Run:
     seconds: dict  #: tiles (their decisions) and seams (settling them)
 
 
-class _Ticks:
+class Ticks:
+    """Progress over tile tasks whose total grows as runs are planned: progress(done, total) per task."""
     def __init__(self, progress):
         self.progress, self.done, self.total = progress, 0, 0
 
@@ -226,7 +227,7 @@ def sample_count(d: Optional[tiles.Decision]) -> int:
     return 0 if d is None else len(d.samples)
 
 
-def _poisson_run(client, job: Job, boxes, ticks: _Ticks) -> _Run:
+def poisson_run(client, job: Job, boxes, ticks: Ticks) -> _Run:
     from dask.distributed import as_completed
     ticks.expect(len(boxes))
     start = time.perf_counter()
@@ -241,7 +242,7 @@ def _poisson_run(client, job: Job, boxes, ticks: _Ticks) -> _Run:
                 {"tiles": decided - start, "seams": time.perf_counter() - decided})
 
 
-def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: _Ticks,
+def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
                   spacing: float, pool: int, first_radius: float) -> tuple:
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
     run over all tiles, among `pool` points that may be samples: (the accepted or nearest run, runs made)."""
@@ -249,7 +250,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     best, spent = None, {"tiles": 0.0, "seams": 0.0}
     while not steps.done:
         r = steps.radius
-        run = _poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
+        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
                            ticks)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
         if steps.report(run.count) == _core.SearchRole.Accepted:
@@ -312,7 +313,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
                                      sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
     spacing = tiles.spacing_of(cloud, total)
-    ticks = _Ticks(progress)
+    ticks = Ticks(progress)
     if size["levels"] is not None:
         items = list(arrays.level_items(size["levels"]))
         targets = [("count", c) for c in arrays.level_counts(items, total)]
@@ -361,7 +362,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
         search = {}
         if kind == "radius":
             job = dataclasses.replace(job, radius=value, halo=tiles.first_halo(value, spacing))
-            run = _poisson_run(client, job, boxes, ticks)
+            run = poisson_run(client, job, boxes, ticks)
         else:
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
                                       pool, _core.RadiusSearch.first_radius(diagonal, value))
@@ -380,7 +381,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
     return made
 
 
-def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: _Ticks) -> dict:
+def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: Ticks) -> dict:
     """Writes one level's tiles into `folder`, a new one (and its samples' ids per tile into `ids_dir`); its
     index entry. Files left half-written by tasks lost with their worker are removed."""
     from dask.distributed import as_completed
