@@ -28,7 +28,7 @@ from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_node
 from .distributed import (Job, poisson_run, Ticks, check_worker_memory, domain_fields, finer_samples,
                           write_tile)
 from .errors import InputError
-from .octree import CELL_BITS, NODE_BUDGET, deep_enough, packed
+from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
 
@@ -96,11 +96,11 @@ class NodeTile(tiles.Box):
 
 
 def _tile_points(job: Job, tile: NodeTile) -> tuple:
-    """A tile's core points: (points, ids, finest cells), in id order."""
+    """A tile's core points: (points, ids), in id order."""
     margin = 1e-6 * 2 * tile.octree.halfsize
     points, _, ids = cloud_files.read_region(job.srcs, tile.lo - margin, tile.hi + margin)
     mine = tile.core_mask(points, job.cloud)
-    return points[mine], ids[mine], tile.octree.finest(points[mine])
+    return points[mine], ids[mine]
 
 
 def _depth_stats(job: Job, tile: NodeTile) -> dict:
@@ -108,13 +108,14 @@ def _depth_stats(job: Job, tile: NodeTile) -> dict:
     enough and t is reached (deeper, its cells stay as many as its distinct points and its nodes within
     the budget): the cells holding points, and the points per node (keyed below depth t, whose nodes
     span tiles; else the fullest)."""
-    points, _, finest = _tile_points(job, tile)
+    points, _ = _tile_points(job, tile)
     t = tile.depth
-    distinct = len(np.unique(points, axis=0)) if len(points) else 0
+    codes = sorted_codes(tile.octree, points)
+    distinct = len(runs(codes, 0)[0])
     out = {"distinct": distinct, "occupied": [], "nodes": [], "fullest": []}
     for d in range(MAX_DEPTH + 1):
-        occupied = len(np.unique(packed(finest >> (MAX_DEPTH - d))))
-        keys, counts = np.unique(packed(finest >> (MAX_DEPTH - d + CELL_BITS)), return_counts=True)
+        occupied = len(runs(codes, cell_shift(d))[0])
+        keys, counts = runs(codes, node_shift(d))
         out["occupied"].append(occupied)
         if d < t:
             out["nodes"].append((keys, counts))
@@ -147,7 +148,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     """A Dask task: one tile's records with their depths (the coarsest level holding each; the deepest
     depth for the others); its nodes of depth t and deeper compressed into `path`, the shallower records
     returned for the nodes that span tiles."""
-    points, ids, _ = _tile_points(job, tile)
+    points, ids = _tile_points(job, tile)
     octree, t = tile.octree, tile.depth
     depth = np.full(len(ids), len(levels), np.int32)
     margin = 1e-6 * 2 * octree.halfsize

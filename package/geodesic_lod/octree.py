@@ -44,17 +44,48 @@ def packed(k: np.ndarray) -> np.ndarray:
     return (k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2]
 
 
+def _spread(v: np.ndarray) -> np.ndarray:
+    """The low 21 bits of each value to every third bit."""
+    v = v.astype(np.uint64) & np.uint64(0x1fffff)
+    for shift, mask in ((32, 0x1f00000000ffff), (16, 0x1f0000ff0000ff), (8, 0x100f00f00f00f00f),
+                        (4, 0x10c30c30c30c30c3), (2, 0x1249249249249249)):
+        v = (v | (v << np.uint64(shift))) & np.uint64(mask)
+    return v
+
+
+def sorted_codes(octree: Octree, points: np.ndarray) -> np.ndarray:
+    """The points' deepest cells as Morton codes (their x, y, z bits interleaved), sorted: the cells and
+    nodes of every depth then come in runs, a cell of depth d being the code >> 3 (MAX_DEPTH - d), a node
+    the code >> 3 (FINEST_BITS - d)."""
+    k = octree.finest(points)
+    return np.sort(_spread(k[:, 0]) << np.uint64(2) | _spread(k[:, 1]) << np.uint64(1) | _spread(k[:, 2]))
+
+
+def runs(codes: np.ndarray, shift: int) -> tuple:
+    """(keys, counts) of the runs of sorted codes >> shift: the cells or nodes and the points in each."""
+    c = codes >> np.uint64(shift)
+    starts = np.flatnonzero(np.r_[True, c[1:] != c[:-1]]) if len(c) else np.zeros(0, np.int64)
+    return c[starts], np.diff(np.r_[starts, len(c)])
+
+
+def cell_shift(d: int) -> int:
+    return 3 * (MAX_DEPTH - d)
+
+
+def node_shift(d: int) -> int:
+    return 3 * (MAX_DEPTH - d + CELL_BITS)
+
+
 def depth_count(octree: Octree, points: np.ndarray) -> int:
-    """The Poisson depths D: the first depth deep enough (deep_enough) to take every point left. Counting
-    occupied cells follows where the points are, however unevenly; the budget splits dense parts further."""
+    """The Poisson depths D: the first depth deep enough (deep_enough) to take every point left, points in
+    one cell of the deepest depth counting as one distinct point. Counting occupied cells follows where the
+    points are, however unevenly; the budget splits dense parts further."""
     if points.shape[0] < 2:
         return 0
-    distinct = len(np.unique(points, axis=0))
-    finest = octree.finest(points)
+    codes = sorted_codes(octree, points)
+    distinct = len(runs(codes, 0)[0])
     for d in range(MAX_DEPTH + 1):
-        occupied = len(np.unique(packed(finest >> (MAX_DEPTH - d))))
-        fullest = np.unique(packed(finest >> (MAX_DEPTH - d + CELL_BITS)), return_counts=True)[1].max()
-        if deep_enough(occupied, distinct, fullest):
+        if deep_enough(len(runs(codes, cell_shift(d))[0]), distinct, int(runs(codes, node_shift(d))[1].max())):
             return d
     return MAX_DEPTH
 
