@@ -25,7 +25,7 @@ import numpy as np
 from . import arrays, cloud_files, las_files, point_files, tiles
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
-from .distributed import (Job, poisson_run, Ticks, check_worker_memory, domain_fields, finer_samples,
+from .distributed import (Job, Ticks, _ids_file, check_worker_memory, domain_fields, finer_samples, poisson_run,
                           write_tile)
 from .errors import InputError
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
@@ -138,10 +138,6 @@ def depth_count(stats: list, t: int) -> int:
         if deep_enough(occupied, distinct, fullest):
             return d
     return MAX_DEPTH
-
-
-def _ids_file(folder, k: int) -> pathlib.Path:
-    return pathlib.Path(folder) / f"tile_{k:05d}.npy"
 
 
 def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
