@@ -1,7 +1,9 @@
 """The Dask pipeline on clouds larger than one process holds: make_scan.py's synthetic scan written as
 a grid of LAZ files, sampled by geodesic_lod.distributed on a local cluster of 1 and of 2 workers with
 a memory limit each; time, peak memory per worker, points per second, the halo's share of the points
-read and the time of each phase. Writes docs/cluster_scale.json.
+read and the time of each phase (the split decodes each record once). Beside them, one process on one
+tile's points (read beforehand, one thread): the rate a worker is measured against. Writes
+docs/cluster_scale.json.
 
 Also writes docs/cluster_scale.md: the table, and a projection to 10^9 and 10^10 points from the
 measured rates (--report rewrites it from the JSON alone).
@@ -59,7 +61,26 @@ def run(folder, out, workers, memory, tile_points, radius):
             "seconds": round(seconds, 1), "points_per_second": round(index["points"] / seconds),
             "worker_peak_mb": [round(p) for p in peaks], "memory_limit": memory,
             "halo_share": round(read / index["points"] - 1, 3), "open_points": index["open_points"],
-            "phase_seconds": index["seconds"], "radius": radius}
+            "phase_seconds": {"split": index["partition"]["seconds"], **index["seconds"]},
+            "partition_bytes": index["partition"]["bytes"], "radius": radius}
+
+
+def one_process(folder, tile_points, radius):
+    """One tile's core points (the middle tile of the job's plan) sampled by one process on one thread, the
+    points in memory beforehand: its points per second."""
+    import geodesic_lod as gl
+    from geodesic_lod import cloud_files, tiles
+    paths = cloud_files.expand_inputs([str(folder)])
+    srcs = cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
+    cloud, boxes, _ = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                 sum(s.count for s in srcs), tile_points)
+    box = boxes[len(boxes) // 2].outer(cloud)
+    points, _, _ = cloud_files.read_region(srcs, box.lo, box.hi)
+    points = points[np.all(points < box.hi, axis=1)]
+    t = time.perf_counter()
+    gl.poisson_lod(points, radius=radius, threads=1)
+    seconds = time.perf_counter() - t
+    return {"points": len(points), "seconds": round(seconds, 1), "points_per_second": round(len(points) / seconds)}
 
 
 def main():
@@ -78,6 +99,10 @@ def main():
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
     rows = [run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius)
             for w in a.workers.split(",")]
+    single = one_process(folder, a.tile_points, radius)
+    for r in rows:  # a worker's rate against one process's on a tile of the same size
+        r["one_process"] = single
+        r["worker_share"] = round(r["points_per_second"] / r["workers"] / single["points_per_second"], 3)
     publish("cluster_scale", rows, COLUMNS)
     report(rows)
 
@@ -87,9 +112,10 @@ COLUMNS = [
     ("samples", lambda r: f"{r['samples']:,}"), ("tiles", lambda r: str(r["tiles"])),
     ("time (s)", lambda r: str(r["seconds"])), ("points/s", lambda r: f"{r['points_per_second']:,}"),
     ("peak per worker (MB)", lambda r: ", ".join(map(str, r["worker_peak_mb"]))),
+    ("per worker / one process", lambda r: f"{100 * r['worker_share']:.0f}%"),
     ("halo share", lambda r: f"{100 * r['halo_share']:.1f}%"), ("open points", lambda r: f"{r['open_points']:,}"),
-    ("tiles / seams / writing (s)", lambda r: " / ".join(str(r["phase_seconds"][k])
-                                                         for k in ("tiles", "seams", "writing")))]
+    ("split / tiles / seams / writing (s)", lambda r: " / ".join(str(r["phase_seconds"][k])
+                                                                 for k in ("split", "tiles", "seams", "writing")))]
 
 # The single-process footprint the projection compares with: bench/array_memory.py's bytes per point.
 ARRAY_MEMORY = DOCS / "array_memory.json"
@@ -108,6 +134,14 @@ def report(rows):
              "| " + " | ".join(h for h, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     lines += ["| " + " | ".join(cell(r) for _, cell in COLUMNS) + " |" for r in rows]
     n = best["points"]
+    single = best["one_process"]
+    lines += ["", f"One process on one tile's {single['points']:,} points (the middle tile, read beforehand, one "
+              f"thread) took {single['seconds']} s, {single['points_per_second']:,} points/s: the rate each worker's "
+              "share is measured against. Each input record is decoded once, in the split; the cells it writes take "
+              f"{best['partition_bytes'] / 1e9:.1f} GB."]
+    by_workers = {r["workers"]: r["seconds"] for r in rows}
+    if 1 in by_workers and 2 in by_workers:
+        lines += ["", f"2 workers took {by_workers[1] / by_workers[2]:.2f}x less time than 1."]
     lines += ["", f"One process would hold about {per_point * n / 1e9:.1f} GB for these {n:,} points "
               f"({per_point} bytes per point, `docs/array_memory.json`); each worker peaked below "
               f"{max(best['worker_peak_mb']) / 1024:.1f} GB of its {best['memory_limit']}.", "",

@@ -150,7 +150,14 @@ def read_records(srcs: Sequence[Source], ids: np.ndarray):
     records = np.concatenate(parts)
     inverse = np.empty_like(order)
     inverse[order] = np.arange(len(order))
-    records = records[inverse]
+    return records_source(srcs, records[inverse], first)
+
+
+def records_source(srcs: Sequence[Source], records: np.ndarray, first=None):
+    """Records of the files (a structured array) as a source to write them with; `first`: the first file's
+    parsed source when at hand."""
+    if first is None:
+        first = las_files.open_source(srcs[0].path) if srcs[0].kind == "las" else point_files.read(srcs[0].path).source
     if srcs[0].kind == "las":
         import laspy
         rows = laspy.PackedPointRecord(records, first.header.point_format)

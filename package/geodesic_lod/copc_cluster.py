@@ -1,9 +1,9 @@
 """A COPC file of point files larger than one machine, on a Dask cluster: the file ``write_copc`` writes on
 one machine from the same points (every node holding the same records), for any tiling and number of workers.
 
-The tiles are the octree's nodes of one depth t, so that every cell and node of depth t or deeper lies in
-one tile. Passes over the files find the cloud's bounds (the cube) and the points per node; a pass over the
-tiles finds the depths (``octree.deep_enough`` on sums of the tiles' counts); the nested Poisson levels run
+The input is decoded once into cells (``partition``), which every later task reads. The tiles are the
+octree's nodes of one depth t, so that every cell and node of depth t or deeper lies in one tile. The cells
+give the cloud's bounds (the cube) and the points per node; a pass over the tiles finds the depths (``octree.deep_enough`` on sums of the tiles' counts); the nested Poisson levels run
 as the Dask pipeline runs levels (``distributed``: each exactly ``poisson_lod`` on the whole cloud); then
 each tile compresses its nodes of depth t and deeper into a part file, and where the job started the few
 points of the shallower nodes are compressed and every part is put together into one file with the
@@ -22,7 +22,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, cloud_files, las_files, point_files, tiles
+from . import arrays, cloud_files, las_files, partition, point_files, tiles
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
 from .distributed import (Job, Ticks, _ids_file, check_worker_memory, domain_fields, finer_samples, poisson_run,
@@ -33,19 +33,10 @@ from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_co
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
 
 
-def _bounds(s: cloud_files.Source) -> tuple:
-    """A Dask task: the lowest and highest corner of a file's points (its header's may be rounded)."""
-    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
-    for _, xyz, _ in cloud_files.chunks(s):
-        if len(xyz):
-            lo, hi = np.minimum(lo, xyz.min(axis=0)), np.maximum(hi, xyz.max(axis=0))
-    return lo, hi
-
-
-def _node_counts(s: cloud_files.Source, octree: Octree) -> list:
-    """A Dask task: per depth 0 to MAX_TILE_DEPTH, a file's points per node, as (packed keys, counts)."""
+def _node_counts(cells: partition.Partition, cell: int, octree: Octree) -> list:
+    """A Dask task: per depth 0 to MAX_TILE_DEPTH, a cell's points per node, as (packed keys, counts)."""
     parts = [[] for _ in range(MAX_TILE_DEPTH + 1)]
-    for _, xyz, _ in cloud_files.chunks(s):
+    for xyz in cells.cell_xyz(cell):
         finest = octree.finest(xyz)
         for t in range(MAX_TILE_DEPTH + 1):
             parts[t].append(np.unique(packed(finest >> (FINEST_BITS - t)), return_counts=True))
@@ -98,7 +89,7 @@ class NodeTile(tiles.Box):
 def _tile_points(job: Job, tile: NodeTile) -> tuple:
     """A tile's core points: (points, ids), in id order."""
     margin = 1e-6 * 2 * tile.octree.halfsize
-    points, _, ids = cloud_files.read_region(job.srcs, tile.lo - margin, tile.hi + margin)
+    points, _, ids = job.read_region(tile.lo - margin, tile.hi + margin)
     mine = tile.core_mask(points, job.cloud)
     return points[mine], ids[mine]
 
@@ -151,7 +142,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     lo, hi = points.min(axis=0) - margin, points.max(axis=0) + margin
     for d in reversed(range(len(levels))):  # levels[d]: the level of depth d, coarser ones nested in it
         depth[finer_samples(dataclasses.replace(job, within=levels[d]), lo, hi, ids)] = d
-    source = cloud_files.read_records(job.srcs, ids)
+    source = job.read_records(ids, tile.lo - margin, tile.hi + margin)
     records = copc_records(source.rows)
     deep = depth >= t
     order, keys, counts = nodes_of(octree, points[deep], depth[deep])
@@ -182,26 +173,33 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     check_worker_memory(client)
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, client.gather(client.map(cloud_files.survey, paths, pure=False)))
-    corners = client.gather(client.map(_bounds, srcs, pure=False))
-    lo, hi = np.min([c[0] for c in corners], axis=0), np.max([c[1] for c in corners], axis=0)
-    octree = Octree.of_bounds(lo, hi)
-    counts = client.gather(client.map(_node_counts, srcs, [octree] * len(srcs), pure=False))
-    per_depth = [_add_counts([c[t] for c in counts]) for t in range(MAX_TILE_DEPTH + 1)]
-    t = next((t for t, (_, c) in enumerate(per_depth) if c.max() <= tile_points), MAX_TILE_DEPTH)
-    keys = [int(k) for k in per_depth[t][0]]
     total = sum(s.count for s in srcs)
-    cloud = tiles.Box(lo, hi)
-    boxes = [NodeTile.of(octree, t, k) for k in keys]
-    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
-    n = len(keys)
-    stats = client.gather(client.map(_depth_stats, [job] * n, boxes, pure=False))
-    depths = depth_count(stats, t)
-    radii = [octree.spacing / 2 ** d for d in range(depths)]
     out = pathlib.Path(output)
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
                                          dir=out.parent))
     ticks = Ticks(progress)
     try:
+        headers = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0), total,
+                             tile_points)
+        cells = partition.make(client, srcs, partition.Grid(headers[0].lo, headers[0].hi, headers[2]),
+                               work / "cells", tile_points, ticks)
+        # The points' own bounds (the headers' may be rounded): the cube one machine makes.
+        lo = np.min([b[1] for b in cells.bounds.values()], axis=0)
+        hi = np.max([b[2] for b in cells.bounds.values()], axis=0)
+        octree = Octree.of_bounds(lo, hi)
+        keys = sorted(cells.cells)
+        counts = client.gather(client.map(_node_counts, [cells] * len(keys), keys, [octree] * len(keys),
+                                          pure=False))
+        per_depth = [_add_counts([c[t] for c in counts]) for t in range(MAX_TILE_DEPTH + 1)]
+        t = next((t for t, (_, c) in enumerate(per_depth) if c.max() <= tile_points), MAX_TILE_DEPTH)
+        keys = [int(k) for k in per_depth[t][0]]
+        cloud = tiles.Box(lo, hi)
+        boxes = [NodeTile.of(octree, t, k) for k in keys]
+        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells=cells)
+        n = len(keys)
+        stats = client.gather(client.map(_depth_stats, [job] * n, boxes, pure=False))
+        depths = depth_count(stats, t)
+        radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples

@@ -1,7 +1,8 @@
 """Poisson-disk LODs of point files larger than one machine's memory, on a Dask cluster.
 
-The files are cut into spatial tiles of about `tile_points` points each. Every tile is a Dask task
-that reads its points and a halo around them, and decides its samples (``tiles.decide``); the
+The files are cut into spatial tiles of about `tile_points` points each, and decoded once: a task per
+piece of a file writes each tile's share into a work folder (``partition``), which every later task
+reads. Every tile is a Dask task that reads its points and a halo around them, and decides its samples (``tiles.decide``); the
 points left open near the seams are settled in one pass where the job was started (``tiles.settle``);
 then every tile writes its samples' records, bit for bit, as a file of the input's format. The
 result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
@@ -28,13 +29,14 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import _core, arrays, cloud_files, core_diagonal, point_files, tiles
+from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, tiles
 from .cloud_files import Source
 from .docstrings import documented
 from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
+CELLS = ".cells"   # the input decoded once, cut into the tiles' cells (partition.py)
 
 
 @dataclass
@@ -60,6 +62,8 @@ class Job:
     within : (str, list of tiles.Box) or None
         Nested levels: the folder of the finer level's samples (one .npy of ids per tile) and its tiles'
         boxes; None: every point may become a sample.
+    cells : partition.Partition or None
+        The input decoded once, which the tasks read (None: they decode the files).
     """
     srcs: list
     cloud: tiles.Box
@@ -69,6 +73,21 @@ class Job:
     threads: Optional[int]
     halo: float
     within: Optional[tuple] = None
+    cells: Optional[partition.Partition] = None
+
+    def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
+        """Points within [lo, hi] of every file, in id order: (points, normals or None, ids)."""
+        if self.cells is not None:
+            return self.cells.read_region(lo, hi)
+        return cloud_files.read_region(self.srcs, lo, hi)
+
+    def read_records(self, ids: np.ndarray, lo: np.ndarray, hi: np.ndarray):
+        """The records of `ids`, points within [lo, hi], in increasing id order, and a source to write them
+        with."""
+        ids = np.sort(np.asarray(ids, dtype=np.uint64))
+        if self.cells is not None:
+            return self.cells.read_records(self.srcs, ids, lo, hi)
+        return cloud_files.read_records(self.srcs, ids)
 
     def domain_param(self):
         d = _core.DomainParam()
@@ -83,7 +102,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     candidates = None
     if job.within is not None:
         candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
-    return tiles.decide_widening(lambda halo: cloud_files.read_region(job.srcs, outer.lo - halo, outer.hi + halo),
+    return tiles.decide_widening(lambda halo: job.read_region(outer.lo - halo, outer.hi + halo),
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads)
@@ -114,10 +133,10 @@ def seams(d: Optional[tiles.Decision]):
     return None if d is None else d.seams()
 
 
-def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: str,
-               ids_path: Optional[str] = None) -> Optional[dict]:
+def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: Optional[str],
+               ids_path: Optional[str] = None, box: Optional[tiles.Box] = None) -> Optional[dict]:
     """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order (path
-    None: not written), and with `ids_path` their ids for the next level."""
+    None: not written; else the tile's `box` is given), and with `ids_path` their ids for the next level."""
     ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
         tmp = f"{ids_path}.partial-{os.getpid()}.npy"
@@ -129,7 +148,8 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
         return {"file": None, "count": int(len(ids))}
     if len(ids) == 0:
         return {"file": None, "count": 0}
-    source = cloud_files.read_records(job.srcs, ids)
+    outer = box.outer(job.cloud)
+    source = job.read_records(ids, outer.lo, outer.hi)
     point_files.write_all(source, [(path, np.arange(len(ids)))])
     xyz = point_files.coordinates(source)
     return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
@@ -261,16 +281,18 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     return best, steps.runs
 
 
-def _file_pass(s: Source, targets, gather: bool):
-    """A Dask task: core_diagonal's pass over one file."""
-    return core_diagonal.file_pass(lambda: (xyz for _, xyz, _ in cloud_files.chunks(s)), targets, gather)
+def _cell_pass(cells: partition.Partition, cell: int, targets, gather: bool):
+    """A Dask task: core_diagonal's pass over one cell."""
+    return core_diagonal.file_pass(lambda: iter(cells.cell_xyz(cell)), targets, gather)
 
 
-def _core_diagonal(client, srcs, cloud: tiles.Box, total: int) -> float:
-    """The diagonal one machine starts its count search from, over every file's points."""
+def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: int) -> float:
+    """The diagonal one machine starts its count search from, over every point of the cells."""
+    keys = sorted(cells.cells)
+
     def run_pass(targets, gather):
-        parts = client.gather(client.map(_file_pass, srcs, [targets] * len(srcs), [gather] * len(srcs),
-                                         pure=False))
+        parts = client.gather(client.map(_cell_pass, [cells] * len(keys), keys, [targets] * len(keys),
+                                         [gather] * len(keys), pure=False))
         merged = [core_diagonal.merge_unique([p[0][k] for p in parts]) if gather else sum(p[0][k] for p in parts)
                   for k in range(len(targets))]
         return (merged, sum(p[1] for p in parts), np.min([p[2] for p in parts], axis=0),
@@ -329,14 +351,16 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         folders = [None]
     run_dir = out.begin()
     try:
-        made = _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total,
-                       run_dir, ticks)
+        cells = partition.make(client, srcs, partition.Grid(cloud.lo, cloud.hi, shape), run_dir / CELLS,
+                               tile_points, ticks)
+        made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing,
+                       total, run_dir, ticks)
     except BaseException:
         out.abort()
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "adaptivity": adaptivity, "tiles_per_axis": list(shape),
+             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "partition": cells.summary(),
              "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
     if size["levels"] is not None:
@@ -351,13 +375,13 @@ def _union(boxes: list) -> Optional[list]:
     return [np.min([b[0] for b in boxes], axis=0).tolist(), np.max([b[1] for b in boxes], axis=0).tolist()]
 
 
-def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total, run_dir,
+def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total, run_dir,
             ticks) -> list:
     """Each level's run (at its radius, or searched to its count) written into the run folder: index entries."""
     work = run_dir / WORK
-    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0)
+    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells=cells)
     pool, made = total, []
-    diagonal = _core_diagonal(client, srcs, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
+    diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
@@ -378,6 +402,7 @@ def _levels(client, srcs, cloud, boxes, targets, folders, size, seed, domain, th
         if ids_dir is not None:
             job = dataclasses.replace(job, within=(str(ids_dir), boxes))
     remove_own(work)
+    remove_own(run_dir / CELLS)
     return made
 
 
@@ -395,7 +420,7 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
     id_names = [None if ids_dir is None else str(_ids_file(ids_dir, k)) for k in range(len(boxes))]
     ticks.expect(len(boxes))
     start = time.perf_counter()
-    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, pure=False)
+    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, boxes, pure=False)
     for _ in as_completed(written):
         ticks()
     results = client.gather(written)

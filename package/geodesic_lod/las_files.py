@@ -144,13 +144,91 @@ def _own_records(path, header) -> tuple:
     return vlrs, evlrs
 
 
-def chunks(path, size: int = CHUNK) -> Iterator[tuple]:
-    """(first row, records) of a LAS/LAZ file, `size` records at a time; a file that ends before the
-    records its header announces, or does not decode, is named."""
+def _chunk_table(path, header) -> tuple:
+    """(whether a LAZ file's chunks vary in size, its chunk table as (points, bytes) per chunk or None where
+    it cannot be read); (False, None) for LAS."""
+    import lazrs
+    laszip = [v for v in header.vlrs if v.user_id == "laszip encoded"]
+    if not laszip:
+        return False, None
+    try:
+        vlr = lazrs.LazVlr(laszip[0].record_data_bytes())
+        with open(path, "rb") as f:
+            f.seek(header.offset_to_point_data)
+            table = [(int(n), int(b)) for n, b in lazrs.read_chunk_table(f, vlr)]
+        return vlr.uses_variable_size_chunks(), table
+    except Exception:  # lazrs's errors, or a table the writer never wrote
+        return False, None
+
+
+def pieces(path, piece_points: int) -> list:
+    """(first row, stop row) of runs of at most about piece_points records of a LAS/LAZ file, each of which
+    ``chunks`` decodes on its own: where a LAZ file's chunks vary in size (COPC's do), they start at chunks;
+    a LAZ file without a readable chunk table is one run."""
+    import laspy
+    with laspy.open(str(path)) as f:
+        header = f.header
+    count = int(header.point_count)
+    compressed = any(v.user_id == "laszip encoded" for v in header.vlrs)
+    variable, table = _chunk_table(path, header)
+    if compressed and table is None:
+        return [(0, count)]
+    if not variable:
+        return [(a, min(a + piece_points, count)) for a in range(0, count, piece_points)]
+    out, first, rows = [], 0, 0
+    for n, _ in table:
+        rows = min(rows + n, count)
+        if rows - first >= piece_points:
+            out.append((first, rows))
+            first = rows
+    if first < count:
+        out.append((first, count))
+    return out
+
+
+def _chunk_range(path, header, table, first: int, stop: int, size: int) -> Iterator[tuple]:
+    """(first row, records) of rows first (a chunk's start) to stop of a LAZ file whose chunks vary in
+    size, decoded from those chunks' bytes: laspy and lazrs seek such files wrongly."""
+    import laspy
+    import lazrs
+    vlr = [v for v in header.vlrs if v.user_id == "laszip encoded"][0].record_data_bytes()
+    starts = np.concatenate([[0], np.cumsum([n for n, _ in table])]).astype(np.int64)
+    offsets = np.concatenate([[0], np.cumsum([b for _, b in table])]).astype(np.int64)
+    a = int(np.searchsorted(starts, first))
+    if a >= len(table) or starts[a] != first:
+        raise ValueError(f"row {first} is not where a chunk starts")
+    with open(path, "rb") as f:
+        while first < stop:
+            b = a + 1
+            while b < len(table) and starts[b] < stop and starts[b + 1] - starts[a] <= size:
+                b += 1
+            f.seek(header.offset_to_point_data + 8 + int(offsets[a]))
+            data = f.read(int(offsets[b] - offsets[a]))
+            out = np.zeros(int(starts[b] - starts[a]) * header.point_format.size, np.uint8)
+            lazrs.decompress_points_with_chunk_table(data, vlr, out, table[a:b],
+                                                     lazrs.DecompressionSelection(lazrs.SELECTIVE_DECOMPRESS_ALL))
+            array = out.view(header.point_format.dtype())[: stop - first]
+            yield first, laspy.PackedPointRecord(array, header.point_format)
+            first, a = int(starts[b]), b
+
+
+def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None) -> Iterator[tuple]:
+    """(first row, records) of a LAS/LAZ file's rows first to stop (None: its end; first: where one of
+    ``pieces`` starts), `size` records at a time; a file that ends before the records its header announces,
+    or does not decode, is named."""
     import laspy
     try:
         with laspy.open(str(path)) as f:
-            start, count = 0, int(f.header.point_count)
+            start, count = first, int(f.header.point_count)
+            if stop is not None:
+                count = min(count, stop)
+            variable, table = _chunk_table(path, f.header) if start else (False, None)
+            if variable:
+                for start, records in _chunk_range(path, f.header, table, first, count, size):
+                    yield start, records
+                start = count
+            elif start:
+                f.seek(start)
             while start < count:
                 chunk = f.read_points(min(size, count - start))
                 if len(chunk) == 0:

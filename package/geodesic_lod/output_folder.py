@@ -20,11 +20,12 @@ INDEX = "index.json"
 TOOL = "geodesic-lod"
 RUN = re.compile(r"run_(\d+)")
 INDEX_PARTIAL = re.compile(r"\.index\.json\.partial-\d+")  # an index being written when a run was stopped
-# What a run writes inside its folder: tiles, level folders, the levels' work folder of sample ids, and
-# files being written (point_files' temporary names).
+# What a run writes inside its folder: tiles, level folders, the levels' work folder of sample ids, the
+# input's cells (partition.py), and files being written (point_files' temporary names).
 OWN_FILE = re.compile(r"(tile_\d{5,}\.(las|laz|ply|npy)|\.geodesic-lod-[0-9a-f]+\.partial"
-                      r"|tile_\d{5,}\.npy\.partial-\d+\.npy)")
-OWN_FOLDER = re.compile(r"(level_[0-9.]+(pct)?|\.levels|\d+)")
+                      r"|tile_\d{5,}\.npy\.partial-\d+\.npy"
+                      r"|c\d{7,}_p\d{7,}\.(xyz|ids|normals|records)\.npy(\.partial-\d+\.npy)?)")
+OWN_FOLDER = re.compile(r"(level_[0-9.]+(pct)?|\.levels|\.cells|\d+)")
 
 
 class OutputFolder:

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from geodesic_lod import _core, cloud_files, distributed, las_files, tiles
+from geodesic_lod import _core, cloud_files, distributed, las_files, partition, tiles
 from geodesic_lod import core_diagonal as cd
 from geodesic_lod import point_files as pf
 from conftest import bumpy_sphere
@@ -152,7 +152,8 @@ def test_the_first_radius_is_one_machines(name):
 
 
 def test_the_first_radius_over_laz_files_is_one_machines(monkeypatch, tmp_path):
-    """What a cluster runs: each file's pass through cloud_files, decoded a chunk at a time."""
+    """What a cluster runs: the files decoded into cells a chunk at a time (partition.py), and each cell's
+    pass."""
     monkeypatch.setattr(las_files, "chunks", functools.partial(las_files.chunks, size=900))
     points = CLOUDS["anisotropic sphere"].copy()
     points[[5, 900, 4000]] += [2e4, -5e3, 1e3]  # strays within the LAS integers at write_parts' scale
@@ -167,7 +168,11 @@ def test_the_first_radius_over_laz_files_is_one_machines(monkeypatch, tmp_path):
 
         def gather(self, futures):
             return futures
-    got = distributed._core_diagonal(InThisProcess(), srcs, cloud, sum(s.count for s in srcs))
+    grid = partition.Grid(cloud.lo, cloud.hi, (2, 2, 1))
+    (tmp_path / "cells").mkdir()
+    cells = partition.collect(tmp_path / "cells", grid, [partition.split(srcs, w, k, grid, str(tmp_path / "cells"))
+                                                         for k, w in enumerate(partition.pieces(srcs, 1000))])
+    got = distributed._core_diagonal(InThisProcess(), cells, cloud, sum(s.count for s in srcs))
     on_one_machine = np.concatenate([pf.read(p).points for p in paths])  # the points as stored (scaled)
     assert got == direct(on_one_machine)
     assert _core.RadiusSearch.first_radius(got, 1) == one_machines_first_radius(on_one_machine)

@@ -128,3 +128,31 @@ def test_a_copc_file_reads_as_the_laz_it_is(tmp_path):
     assert records.array.tobytes() == las.points.array.tobytes()
     assert np.array_equal(xyz, np.column_stack([las.x, las.y, las.z]))
     assert not any(v.user_id == "copc" for v in source.vlrs + source.evlrs)
+
+
+def pieces_decode_the_whole_file(path, piece_points):
+    from geodesic_lod import las_files
+    whole = np.concatenate([c.array for _, c in las_files.chunks(path)])
+    runs = las_files.pieces(path, piece_points)
+    assert runs[0][0] == 0 and runs[-1][1] == len(whole)
+    assert all(a[1] == b[0] for a, b in zip(runs, runs[1:]))
+    got = [c.array for a, b in runs for _, c in las_files.chunks(path, 700, first=a, stop=b)]
+    assert np.concatenate(got).tobytes() == whole.tobytes()
+    return runs
+
+
+@pytest.mark.parametrize("piece_points", [1000, 30000])
+def test_a_piece_of_a_copc_file_decodes_as_its_rows(tmp_path, piece_points):
+    """A COPC file's LAZ chunks vary in size, where laspy and lazrs seek to the wrong records."""
+    from geodesic_lod import las_files
+    src = las_cloud(tmp_path / "in.laz", n=250_000)  # more than one node holds
+    out = tmp_path / "in.copc.laz"
+    assert run(src, "-o", out, "-q").returncode == 0
+    assert las_files._chunk_table(out, laspy.open(str(out)).header)[0]  # variable-size chunks
+    assert len(pieces_decode_the_whole_file(out, piece_points)) > 1
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+def test_every_shared_lidar_file_decodes_piece_by_piece(name):
+    for piece_points in (1000, 30000):
+        pieces_decode_the_whole_file(corpus_file(name), piece_points)

@@ -1,0 +1,230 @@
+"""A cluster job's input decoded once: the files cut into the cells of a grid, each cell's points kept in
+a work folder as plain arrays (coordinates, ids, normals, records), which every tile, level, count-search
+run and writing task then reads instead of the files.
+
+Without it each tile decodes every file its halo touches, for every run and again to write: on a grid
+of LAZ files each record was decoded about ten times. Here one task per piece of a file (at most
+`piece_points` records) decodes it and writes each cell's share; a tile reads the cells its region
+overlaps, memory-mapped. The cells use the tiles' own rule (``tiles.Box.core_mask``: lo <= x < hi, open
+on the cloud's sides), so a cell holds exactly the points of the tile with its box, and any region's
+points come out as ``cloud_files.read_region`` gives them.
+"""
+from __future__ import annotations
+
+import os
+import pathlib
+import time
+from dataclasses import dataclass, field
+from typing import Optional, Sequence
+
+import numpy as np
+
+from . import cloud_files, las_files, point_files
+
+FIELDS = ("xyz", "ids", "normals", "records")
+
+
+@dataclass
+class Grid:
+    """The cloud's box cut into shape[0] x shape[1] x shape[2] equal cells, numbered as ``tiles.grid_tiles``
+    numbers its boxes; the outer cells reach out to infinity.
+
+    Attributes
+    ----------
+    lo, hi : (3,) ndarray of float64
+        The box.
+    shape : tuple of 3 ints
+        Cells per axis.
+    """
+    lo: np.ndarray
+    hi: np.ndarray
+    shape: tuple
+
+    def _inner(self, a: int) -> np.ndarray:
+        return np.linspace(self.lo[a], self.hi[a], int(self.shape[a]) + 1)[1:-1]
+
+    def cell_of(self, xyz: np.ndarray) -> np.ndarray:
+        """Each point's cell (int64)."""
+        cell = np.zeros(len(xyz), np.int64)
+        for a in range(3):
+            cell = cell * int(self.shape[a]) + np.searchsorted(self._inner(a), xyz[:, a], side="right")
+        return cell
+
+    def cells_in(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """The cells that may hold points within [lo, hi], increasing."""
+        ranges = [np.arange(np.searchsorted(self._inner(a), lo[a], side="right"),
+                            np.searchsorted(self._inner(a), hi[a], side="right") + 1) for a in range(3)]
+        i, j, k = np.meshgrid(*ranges, indexing="ij")
+        return np.sort(((i * self.shape[1] + j) * self.shape[2] + k).ravel())
+
+
+def pieces(srcs: Sequence[cloud_files.Source], piece_points: int) -> list:
+    """(file index, first row, stop row) of every piece: LAS/LAZ files in runs of about piece_points records
+    (las_files.pieces), other formats whole (their readers read them whole)."""
+    out = []
+    for f, s in enumerate(srcs):
+        runs = las_files.pieces(s.path, piece_points) if s.kind == "las" else [(0, s.count)]
+        out += [(f, a, b) for a, b in runs]
+    return out
+
+
+def _name(folder, cell: int, piece: int, what: str) -> pathlib.Path:
+    return pathlib.Path(folder) / f"c{cell:07d}_p{piece:07d}.{what}.npy"
+
+
+def _save(path: pathlib.Path, array: np.ndarray) -> None:
+    tmp = path.with_name(f"{path.name}.partial-{os.getpid()}.npy")
+    np.save(tmp, array)
+    os.replace(tmp, path)
+
+
+def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
+    """A Dask task: decodes one piece and writes each cell's share of it, in id order. Returns whether its
+    points carry normals and, per cell holding points, (count, lowest corner, highest corner)."""
+    f, first, stop = piece
+    s = srcs[f]
+    if s.kind == "las":
+        header = las_files.open_source(s.path).header
+        parts = [(a, chunk.array, las_files.xyz(chunk, header), None)
+                 for a, chunk in las_files.chunks(s.path, first=first, stop=stop)]
+        records = np.concatenate([p[1] for p in parts])
+        xyz = np.concatenate([p[2] for p in parts])
+        normals = None
+    else:
+        src = point_files.read(s.path)
+        cloud_files.check_finite(s.path, src.points)
+        xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
+    ids = np.uint64(s.first_id + first) + np.arange(len(xyz), dtype=np.uint64)
+    cell = grid.cell_of(xyz)
+    order = np.argsort(cell, kind="stable")
+    cuts = np.flatnonzero(np.diff(cell[order])) + 1
+    out: dict = {}
+    written = 0
+    for rows in np.split(order, cuts) if len(order) else []:
+        c = int(cell[rows[0]])
+        arrays = {"xyz": xyz[rows], "ids": ids[rows], "records": records[rows]}
+        if normals is not None:
+            arrays["normals"] = normals[rows]
+        for what, a in arrays.items():
+            _save(_name(folder, c, number, what), np.ascontiguousarray(a))
+            written += a.nbytes
+        out[c] = (len(rows), arrays["xyz"].min(axis=0), arrays["xyz"].max(axis=0))
+    return {"normals": normals is not None, "cells": out, "bytes": written}
+
+
+@dataclass
+class Partition:
+    """The cells written by ``split``: where, on which grid, and which pieces each cell holds.
+
+    Attributes
+    ----------
+    folder : str
+        The work folder.
+    grid : Grid
+        The cells.
+    cells : dict of int to list of int
+        Per cell holding points, the pieces with a share in it, increasing.
+    bounds : dict of int to (int, ndarray, ndarray)
+        Per cell holding points, their count, lowest and highest corner.
+    normals : bool
+        Whether every point carries a normal.
+    pieces, bytes : int
+        The pieces decoded, and the bytes of the arrays written.
+    seconds : float
+        The time the split took.
+    """
+    folder: str
+    grid: Grid
+    cells: dict = field(default_factory=dict)
+    bounds: dict = field(default_factory=dict)
+    normals: bool = False
+    pieces: int = 0
+    bytes: int = 0
+    seconds: float = 0.0
+
+    def summary(self) -> dict:
+        """What an index says of it."""
+        return {"pieces": self.pieces, "cells": len(self.cells), "bytes": self.bytes,
+                "seconds": round(self.seconds, 3)}
+
+    def _load(self, cell: int, what: str) -> list:
+        return [np.load(_name(self.folder, cell, p, what), mmap_mode="r") for p in self.cells.get(cell, [])]
+
+    def cell_xyz(self, cell: int) -> list:
+        """The coordinates of a cell's points, a piece's share at a time."""
+        return self._load(cell, "xyz")
+
+    def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
+        """Points within [lo, hi], in id order: (points, normals or None, ids), as cloud_files.read_region."""
+        pts, nrm, ids = [], [], []
+        for c in self.grid.cells_in(lo, hi):
+            c = int(c)
+            if c not in self.cells:
+                continue
+            inside = [(x, np.all((x >= lo) & (x <= hi), axis=1)) for x in self.cell_xyz(c)]
+            pts += [x[keep] for x, keep in inside]
+            ids += [i[keep] for i, (_, keep) in zip(self._load(c, "ids"), inside)]
+            if self.normals:
+                nrm += [n[keep] for n, (_, keep) in zip(self._load(c, "normals"), inside)]
+        if not pts:
+            return np.empty((0, 3)), None, np.empty(0, np.uint64)
+        ids = np.concatenate(ids)
+        order = np.argsort(ids, kind="stable")
+        return (np.concatenate(pts)[order], np.concatenate(nrm)[order] if self.normals else None, ids[order])
+
+    def read_records(self, srcs: Sequence[cloud_files.Source], ids: np.ndarray, lo: np.ndarray,
+                     hi: np.ndarray):
+        """The records of `ids`, points within [lo, hi], in increasing id order, with a source to write them
+        with (as cloud_files.read_records)."""
+        ids = np.sort(np.asarray(ids, dtype=np.uint64))
+        have, records = [], []
+        for c in self.grid.cells_in(lo, hi):
+            c = int(c)
+            for i, r in zip(self._load(c, "ids"), self._load(c, "records")):
+                keep = np.flatnonzero(_member(i, ids))
+                have.append(i[keep])
+                records.append(r[keep])
+        got = np.concatenate(have) if have else np.empty(0, np.uint64)
+        if len(got) != len(ids):
+            raise RuntimeError(f"{len(ids) - len(got)} of a tile's samples are missing from its cells")
+        order = np.argsort(got, kind="stable")
+        return cloud_files.records_source(srcs, np.concatenate(records)[order])
+
+
+def _member(values: np.ndarray, sorted_ids: np.ndarray) -> np.ndarray:
+    if not len(sorted_ids):
+        return np.zeros(len(values), bool)
+    at = np.minimum(np.searchsorted(sorted_ids, values), len(sorted_ids) - 1)
+    return sorted_ids[at] == values
+
+
+def make(client, srcs: Sequence[cloud_files.Source], grid: Grid, folder: pathlib.Path, piece_points: int,
+         ticks=None) -> Partition:
+    """Runs ``split`` on every piece of every file: the job's partition in `folder` (made here)."""
+    from dask.distributed import as_completed
+    start = time.perf_counter()
+    folder.mkdir(parents=True, exist_ok=True)
+    work = pieces(srcs, piece_points)
+    if ticks is not None:
+        ticks.expect(len(work))
+    futures = client.map(split, [srcs] * len(work), work, range(len(work)), [grid] * len(work),
+                         [str(folder)] * len(work), pure=False)
+    for _ in as_completed(futures):
+        if ticks is not None:
+            ticks()
+    p = collect(folder, grid, client.gather(futures))
+    p.seconds = time.perf_counter() - start
+    return p
+
+
+def collect(folder, grid: Grid, done: Sequence[dict]) -> Partition:
+    """The partition that ``split``'s results, piece by piece in order, describe."""
+    p = Partition(str(folder), grid, normals=True, pieces=len(done))
+    for number, piece in enumerate(done):
+        p.normals &= piece["normals"]
+        p.bytes += piece["bytes"]
+        for c, (n, lo, hi) in piece["cells"].items():
+            p.cells.setdefault(c, []).append(number)
+            old = p.bounds.get(c)
+            p.bounds[c] = (n, lo, hi) if old is None else (old[0] + n, np.minimum(old[1], lo), np.maximum(old[2], hi))
+    return p

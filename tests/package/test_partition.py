@@ -1,0 +1,137 @@
+"""The input decoded once (partition.py): a cell holds exactly the points of the tile with its box, any
+region's points and any samples' records come out of the cells as the files give them, each record is
+decoded once, and nothing after the split decodes a file."""
+import laspy
+import numpy as np
+import pytest
+
+from geodesic_lod import cloud_files, las_files, partition, tiles
+from conftest import bumpy_sphere
+from test_distributed import write_parts
+
+
+def sources(folder):
+    paths = cloud_files.expand_inputs([str(folder)])
+    return cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
+
+
+def split_all(srcs, grid, folder, piece_points):
+    folder.mkdir()
+    work = partition.pieces(srcs, piece_points)
+    return partition.collect(folder, grid, [partition.split(srcs, w, k, grid, str(folder))
+                                            for k, w in enumerate(work)])
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    return sources(write_parts(tmp_path_factory.mktemp("parts"), bumpy_sphere(6000) * 10, parts=3))
+
+
+def test_a_cell_holds_the_points_of_the_tile_with_its_box():
+    rng = np.random.default_rng(1)
+    cloud = tiles.Box(np.zeros(3), np.array([4.0, 2.0, 1.0]))
+    shape = (4, 3, 2)
+    boxes = tiles.grid_tiles(cloud, shape)
+    # Points inside, beyond the box (headers' rounded bounds) and exactly on the cells' faces.
+    xyz = np.vstack([rng.uniform(-0.5, 4.5, (2000, 3)),
+                     np.column_stack([np.repeat([0.0, 1.0, 2.0, 4.0], 3), np.tile([0.0, 2 / 3, 2.0], 4),
+                                      np.full(12, 0.5)])])
+    cell = partition.Grid(cloud.lo, cloud.hi, shape).cell_of(xyz)
+    for k, box in enumerate(boxes):
+        assert np.array_equal(cell == k, box.core_mask(xyz, cloud))
+
+
+def test_a_regions_cells_hold_every_point_in_it():
+    rng = np.random.default_rng(2)
+    grid = partition.Grid(np.zeros(3), np.ones(3), (5, 4, 3))
+    xyz = rng.uniform(-0.2, 1.2, (5000, 3))
+    cell = grid.cell_of(xyz)
+    for _ in range(50):
+        lo = rng.uniform(-0.3, 1.0, 3)
+        hi = lo + rng.uniform(0, 0.6, 3)
+        inside = np.all((xyz >= lo) & (xyz <= hi), axis=1)
+        assert set(cell[inside]) <= set(grid.cells_in(lo, hi).tolist())
+
+
+@pytest.mark.parametrize("piece_points, shape", [(1000, (3, 2, 2)), (10 ** 6, (1, 1, 1)), (700, (4, 4, 1))])
+def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, piece_points, shape):
+    lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)
+    cells = split_all(files, partition.Grid(lo, hi, shape), tmp_path / "cells", piece_points)
+    assert sum(n for n, _, _ in cells.bounds.values()) == sum(s.count for s in files)
+    rng = np.random.default_rng(3)
+    checked = 0
+    for _ in range(8):
+        a = rng.uniform(lo, hi)
+        b = a + rng.uniform(0, 0.5, 3) * (hi - lo)
+        want, got = cloud_files.read_region(files, a, b), cells.read_region(a, b)
+        assert got[1] is None and want[1] is None
+        assert np.array_equal(got[2], want[2]) and np.array_equal(got[0], want[0])
+        ids = want[2][rng.random(len(want[2])) < 0.3]
+        if not len(ids):
+            continue
+        assert cells.read_records(files, ids, a, b).rows.array.tobytes() == \
+            cloud_files.read_records(files, ids).rows.array.tobytes()
+        checked += 1
+    assert checked >= 4
+
+
+def test_each_record_is_decoded_once(files, tmp_path, monkeypatch):
+    decoded = []
+    chunks = las_files.chunks
+
+    def counting(*args, **kwargs):
+        for start, chunk in chunks(*args, **kwargs):
+            decoded.append(len(chunk))
+            yield start, chunk
+    monkeypatch.setattr(las_files, "chunks", counting)
+    lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)
+    cells = split_all(files, partition.Grid(lo, hi, (2, 2, 2)), tmp_path / "cells", 900)
+    assert sum(decoded) == sum(s.count for s in files)
+    assert sum(len(p) for p in cells.cells.values()) > len(partition.pieces(files, 900))  # pieces span cells
+
+
+def test_normals_of_npy_files_are_kept(tmp_path):
+    p = bumpy_sphere(3000)
+    n = p / np.linalg.norm(p, axis=1, keepdims=True)
+    folder = tmp_path / "npy"
+    folder.mkdir()
+    for k, rows in enumerate(np.array_split(np.arange(len(p)), 2)):
+        np.save(folder / f"part{k}.npy", np.hstack([p[rows], n[rows]]))
+    srcs = sources(folder)
+    lo, hi = np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0)
+    cells = split_all(srcs, partition.Grid(lo, hi, (2, 2, 2)), tmp_path / "cells", 1000)
+    want, got = cloud_files.read_region(srcs, lo - 1, hi + 1), cells.read_region(lo - 1, hi + 1)
+    assert cells.normals and want[1] is not None
+    for w, g in zip(want, got):
+        assert np.array_equal(w, g)
+
+
+def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
+    """The pipeline's tasks run in this process on the cells, with every file reader refusing: the samples
+    and records are still poisson_lod's."""
+    import geodesic_lod as gl
+    from geodesic_lod import arrays, distributed as dist
+    total = sum(s.count for s in files)
+    cloud, boxes, shape = tiles.plan(np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0),
+                                     total, 1500)
+    cells = split_all(files, partition.Grid(cloud.lo, cloud.hi, shape), tmp_path / "cells", 2000)
+    points, _, _ = cloud_files.read_region(files, cloud.lo - 1, cloud.hi + 1)
+    records = cloud_files.read_records(files, np.arange(total, dtype=np.uint64)).rows.array
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a file was decoded after the split")
+    monkeypatch.setattr(las_files, "chunks", refuse)
+    radius = 0.5
+    job = dist.Job(files, cloud, radius, 0, dist.domain_fields(arrays.DEFAULT_METRIC, arrays.DOMAIN_DEFAULTS.adaptivity), 1,
+                   tiles.first_halo(radius, tiles.spacing_of(cloud, total)), cells=cells)
+    decisions = [dist.decide_tile(job, b) for b in boxes]
+    settled = tiles.settle([d.seams() for d in decisions if d is not None], 0)
+    for k, (d, b) in enumerate(zip(decisions, boxes)):
+        owned = np.empty(0, np.uint64) if d is None else settled[np.isin(settled, d.open_ids)]
+        dist.write_tile(job, d, owned, str(tmp_path / f"tile_{k:05d}.laz"), None, b)
+    monkeypatch.undo()
+    got = [laspy.read(str(path)).points.array for path in sorted(tmp_path.glob("tile_*.laz"))]
+    got = np.concatenate(got)
+    ids = got["gps_time"].astype(np.int64)
+    assert sorted(ids) == sorted(gl.poisson_lod(points, radius=radius).indices)
+    assert got.tobytes() == records[ids].tobytes()
