@@ -19,9 +19,9 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import cloud_files, las_files, point_files
+from . import cloud_files, las_files, point_files, tiles
 
-FIELDS = ("xyz", "ids", "normals", "records")
+BLOCKS = 8  # blocks per axis of a cell: a halo reads the blocks of its neighbours it reaches, not whole cells
 
 
 @dataclass
@@ -40,22 +40,51 @@ class Grid:
     hi: np.ndarray
     shape: tuple
 
-    def _inner(self, a: int) -> np.ndarray:
-        return np.linspace(self.lo[a], self.hi[a], int(self.shape[a]) + 1)[1:-1]
+    def _fine(self, a: int) -> np.ndarray:
+        """The inner edges of the blocks along axis a, every cell's: a cell's BLOCKS blocks end on the cells'
+        own edges (``tiles.grid_tiles``'s), so that a point's block tells its cell exactly."""
+        n = int(self.shape[a])
+        cell = np.linspace(self.lo[a], self.hi[a], n + 1)
+        out = []
+        for i in range(n):
+            out.append(np.clip(np.linspace(cell[i], cell[i + 1], BLOCKS + 1)[1:-1], cell[i], cell[i + 1]))
+            if i + 1 < n:
+                out.append(cell[i + 1:i + 2])
+        return np.concatenate(out)
+
+    def _fine_of(self, x: np.ndarray, a: int) -> np.ndarray:
+        return np.searchsorted(self._fine(a), x, side="right")
+
+    def key_of(self, xyz: np.ndarray) -> np.ndarray:
+        """Each point's cell * BLOCKS^3 + its block in the cell (int64)."""
+        cell = np.zeros(len(xyz), np.int64)
+        block = np.zeros(len(xyz), np.int64)
+        for a in range(3):
+            f = self._fine_of(xyz[:, a], a)
+            cell = cell * int(self.shape[a]) + f // BLOCKS
+            block = block * BLOCKS + f % BLOCKS
+        return cell * BLOCKS ** 3 + block
 
     def cell_of(self, xyz: np.ndarray) -> np.ndarray:
         """Each point's cell (int64)."""
-        cell = np.zeros(len(xyz), np.int64)
-        for a in range(3):
-            cell = cell * int(self.shape[a]) + np.searchsorted(self._inner(a), xyz[:, a], side="right")
-        return cell
+        return self.key_of(xyz) // BLOCKS ** 3
+
+    def _spans(self, lo: np.ndarray, hi: np.ndarray) -> list:
+        return [(self._fine_of(lo[a], a), self._fine_of(hi[a], a)) for a in range(3)]
 
     def cells_in(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
         """The cells that may hold points within [lo, hi], increasing."""
-        ranges = [np.arange(np.searchsorted(self._inner(a), lo[a], side="right"),
-                            np.searchsorted(self._inner(a), hi[a], side="right") + 1) for a in range(3)]
+        ranges = [np.arange(f // BLOCKS, g // BLOCKS + 1) for f, g in self._spans(lo, hi)]
         i, j, k = np.meshgrid(*ranges, indexing="ij")
         return np.sort(((i * self.shape[1] + j) * self.shape[2] + k).ravel())
+
+    def blocks_in(self, cell: int, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """The blocks of a cell that may hold points within [lo, hi], increasing."""
+        index = np.unravel_index(cell, tuple(int(n) for n in self.shape))
+        ranges = [np.arange(max(f - i * BLOCKS, 0), min(g - i * BLOCKS, BLOCKS - 1) + 1)
+                  for (f, g), i in zip(self._spans(lo, hi), index)]
+        i, j, k = np.meshgrid(*ranges, indexing="ij")
+        return np.sort(((i * BLOCKS + j) * BLOCKS + k).ravel())
 
 
 def pieces(srcs: Sequence[cloud_files.Source], piece_points: int) -> list:
@@ -79,36 +108,39 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 
 
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
-    """A Dask task: decodes one piece and writes each cell's share of it, in id order. Returns whether its
-    points carry normals and, per cell holding points, (count, lowest corner, highest corner)."""
+    """A Dask task: decodes one piece and writes each cell's share of it, block by block, each block in id
+    order (``blocks``: where each block starts, and the end). Returns whether its points carry normals and, per cell holding points, (count, lowest corner, highest corner)."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
         header = las_files.open_source(s.path).header
-        parts = [(a, chunk.array, las_files.xyz(chunk, header), None)
-                 for a, chunk in las_files.chunks(s.path, first=first, stop=stop)]
-        records = np.concatenate([p[1] for p in parts])
-        xyz = np.concatenate([p[2] for p in parts])
+        parts = [(chunk.array, las_files.xyz(chunk, header))
+                 for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
+        records, xyz = (np.concatenate(a) for a in zip(*parts))
         normals = None
     else:
         src = point_files.read(s.path)
         cloud_files.check_finite(s.path, src.points)
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
     ids = np.uint64(s.first_id + first) + np.arange(len(xyz), dtype=np.uint64)
-    cell = grid.cell_of(xyz)
-    order = np.argsort(cell, kind="stable")
-    cuts = np.flatnonzero(np.diff(cell[order])) + 1
+    key = grid.key_of(xyz)
+    order = np.argsort(key, kind="stable")  # by cell, then block, then id
+    key, xyz, ids, records = key[order], xyz[order], ids[order], records[order]
+    normals = None if normals is None else normals[order]
+    cell = key // BLOCKS ** 3
+    cuts = np.concatenate([[0], np.flatnonzero(np.diff(cell)) + 1, [len(cell)]]) if len(cell) else [0]
     out: dict = {}
     written = 0
-    for rows in np.split(order, cuts) if len(order) else []:
-        c = int(cell[rows[0]])
-        arrays = {"xyz": xyz[rows], "ids": ids[rows], "records": records[rows]}
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        c = int(cell[a])
+        arrays = {"xyz": xyz[a:b], "ids": ids[a:b], "records": records[a:b],
+                  "blocks": np.searchsorted(key[a:b] % BLOCKS ** 3, np.arange(BLOCKS ** 3 + 1)).astype(np.int64)}
         if normals is not None:
-            arrays["normals"] = normals[rows]
-        for what, a in arrays.items():
-            _save(_name(folder, c, number, what), np.ascontiguousarray(a))
-            written += a.nbytes
-        out[c] = (len(rows), arrays["xyz"].min(axis=0), arrays["xyz"].max(axis=0))
+            arrays["normals"] = normals[a:b]
+        for what, array in arrays.items():
+            _save(_name(folder, c, number, what), np.ascontiguousarray(array))
+            written += array.nbytes
+        out[c] = (int(b - a), arrays["xyz"].min(axis=0), arrays["xyz"].max(axis=0))
     return {"normals": normals is not None, "cells": out, "bytes": written}
 
 
@@ -154,18 +186,31 @@ class Partition:
         """The coordinates of a cell's points, a piece's share at a time."""
         return self._load(cell, "xyz")
 
-    def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
-        """Points within [lo, hi], in id order: (points, normals or None, ids), as cloud_files.read_region."""
-        pts, nrm, ids = [], [], []
+    def _rows_in(self, lo: np.ndarray, hi: np.ndarray):
+        """(cell, piece number, rows of its share in the blocks that may hold points within [lo, hi])."""
         for c in self.grid.cells_in(lo, hi):
             c = int(c)
             if c not in self.cells:
                 continue
-            inside = [(x, np.all((x >= lo) & (x <= hi), axis=1)) for x in self.cell_xyz(c)]
-            pts += [x[keep] for x, keep in inside]
-            ids += [i[keep] for i, (_, keep) in zip(self._load(c, "ids"), inside)]
+            wanted = self.grid.blocks_in(c, lo, hi)
+            for p, starts in zip(self.cells[c], self._load(c, "blocks")):
+                begin, end = np.asarray(starts[wanted]), np.asarray(starts[wanted + 1])
+                yield c, p, tiles.ranges(begin, end - begin)
+
+    def _part(self, cell: int, piece: int, what: str, rows: np.ndarray) -> np.ndarray:
+        return np.load(_name(self.folder, cell, piece, what), mmap_mode="r")[rows]
+
+    def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
+        """Points within [lo, hi], in id order: (points, normals or None, ids), as cloud_files.read_region."""
+        pts, nrm, ids = [], [], []
+        for c, p, rows in self._rows_in(lo, hi):
+            x = self._part(c, p, "xyz", rows)
+            inside = np.all((x >= lo) & (x <= hi), axis=1)
+            keep = rows[inside]
+            pts.append(x[inside])
+            ids.append(self._part(c, p, "ids", keep))
             if self.normals:
-                nrm += [n[keep] for n, (_, keep) in zip(self._load(c, "normals"), inside)]
+                nrm.append(self._part(c, p, "normals", keep))
         if not pts:
             return np.empty((0, 3)), None, np.empty(0, np.uint64)
         ids = np.concatenate(ids)
@@ -178,12 +223,10 @@ class Partition:
         with (as cloud_files.read_records)."""
         ids = np.sort(np.asarray(ids, dtype=np.uint64))
         have, records = [], []
-        for c in self.grid.cells_in(lo, hi):
-            c = int(c)
-            for i, r in zip(self._load(c, "ids"), self._load(c, "records")):
-                keep = np.flatnonzero(_member(i, ids))
-                have.append(i[keep])
-                records.append(r[keep])
+        for c, p, rows in self._rows_in(lo, hi):
+            keep = rows[_member(self._part(c, p, "ids", rows), ids)]
+            have.append(self._part(c, p, "ids", keep))
+            records.append(self._part(c, p, "records", keep))
         got = np.concatenate(have) if have else np.empty(0, np.uint64)
         if len(got) != len(ids):
             raise RuntimeError(f"{len(ids) - len(got)} of a tile's samples are missing from its cells")

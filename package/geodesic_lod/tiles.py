@@ -134,7 +134,7 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
     status, offset = r["status"], r["cover_offset"]
     opened = np.flatnonzero(status == OPEN)
     counts = offset[opened + 1] - offset[opened]
-    picks = _ranges(offset[opened], counts)
+    picks = ranges(offset[opened], counts)
     return Decision(samples=ids[status == IN].astype(np.uint64), band_ids=ids[r["band"]].astype(np.uint64),
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
@@ -181,7 +181,7 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     coverers = np.concatenate([d.coverers for d in opens])
     rank = np.lexsort((open_ids, _core.priorities(seed, open_ids)))  # visiting order, ties by id
     starts = np.concatenate([[0], np.cumsum(counts)])[:-1]
-    pick = _ranges(starts[rank], counts[rank])
+    pick = ranges(starts[rank], counts[rank])
     cover = np.searchsorted(known, coverers[pick])
     if len(cover) and (cover.max() >= len(known) or not np.array_equal(known[cover], coverers[pick])):
         raise RuntimeError("a coverer's status is missing: a tile's band is incomplete")
@@ -191,7 +191,7 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     return ordered[status[np.searchsorted(known, ordered)] == IN]
 
 
-def _ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+def ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     """The concatenation of arange(starts[k], starts[k] + counts[k]) over k, without a Python loop."""
     counts = np.asarray(counts, dtype=np.int64)
     ends = np.cumsum(counts)

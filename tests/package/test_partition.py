@@ -53,6 +53,22 @@ def test_a_regions_cells_hold_every_point_in_it():
         assert set(cell[inside]) <= set(grid.cells_in(lo, hi).tolist())
 
 
+def test_a_regions_blocks_hold_every_point_of_the_cell_in_it():
+    rng = np.random.default_rng(4)
+    grid = partition.Grid(np.zeros(3), np.ones(3), (3, 2, 2))
+    xyz = rng.uniform(-0.2, 1.2, (20000, 3))
+    cell = grid.cell_of(xyz)
+    for c in range(12):
+        mine = xyz[cell == c]
+        block = grid.key_of(mine) % partition.BLOCKS ** 3
+        assert block.min() >= 0 and block.max() < partition.BLOCKS ** 3
+        for _ in range(20):
+            lo = rng.uniform(-0.3, 1.0, 3)
+            hi = lo + rng.uniform(0, 0.3, 3)
+            inside = np.all((mine >= lo) & (mine <= hi), axis=1)
+            assert set(block[inside]) <= set(grid.blocks_in(c, lo, hi).tolist())
+
+
 @pytest.mark.parametrize("piece_points, shape", [(1000, (3, 2, 2)), (10 ** 6, (1, 1, 1)), (700, (4, 4, 1))])
 def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, piece_points, shape):
     lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)
