@@ -41,16 +41,20 @@ def test_a_cell_holds_the_points_of_the_tile_with_its_box():
         assert np.array_equal(cell == k, box.core_mask(xyz, cloud))
 
 
+def check_regions(rng, xyz, index, found, times):
+    """For random regions: the index of every point of xyz in a region is among found(lo, hi)."""
+    for _ in range(times):
+        lo = rng.uniform(-0.3, 1.0, 3)
+        hi = lo + rng.uniform(0, 0.6, 3)
+        inside = np.all((xyz >= lo) & (xyz <= hi), axis=1)
+        assert set(index[inside]) <= set(found(lo, hi).tolist())
+
+
 def test_a_regions_cells_hold_every_point_in_it():
     rng = np.random.default_rng(2)
     grid = partition.Grid(np.zeros(3), np.ones(3), (5, 4, 3))
     xyz = rng.uniform(-0.2, 1.2, (5000, 3))
-    cell = grid.cell_of(xyz)
-    for _ in range(50):
-        lo = rng.uniform(-0.3, 1.0, 3)
-        hi = lo + rng.uniform(0, 0.6, 3)
-        inside = np.all((xyz >= lo) & (xyz <= hi), axis=1)
-        assert set(cell[inside]) <= set(grid.cells_in(lo, hi).tolist())
+    check_regions(rng, xyz, grid.cell_of(xyz), grid.cells_in, 50)
 
 
 def test_a_regions_blocks_hold_every_point_of_the_cell_in_it():
@@ -61,12 +65,8 @@ def test_a_regions_blocks_hold_every_point_of_the_cell_in_it():
     for c in range(12):
         mine = xyz[cell == c]
         block = grid.key_of(mine) % partition.BLOCKS ** 3
-        assert block.min() >= 0 and block.max() < partition.BLOCKS ** 3
-        for _ in range(20):
-            lo = rng.uniform(-0.3, 1.0, 3)
-            hi = lo + rng.uniform(0, 0.3, 3)
-            inside = np.all((mine >= lo) & (mine <= hi), axis=1)
-            assert set(block[inside]) <= set(grid.blocks_in(c, lo, hi).tolist())
+        assert len(np.unique(block)) > partition.BLOCKS  # the cell's points spread over its blocks
+        check_regions(rng, mine, block, lambda lo, hi: grid.blocks_in(c, lo, hi), 20)
 
 
 @pytest.mark.parametrize("piece_points, shape", [(1000, (3, 2, 2)), (10 ** 6, (1, 1, 1)), (700, (4, 4, 1))])
