@@ -1,5 +1,5 @@
 """The input files of a cluster run as one cloud: their surveys (counts, bounds and what must match
-across files), the points of a region and the records of chosen ids, read through the one reader of each
+across files), the points of a region and a source to write records with, read through the one reader of each
 format (las_files, point_files), with the same checks as on one machine."""
 from __future__ import annotations
 
@@ -123,41 +123,9 @@ def chunks(s: Source):
         yield 0, src.points, src.normals
 
 
-def read_records(srcs: Sequence[Source], ids: np.ndarray):
-    """The records of the given ids (any order), in that order, and a source to write them with."""
-    ids = np.asarray(ids, dtype=np.uint64)
-    order = np.argsort(ids, kind="stable")
-    ordered = ids[order]
-    parts, first = [], None
-    for s in srcs:
-        lo, hi = np.searchsorted(ordered, [s.first_id, s.first_id + s.count])
-        if hi <= lo:
-            continue
-        rows = (ordered[lo:hi] - np.uint64(s.first_id)).astype(np.int64)
-        if s.kind == "las":
-            picked = []
-            for start, chunk in las_files.chunks(s.path):
-                a, b = np.searchsorted(rows, [start, start + len(chunk)])
-                picked.append(chunk.array[rows[a:b] - start])
-            records = np.concatenate(picked)
-            if first is None:
-                first = las_files.open_source(s.path)
-        else:
-            src = point_files.read(s.path)
-            records = np.asarray(src.rows[rows])
-            first = src.source if first is None else first
-        parts.append(records)
-    records = np.concatenate(parts)
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
-    return records_source(srcs, records[inverse], first)
-
-
-def records_source(srcs: Sequence[Source], records: np.ndarray, first=None):
-    """Records of the files (a structured array) as a source to write them with; `first`: the first file's
-    parsed source when at hand."""
-    if first is None:
-        first = las_files.open_source(srcs[0].path) if srcs[0].kind == "las" else point_files.read(srcs[0].path).source
+def records_source(srcs: Sequence[Source], records: np.ndarray):
+    """Records of the files (a structured array) as a source to write them with."""
+    first = las_files.open_source(srcs[0].path) if srcs[0].kind == "las" else point_files.read(srcs[0].path).source
     if srcs[0].kind == "las":
         import laspy
         rows = laspy.PackedPointRecord(records, first.header.point_format)

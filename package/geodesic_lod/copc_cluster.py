@@ -3,8 +3,9 @@ one machine from the same points (every node holding the same records), for any 
 
 The input is decoded once into cells (``partition``), which every later task reads. The tiles are the
 octree's nodes of one depth t, so that every cell and node of depth t or deeper lies in one tile. The cells
-give the cloud's bounds (the cube) and the points per node; a pass over the tiles finds the depths (``octree.deep_enough`` on sums of the tiles' counts); the nested Poisson levels run
-as the Dask pipeline runs levels (``distributed``: each exactly ``poisson_lod`` on the whole cloud); then
+give the cloud's bounds (the cube) and the points per node; a pass over the tiles finds the depths
+(``octree.deep_enough`` on sums of the tiles' counts); the nested Poisson levels run as the Dask pipeline
+runs levels (``distributed``: each exactly ``poisson_lod`` on the whole cloud); then
 each tile compresses its nodes of depth t and deeper into a part file, and where the job started the few
 points of the shallower nodes are compressed and every part is put together into one file with the
 hierarchy (``copc_files.assemble``).
@@ -89,7 +90,7 @@ class NodeTile(tiles.Box):
 def _tile_points(job: Job, tile: NodeTile) -> tuple:
     """A tile's core points: (points, ids), in id order."""
     margin = 1e-6 * 2 * tile.octree.halfsize
-    points, _, ids = job.read_region(tile.lo - margin, tile.hi + margin)
+    points, _, ids = job.cells.read_region(tile.lo - margin, tile.hi + margin)
     mine = tile.core_mask(points, job.cloud)
     return points[mine], ids[mine]
 
@@ -142,7 +143,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     lo, hi = points.min(axis=0) - margin, points.max(axis=0) + margin
     for d in reversed(range(len(levels))):  # levels[d]: the level of depth d, coarser ones nested in it
         depth[finer_samples(dataclasses.replace(job, within=levels[d]), lo, hi, ids)] = d
-    source = job.read_records(ids, tile.lo - margin, tile.hi + margin)
+    source = job.cells.read_records(job.srcs, ids, tile.lo - margin, tile.hi + margin)
     records = copc_records(source.rows)
     deep = depth >= t
     order, keys, counts = nodes_of(octree, points[deep], depth[deep])
@@ -195,7 +196,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         keys = [int(k) for k in per_depth[t][0]]
         cloud = tiles.Box(lo, hi)
         boxes = [NodeTile.of(octree, t, k) for k in keys]
-        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells=cells)
+        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
         n = len(keys)
         stats = client.gather(client.map(_depth_stats, [job] * n, boxes, pure=False))
         depths = depth_count(stats, t)

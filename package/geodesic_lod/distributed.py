@@ -2,10 +2,10 @@
 
 The files are cut into spatial tiles of about `tile_points` points each, and decoded once: a task per
 piece of a file writes each tile's share into a work folder (``partition``), which every later task
-reads. Every tile is a Dask task that reads its points and a halo around them, and decides its samples (``tiles.decide``); the
-points left open near the seams are settled in one pass where the job was started (``tiles.settle``);
-then every tile writes its samples' records, bit for bit, as a file of the input's format. The
-result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
+reads. Every tile is a Dask task that reads its points and a halo around them, and decides its samples
+(``tiles.decide``); the points left open near the seams are settled in one pass where the job was started
+(``tiles.settle``); then every tile writes its samples' records, bit for bit, as a file of the input's
+format. The result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
 file order (for the same parameters and seed), whatever the tiling and the number of workers.
 
 With `levels`, each level is the Poisson set of its own radius among the finer level's samples (the
@@ -59,11 +59,11 @@ class Job:
         Threads per task (None: all the worker machine's cores).
     halo : float
         The width of the first halo a tile reads around its core, in the input's units.
+    cells : partition.Partition
+        The input decoded once, which the tasks read instead of the files.
     within : (str, list of tiles.Box) or None
         Nested levels: the folder of the finer level's samples (one .npy of ids per tile) and its tiles'
         boxes; None: every point may become a sample.
-    cells : partition.Partition or None
-        The input decoded once, which the tasks read (None: they decode the files).
     """
     srcs: list
     cloud: tiles.Box
@@ -72,22 +72,8 @@ class Job:
     domain: dict
     threads: Optional[int]
     halo: float
+    cells: partition.Partition
     within: Optional[tuple] = None
-    cells: Optional[partition.Partition] = None
-
-    def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
-        """Points within [lo, hi] of every file, in id order: (points, normals or None, ids)."""
-        if self.cells is not None:
-            return self.cells.read_region(lo, hi)
-        return cloud_files.read_region(self.srcs, lo, hi)
-
-    def read_records(self, ids: np.ndarray, lo: np.ndarray, hi: np.ndarray):
-        """The records of `ids`, points within [lo, hi], in increasing id order, and a source to write them
-        with."""
-        ids = np.sort(np.asarray(ids, dtype=np.uint64))
-        if self.cells is not None:
-            return self.cells.read_records(self.srcs, ids, lo, hi)
-        return cloud_files.read_records(self.srcs, ids)
 
     def domain_param(self):
         d = _core.DomainParam()
@@ -102,7 +88,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     candidates = None
     if job.within is not None:
         candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
-    return tiles.decide_widening(lambda halo: job.read_region(outer.lo - halo, outer.hi + halo),
+    return tiles.decide_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo),
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads)
@@ -149,7 +135,7 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
     if len(ids) == 0:
         return {"file": None, "count": 0}
     outer = box.outer(job.cloud)
-    source = job.read_records(ids, outer.lo, outer.hi)
+    source = job.cells.read_records(job.srcs, ids, outer.lo, outer.hi)
     point_files.write_all(source, [(path, np.arange(len(ids)))])
     xyz = point_files.coordinates(source)
     return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
@@ -379,7 +365,7 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
             ticks) -> list:
     """Each level's run (at its radius, or searched to its count) written into the run folder: index entries."""
     work = run_dir / WORK
-    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells=cells)
+    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):

@@ -109,7 +109,8 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
     """A Dask task: decodes one piece and writes each cell's share of it, block by block, each block in id
-    order (``blocks``: where each block starts, and the end). Returns whether its points carry normals and, per cell holding points, (count, lowest corner, highest corner)."""
+    order (``blocks``: where each block starts, and the end). Returns whether its points carry normals,
+    per cell holding points (count, lowest corner, highest corner), and the bytes written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
@@ -220,7 +221,7 @@ class Partition:
     def read_records(self, srcs: Sequence[cloud_files.Source], ids: np.ndarray, lo: np.ndarray,
                      hi: np.ndarray):
         """The records of `ids`, points within [lo, hi], in increasing id order, with a source to write them
-        with (as cloud_files.read_records)."""
+        with."""
         ids = np.sort(np.asarray(ids, dtype=np.uint64))
         have, records = [], []
         for c, p, rows in self._rows_in(lo, hi):

@@ -154,32 +154,6 @@ def test_nan_rows_are_counted_by_a_survey_and_by_a_region(tmp_path):
         cf.read_region([src], np.full(3, -np.inf), np.full(3, np.inf))
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_records_come_back_in_the_order_asked(tmp_path, kind):
-    paths = split_cloud(tmp_path / "in", kind)
-    srcs = one_cloud(paths)
-    _, _, records = every_row(paths)
-    rng = np.random.default_rng(3)
-    for ids in (rng.permutation(len(records))[:700],            # from every file, shuffled
-                np.arange(len(records))[::-1][:40],              # the last file's, backwards
-                np.array([2 * len(records) // 3])):
-        got = cf.read_records(srcs, ids.astype(np.uint64))
-        rows = got.rows.array if kind == "laz" else np.asarray(got.rows)
-        assert rows.tobytes() == records[ids].tobytes()
-        assert got.kind == pf.format_of(paths[0])
-
-
-def test_records_read_from_several_laz_files_write_as_one(tmp_path):
-    paths = split_cloud(tmp_path / "in", "laz")
-    ids = np.sort(np.random.default_rng(4).choice(4500, 900, replace=False))
-    source = cf.read_records(one_cloud(paths), ids.astype(np.uint64))
-    pf.write_all(source, [(tmp_path / "out.laz", np.arange(len(ids)))])
-    out = laspy.read(str(tmp_path / "out.laz"))
-    assert np.array_equal(out.gps_time, ids)  # write_parts: a record's gps_time is its id
-    assert out.points.array.tobytes() == every_row(paths)[2][ids].tobytes()
-    assert np.array_equal(out.header.scales, laspy.read(paths[0]).header.scales)
-
-
 def test_folders_and_globs_expand_to_point_files_in_a_stable_order(tmp_path):
     a, b = tmp_path / "a", tmp_path / "b"
     a.mkdir()

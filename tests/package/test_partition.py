@@ -5,14 +5,20 @@ import laspy
 import numpy as np
 import pytest
 
-from geodesic_lod import cloud_files, las_files, partition, tiles
+from geodesic_lod import cloud_files, las_files, partition, point_files, tiles
 from conftest import bumpy_sphere
+from test_cloud_files import KINDS, every_row, one_cloud, split_cloud
 from test_distributed import write_parts
 
 
 def sources(folder):
     paths = cloud_files.expand_inputs([str(folder)])
     return cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
+
+
+def every_record(srcs):
+    """The files' records in id order, as laspy reads them."""
+    return np.concatenate([laspy.read(s.path).points.array for s in srcs])
 
 
 def split_all(srcs, grid, folder, piece_points):
@@ -85,8 +91,7 @@ def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, pi
         ids = want[2][rng.random(len(want[2])) < 0.3]
         if not len(ids):
             continue
-        assert cells.read_records(files, ids, a, b).rows.array.tobytes() == \
-            cloud_files.read_records(files, ids).rows.array.tobytes()
+        assert cells.read_records(files, ids, a, b).rows.array.tobytes() == every_record(files)[ids].tobytes()
         checked += 1
     assert checked >= 4
 
@@ -132,14 +137,14 @@ def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
                                      total, 1500)
     cells = split_all(files, partition.Grid(cloud.lo, cloud.hi, shape), tmp_path / "cells", 2000)
     points, _, _ = cloud_files.read_region(files, cloud.lo - 1, cloud.hi + 1)
-    records = cloud_files.read_records(files, np.arange(total, dtype=np.uint64)).rows.array
+    records = every_record(files)
 
     def refuse(*args, **kwargs):
         raise AssertionError("a file was decoded after the split")
     monkeypatch.setattr(las_files, "chunks", refuse)
     radius = 0.5
-    job = dist.Job(files, cloud, radius, 0, dist.domain_fields(arrays.DEFAULT_METRIC, arrays.DOMAIN_DEFAULTS.adaptivity), 1,
-                   tiles.first_halo(radius, tiles.spacing_of(cloud, total)), cells=cells)
+    domain = dist.domain_fields(arrays.DEFAULT_METRIC, arrays.DOMAIN_DEFAULTS.adaptivity)
+    job = dist.Job(files, cloud, radius, 0, domain, 1, tiles.first_halo(radius, tiles.spacing_of(cloud, total)), cells)
     decisions = [dist.decide_tile(job, b) for b in boxes]
     settled = tiles.settle([d.seams() for d in decisions if d is not None], 0)
     for k, (d, b) in enumerate(zip(decisions, boxes)):
@@ -151,3 +156,37 @@ def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
     ids = got["gps_time"].astype(np.int64)
     assert sorted(ids) == sorted(gl.poisson_lod(points, radius=radius).indices)
     assert got.tobytes() == records[ids].tobytes()
+
+
+def split_whole(srcs, folder):
+    lo, hi = np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0)
+    return split_all(srcs, partition.Grid(lo, hi, (2, 2, 1)), folder, 1000)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_records_come_back_in_id_order_for_every_format(tmp_path, kind):
+    paths = split_cloud(tmp_path / "in", kind)
+    srcs = one_cloud(paths)
+    cells = split_whole(srcs, tmp_path / "cells")
+    _, _, records = every_row(paths)
+    rng = np.random.default_rng(3)
+    everywhere = (np.full(3, -np.inf), np.full(3, np.inf))
+    for ids in (np.sort(rng.permutation(len(records))[:700]),  # from every file
+                np.arange(len(records))[-40:],                 # the last file's
+                np.array([2 * len(records) // 3])):
+        got = cells.read_records(srcs, ids.astype(np.uint64), *everywhere)
+        rows = got.rows.array if kind == "laz" else np.asarray(got.rows)
+        assert rows.tobytes() == records[ids].tobytes()
+        assert got.kind == point_files.format_of(paths[0])
+
+
+def test_records_read_from_several_laz_files_write_as_one(tmp_path):
+    paths = split_cloud(tmp_path / "in", "laz")
+    cells = split_whole(one_cloud(paths), tmp_path / "cells")
+    ids = np.sort(np.random.default_rng(4).choice(4500, 900, replace=False))
+    source = cells.read_records(one_cloud(paths), ids.astype(np.uint64), np.full(3, -np.inf), np.full(3, np.inf))
+    point_files.write_all(source, [(tmp_path / "out.laz", np.arange(len(ids)))])
+    out = laspy.read(str(tmp_path / "out.laz"))
+    assert np.array_equal(out.gps_time, ids)  # write_parts: a record's gps_time is its id
+    assert out.points.array.tobytes() == every_row(paths)[2][ids].tobytes()
+    assert np.array_equal(out.header.scales, laspy.read(paths[0]).header.scales)
