@@ -111,8 +111,7 @@ def finer_samples(job: Job, lo: np.ndarray, hi: np.ndarray, ids: np.ndarray) -> 
                 raise RuntimeError(f"the finer level's samples of tile {k} are missing ({f})")
             parts.append(np.load(f))
     known = np.sort(np.concatenate(parts)) if parts else np.empty(0, np.uint64)
-    at = np.minimum(np.searchsorted(known, ids), max(len(known) - 1, 0))
-    return (known[at] == ids) if len(known) else np.zeros(len(ids), bool)
+    return partition.member(ids, known)
 
 
 def seams(d: Optional[tiles.Decision]):

@@ -99,18 +99,8 @@ def open_source(path) -> LasSource:
 def _laz_room(path, header) -> Optional[int]:
     """The most points a LAZ file's chunk table leaves room for; None where the table cannot be read (a
     streamed file has none), and the records are counted as they are decoded."""
-    import lazrs
-    laszip = [v for v in header.vlrs if v.user_id == "laszip encoded"]
-    if not laszip:
-        return None
-    try:
-        vlr = lazrs.LazVlr(laszip[0].record_data_bytes())
-        with open(path, "rb") as f:
-            f.seek(header.offset_to_point_data)
-            table = lazrs.read_chunk_table(f, vlr)
-    except Exception:  # lazrs's errors, or a table the writer never wrote
-        return None
-    return sum(int(n) for n, _ in table)
+    _, table = _chunk_table(path, header)
+    return None if table is None else sum(n for n, _ in table)
 
 
 def _own_records(path, header) -> tuple:

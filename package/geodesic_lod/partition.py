@@ -40,6 +40,9 @@ class Grid:
     hi: np.ndarray
     shape: tuple
 
+    def __post_init__(self):
+        self._edges = [self._fine(a) for a in range(3)]
+
     def _fine(self, a: int) -> np.ndarray:
         """The inner edges of the blocks along axis a, every cell's: a cell's BLOCKS blocks end on the cells'
         own edges (``tiles.grid_tiles``'s), so that a point's block tells its cell exactly."""
@@ -53,7 +56,7 @@ class Grid:
         return np.concatenate(out)
 
     def _fine_of(self, x: np.ndarray, a: int) -> np.ndarray:
-        return np.searchsorted(self._fine(a), x, side="right")
+        return np.searchsorted(self._edges[a], x, side="right")
 
     def key_of(self, xyz: np.ndarray) -> np.ndarray:
         """Each point's cell * BLOCKS^3 + its block in the cell (int64)."""
@@ -225,9 +228,10 @@ class Partition:
         ids = np.sort(np.asarray(ids, dtype=np.uint64))
         have, records = [], []
         for c, p, rows in self._rows_in(lo, hi):
-            keep = rows[_member(self._part(c, p, "ids", rows), ids)]
-            have.append(self._part(c, p, "ids", keep))
-            records.append(self._part(c, p, "records", keep))
+            share = self._part(c, p, "ids", rows)
+            mine = member(share, ids)
+            have.append(share[mine])
+            records.append(self._part(c, p, "records", rows[mine]))
         got = np.concatenate(have) if have else np.empty(0, np.uint64)
         if len(got) != len(ids):
             raise RuntimeError(f"{len(ids) - len(got)} of a tile's samples are missing from its cells")
@@ -235,7 +239,8 @@ class Partition:
         return cloud_files.records_source(srcs, np.concatenate(records)[order])
 
 
-def _member(values: np.ndarray, sorted_ids: np.ndarray) -> np.ndarray:
+def member(values: np.ndarray, sorted_ids: np.ndarray) -> np.ndarray:
+    """Which of `values` are among `sorted_ids` (increasing)."""
     if not len(sorted_ids):
         return np.zeros(len(values), bool)
     at = np.minimum(np.searchsorted(sorted_ids, values), len(sorted_ids) - 1)
