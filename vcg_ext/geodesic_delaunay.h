@@ -3,14 +3,19 @@
 // Geodesic Voronoi regions of samples and their dual, the geodesic Delaunay
 // triangulation, read off the input's triangles, no edge in more than two.
 // Cost: the regions, one search lowering the distances per sample; the
-// triangles, O(triangles log triangles).
+// triangles, O(triangles log triangles); a border's owners, O(b log b) for
+// b border points.
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <functional>
 #include <map>
+#include <queue>
+#include <utility>
 #include <vector>
 #include <vcg/space/point3.h>
 #include "geodesic_domain.h"
+#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -28,6 +33,68 @@ class GeodesicDelaunay {
         search.Lower(samples[k], dist, [&](int i, Scalar) { owner[i] = int(k); });
     }, true);
     return owner;
+  }
+
+  /// `owner` with each border point (TriangleBorders) given to the nearest
+  /// sample on its border line, in the metric along the border's edges. Read
+  /// off these owners, the LOD's border runs through the border's samples, as
+  /// a restricted Delaunay triangulation's does: by the Voronoi owners an inner
+  /// sample whose region reaches the border between two border samples is a
+  /// border vertex, and the LOD's border cuts inside the input's by up to a
+  /// radius. The points of a line (a connected part of the border) holding
+  /// fewer than three samples keep theirs: one or two would close the hole.
+  static std::vector<int> BorderOwners(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples,
+                                       const std::vector<int>& owner) {
+    const std::vector<typename TriangleBorders::Edge> edges = TriangleBorders::Edges(d.triangles);
+    std::vector<int> out = owner;
+    if (edges.empty()) return out;
+    std::vector<std::vector<std::pair<int, float>>> next(d.size());
+    const auto length = d.Lengths();
+    for (const auto& e : edges) {
+      const float w = length(e.u, e.v);
+      next[size_t(e.u)].push_back({e.v, w});
+      next[size_t(e.v)].push_back({e.u, w});
+    }
+    // The lines, and their samples.
+    std::vector<int> line(d.size(), -1), stack;
+    std::vector<size_t> held;
+    for (const auto& e : edges) {
+      if (line[size_t(e.u)] >= 0) continue;
+      line[size_t(e.u)] = int(held.size());
+      held.push_back(0);
+      for (stack.assign(1, e.u); !stack.empty();) {
+        const int i = stack.back();
+        stack.pop_back();
+        for (const auto& [j, w] : next[size_t(i)])
+          if (line[size_t(j)] < 0) line[size_t(j)] = line[size_t(i)], stack.push_back(j);
+      }
+    }
+    for (int i : samples)
+      if (line[size_t(i)] >= 0) ++held[size_t(line[size_t(i)])];
+    // Dijkstra from every sample of those lines at once; ties go to the lower rank.
+    typedef std::pair<float, std::pair<int, int>> Item;  // (distance, (rank, point))
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    std::vector<float> dist(d.size(), std::numeric_limits<float>::infinity());
+    for (size_t k = 0; k < samples.size(); ++k)
+      if (line[size_t(samples[k])] >= 0 && held[size_t(line[size_t(samples[k])])] >= 3) {
+        dist[size_t(samples[k])] = 0;
+        heap.push({0.f, {int(k), samples[k]}});
+      }
+    std::vector<char> done(d.size(), 0);
+    while (!heap.empty()) {
+      const Item top = heap.top();
+      heap.pop();
+      const int i = top.second.second;
+      if (done[size_t(i)]) continue;
+      done[size_t(i)] = 1;
+      out[size_t(i)] = top.second.first;
+      for (const auto& [j, w] : next[size_t(i)])
+        if (!done[size_t(j)] && top.first + w <= dist[size_t(j)]) {
+          dist[size_t(j)] = top.first + w;
+          heap.push({top.first + w, {top.second.first, j}});
+        }
+    }
+    return out;
   }
 
   /// Every input triangle whose corners lie in three different regions gives

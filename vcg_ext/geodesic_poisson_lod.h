@@ -15,6 +15,7 @@
 #include "poisson_target_count.h"
 #include "priority_order.h"
 #include "prominence.h"
+#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -64,7 +65,8 @@ class GeodesicPoissonLod {
 
   /// The Poisson visiting order of the domain's points: by the seed and each
   /// point's input index, so the same point has the same rank in any subset;
-  /// with VisitOrder::Prominence first by their prominence at `scale`.
+  /// with VisitOrder::Prominence first by their prominence at `scale`; a
+  /// mesh's border points before the rest (BorderFirst).
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
                                         VisitOrder visit = VisitOrder::Random, double scale = 0,
                                         double noise = Param().prominenceNoise) {
@@ -75,6 +77,7 @@ class GeodesicPoissonLod {
                                               Prominence<Scalar>::SmoothingRadius(d.points.pos, scale), noise),
                   d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
+    BorderFirst(d, order);
     if (within.empty()) return order;
     std::vector<char> may;
     for (int v : within) {
@@ -88,6 +91,17 @@ class GeodesicPoissonLod {
     };
     order.erase(std::remove_if(order.begin(), order.end(), excluded), order.end());
     return order;
+  }
+
+  /// Moves a mesh's border points (TriangleBorders) ahead of the rest, each part
+  /// in its order. Every border point then lies within a disk of a border
+  /// sample, so the LOD's border follows the input's; in random order a border
+  /// stretch may hold no sample and the LOD's border cuts up to a radius inside
+  /// it, the largest error on open meshes (docs/mesh_lod.md). O(triangles log triangles).
+  static void BorderFirst(const Domain& d, std::vector<int>& order) {
+    if (d.triangles.empty()) return;
+    const std::vector<char> border = TriangleBorders::Points(d.triangles, d.size());
+    std::stable_partition(order.begin(), order.end(), [&](int i) { return border[size_t(i)] != 0; });
   }
 
   /// Samples of the domain, by disks of its metric and geodesics.

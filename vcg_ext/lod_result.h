@@ -55,14 +55,15 @@ struct LodResult {
 
   /// The triangle mesh of `samples` (point indices of `d`): their geodesic
   /// Delaunay triangles read from `voronoi` (per point, the rank of its nearest
-  /// sample), small holes the input lacks closed (HoleClosing), and `position` (the samples' input points) placed as
+  /// sample; on the input's border, of its border's nearest, BorderOwners), small holes the input lacks closed (HoleClosing), and `position` (the samples' input points) placed as
   /// `placement` says, the optimization reported to `progress`. `borderPoints`: TriangleBorders::Points of the
   /// domain's triangles, when the caller makes several meshes of one domain (else found here).
   static void MeshOf(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, const std::vector<int>& voronoi,
                      Placement placement, std::vector<std::array<int, 3>>& faces,
                      std::vector<vcg::Point3<Scalar>>& position, Progress progress = Progress(nullptr),
                      const std::vector<char>* borderPoints = nullptr) {
-    faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
+    faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles,
+                                              GeodesicDelaunay<Scalar>::BorderOwners(d, samples, voronoi), samples);
     // The holes the read-off leaves where regions wrap a thin part close; the input's own stay open.
     std::vector<char> found;
     if (!borderPoints) found = TriangleBorders::Points(d.triangles, d.size());

@@ -14,6 +14,7 @@
 #include <vcg_ext/geodesic_delaunay.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
+#include <vcg_ext/triangle_borders.h>
 #include "distance_fields.h"
 #include "shared_data.h"
 #include "test_mesh.h"
@@ -78,6 +79,41 @@ TEST(GeodesicDelaunay, EachPointsRegionIsItsNearestSample) {
       EXPECT_LE(dist[owner[i]][i], nearest + slack) << "point " << i << ", mode " << int(mode);
     }
   }
+}
+
+TEST(GeodesicDelaunay, BorderPointsGoToASampleOnTheirBorderLineOthersKeepTheirRegion) {
+  const Domain d = Bumpy(vcg_ext::GeodesicMode::Mesh);
+  const std::vector<char> border = vcg_ext::TriangleBorders::Points(d.triangles, d.size());
+  std::vector<int> inner, mixed;
+  for (int i : EveryNth(d, 37)) (border[size_t(i)] ? mixed : inner).push_back(i);
+  mixed.insert(mixed.end(), inner.begin(), inner.end());
+  ASSERT_GE(mixed.size(), inner.size() + 3);
+  // Fewer than three samples on the (one) border line: nothing changes, else the hole would close.
+  for (size_t onLine : {0, 1, 2}) {
+    std::vector<int> few(mixed.begin(), mixed.begin() + onLine);
+    few.insert(few.end(), inner.begin(), inner.end());
+    EXPECT_EQ(Delaunay::BorderOwners(d, few, Delaunay::VoronoiOwners(d, few)), Delaunay::VoronoiOwners(d, few));
+  }
+  const std::vector<int> owner = Delaunay::VoronoiOwners(d, mixed), on = Delaunay::BorderOwners(d, mixed, owner);
+  size_t moved = 0;
+  for (size_t i = 0; i < d.size(); ++i) {
+    if (!border[i]) {
+      EXPECT_EQ(on[i], owner[i]) << i;
+      continue;
+    }
+    ASSERT_GE(on[i], 0);
+    EXPECT_TRUE(border[size_t(mixed[size_t(on[i])])]) << i;
+    moved += on[i] != owner[i];
+  }
+  for (size_t k = 0; k < mixed.size(); ++k)
+    if (border[size_t(mixed[k])]) EXPECT_EQ(on[size_t(mixed[k])], int(k));
+  EXPECT_GT(moved, 0u) << "no border point was in an inner sample's region: the case is not tested";
+  // A cloud has no border.
+  test::TMesh c;
+  test::HeightField(c, 20, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  const Domain e = Domain::FromMesh(c, Domain::Param());
+  EXPECT_EQ(Delaunay::BorderOwners(e, EveryNth(e, 7), Delaunay::VoronoiOwners(e, EveryNth(e, 7))),
+            Delaunay::VoronoiOwners(e, EveryNth(e, 7)));
 }
 
 TEST(GeodesicDelaunay, TrianglesAreOrientedDistinctTouchingAndUnique) {

@@ -1,4 +1,4 @@
-// vcg_ext/geodesic_poisson_lod.h: checks, visiting order, radius and count runs, regions, `within`, CoreDiagonal.
+// vcg_ext/geodesic_poisson_lod.h: checks, visiting order (a mesh's border first), radius and count runs, regions, `within`, CoreDiagonal.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/priority_order.h>
+#include <vcg_ext/triangle_borders.h>
 #include "distance_fields.h"
 #include "test_mesh.h"
 
@@ -133,6 +135,73 @@ TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
   for (int v : Vertices(d, order))
     if (v % 4 != 0) want.push_back(v);
   EXPECT_EQ(Vertices(e, Poisson::VisitingOrder(e, 5)), want);
+}
+
+// A bumpy open grid mesh: its outline is its border.
+void BumpyGrid(test::TMesh& m, int n = 30) {
+  test::GridMesh(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+}
+
+TEST(GeodesicPoissonLod, AMeshsBorderPointsAreVisitedFirstEachPartInTheSeededOrder) {
+  test::TMesh m;
+  BumpyGrid(m, 20);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const std::vector<char> border = vcg_ext::TriangleBorders::Points(d.triangles, d.size());
+  ASSERT_EQ(std::count(border.begin(), border.end(), 1), 4 * 19);
+  const std::vector<int> seeded = vcg_ext::PriorityOrder(d.points.vertIndex, 5);
+  std::vector<int> want;
+  for (char first : {1, 0})
+    for (int i : seeded)
+      if (border[size_t(i)] == first) want.push_back(i);
+  EXPECT_EQ(Poisson::VisitingOrder(d, 5), want);
+  // A cloud has no border: the seeded order.
+  test::TMesh c;
+  BumpyCloud(c);
+  const Domain e = Domain::FromMesh(c, Domain::Param());
+  EXPECT_EQ(Poisson::VisitingOrder(e, 5), vcg_ext::PriorityOrder(e.points.vertIndex, 5));
+}
+
+TEST(GeodesicPoissonLod, EveryBorderPointOfAMeshHasABorderSampleWithinTheRadius) {
+  // Else a stretch of border covered by inner samples only lets the LOD's
+  // border cut inside the input's by up to a radius.
+  test::TMesh m;
+  BumpyGrid(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const std::vector<char> border = vcg_ext::TriangleBorders::Points(d.triangles, d.size());
+  for (uint64_t seed : {1, 2, 3}) {
+    Poisson::Param count = Count(60, 0.2);
+    count.seed = seed;
+    for (const Poisson::Param& p : {Radius(0.12, seed), count}) {
+      const Poisson::Result r = Poisson::Compute(d, p);
+      ASSERT_FALSE(r.trimmed);
+      std::vector<int> onBorder;
+      for (int s : test::PointsOf(d, r.vertIndex))
+        if (border[size_t(s)]) onBorder.push_back(s);
+      ASSERT_FALSE(onBorder.empty());
+      const auto dist = test::DistanceFields(d, onBorder);
+      for (size_t i = 0; i < d.size(); ++i)
+        if (border[i]) ASSERT_LE(Nearest(dist, i), r.radius * (1 + 1e-5)) << "seed " << seed << ", point " << i;
+    }
+  }
+}
+
+TEST(GeodesicPoissonLod, AMeshLodsBorderRunsThroughTheSamplesOnTheInputsBorder) {
+  test::TMesh m;
+  BumpyGrid(m);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const std::vector<char> border = vcg_ext::TriangleBorders::Points(d.triangles, d.size());
+  for (uint64_t seed : {1, 2, 3}) {
+    Poisson::Param p = Radius(0.12, seed);
+    p.meshOutput = true;
+    p.placement = vcg_ext::Placement::InputVertices;
+    const Poisson::Result r = Poisson::Compute(d, p);
+    const std::vector<int> samples = test::PointsOf(d, r.vertIndex);
+    std::set<int> onBorder, lodBorder;
+    for (size_t k = 0; k < samples.size(); ++k)
+      if (border[size_t(samples[k])]) onBorder.insert(int(k));
+    for (const auto& e : vcg_ext::TriangleBorders::Edges(r.faces)) lodBorder.insert(e.u), lodBorder.insert(e.v);
+    EXPECT_EQ(lodBorder, onBorder) << "seed " << seed;
+  }
 }
 
 TEST(GeodesicPoissonLod, ARadiusGivesItsPoissonSetAndItsDiskRegions) {
