@@ -1,0 +1,107 @@
+"""Airborne LiDAR by class: how a LOD of a classified tile shares its samples and its error between
+ground, vegetation and buildings, as a LiDAR user judges it. Each method keeps n of the tile's points;
+the error of an input point is its distance to the least-squares plane through its nearest LOD points
+(the quality benchmark's plane-fit error, in metres); each class gets its share of the samples, its
+mean error and its share of the summed error.
+
+usage: PYTHONPATH=build/python .venv/bin/python bench/airborne_classes.py [--plugin PATH]
+       (writes docs/airborne_classes.json)
+"""
+import argparse
+import time
+
+import laspy
+import numpy as np
+from scipy.spatial import cKDTree
+
+import radius_search
+from host import SHARED_DATA, add_plugin_option, load_plugin
+from quality import plane_fit_error
+from results import publish
+
+FILES = {"urban tile": "lidar/file_with_both_wkt_and_geotiff_vlrs.las", "Autzen": "lidar/autzen_trim.laz"}
+# ASPRS classes, grouped as a user reads them.
+GROUPS = {"ground": (2,), "vegetation": (3, 4, 5), "buildings": (6,), "unclassified": (0, 1), "noise": (7,)}
+RATES = [0.10, 0.02]
+COUNT_TOLERANCE = 0.02
+
+
+def load(name):
+    """The tile's points, shifted to its lowest corner (float32 keeps millimetres there), and classes."""
+    las = laspy.read(SHARED_DATA / name)
+    xyz = np.column_stack([las.x, las.y, las.z])
+    return xyz - xyz.min(axis=0), np.asarray(las.classification)
+
+
+def ours(pymeshlab, xyz, n, **options):
+    """geodesic_lod.poisson_lod at the count, as the command runs it: its defaults, or `options`."""
+    import geodesic_lod as gl
+    return gl.poisson_lod(xyz, count=n, **options).indices
+
+
+def meshlab_simplification(pymeshlab, xyz, n):
+    """MeshLab's point cloud simplification, its radius searched to the count; its points are input points."""
+    found = {}
+
+    def count_at(r):
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz))
+        ms.generate_simplified_point_cloud(radius=pymeshlab.PureValue(r))
+        found[r] = ms.current_mesh().vertex_matrix()
+        return len(found[r])
+    diag = float(np.linalg.norm(np.ptp(xyz, axis=0)))
+    r, _, _ = radius_search.search(n, count_at, diag * 0.6 / np.sqrt(n), COUNT_TOLERANCE)
+    dist, idx = cKDTree(xyz).query(found[r])
+    assert dist.max() < 1e-6, "the simplification moved a point"
+    return np.unique(idx)
+
+
+def uniform_random(pymeshlab, xyz, n):
+    return np.random.default_rng(0).choice(len(xyz), n, replace=False)
+
+
+METHODS = {"ours (defaults)": ours,
+           "ours, Euclidean metric": lambda pm, xyz, n: ours(pm, xyz, n, metric="euclidean"),
+           "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
+
+
+def by_class(classes, kept, error):
+    """Per group present: its points, the share of them kept, its mean error, its share of the error sum."""
+    out = {}
+    for group, codes in GROUPS.items():
+        mask = np.isin(classes, codes)
+        if mask.any():
+            out[group] = dict(points=int(mask.sum()), kept=float(np.isin(kept, np.flatnonzero(mask)).sum() / mask.sum()),
+                              mean_error=float(error[mask].mean()), error_share=float(error[mask].sum() / error.sum()),
+                              point_share=float(mask.mean()))
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_plugin_option(ap)
+    args = ap.parse_args()
+    pymeshlab = load_plugin(args.plugin)
+    rows = []
+    for tile, name in FILES.items():
+        xyz, classes = load(name)
+        for rate in RATES:
+            n = int(round(rate * len(xyz)))
+            for method, run in METHODS.items():
+                start = time.perf_counter()
+                kept = np.asarray(run(pymeshlab, xyz, n))
+                seconds = time.perf_counter() - start
+                error = plane_fit_error(xyz, xyz[kept])
+                for group, g in by_class(classes, kept, error).items():
+                    rows.append(dict(tile=tile, rate=rate, method=method, samples=len(kept), group=group,
+                                     seconds=seconds, **g))
+    publish("airborne_classes", rows, [
+        ("tile", lambda r: r["tile"]), ("rate", lambda r: f"{100 * r['rate']:g}%"), ("method", lambda r: r["method"]),
+        ("samples", lambda r: str(r["samples"])), ("class", lambda r: r["group"]),
+        ("points", lambda r: str(r["points"])), ("share of points", lambda r: f"{100 * r['point_share']:.1f}%"),
+        ("kept", lambda r: f"{100 * r['kept']:.1f}%"), ("mean error (m)", lambda r: f"{r['mean_error']:.3f}"),
+        ("share of error", lambda r: f"{100 * r['error_share']:.1f}%")])
+
+
+if __name__ == "__main__":
+    main()
