@@ -1,6 +1,7 @@
 // Opens the viewer in headless Chromium (Debian's /usr/bin/chromium, or CHROMIUM), waits until the
 // nodes in view are loaded, screenshots it (far.png), moves the camera to 15% of its distance, waits
-// again and screenshots (near.png); prints the viewer's state at both and every error it logged as JSON.
+// again and screenshots (near.png), then moves it back and waits again; prints the viewer's state at
+// the three and every error it logged as JSON.
 // usage: node screenshot.mjs URL FOLDER   (serve.py --snapshots runs it)
 import { chromium } from 'playwright-core';
 
@@ -27,7 +28,9 @@ try {
   await page.evaluate(() => window.viewer.zoom(0.15));
   const near = await settled();
   await page.screenshot({ path: `${folder}/near.png` });
-  console.log(JSON.stringify({ far, near, errors }));
+  await page.evaluate(() => window.viewer.zoom(1 / 0.15));
+  const back = await settled();
+  console.log(JSON.stringify({ far, near, back, errors }));
 } finally {
   await browser.close();
 }

@@ -85,14 +85,15 @@ def server(copc, port: int = 0) -> http.server.ThreadingHTTPServer:
     return http.server.ThreadingHTTPServer(("127.0.0.1", port), functools.partial(Handler, copc=copc))
 
 
-def snapshots(copc, folder, timeout: float = 300) -> dict:
-    """Serves copc on a free port of 127.0.0.1 while screenshot.mjs views it in headless Chromium, far and
-    near; returns the viewer's state at both and the errors it logged, and stops the server."""
+def snapshots(copc, folder, timeout: float = 300, query: str = "") -> dict:
+    """Serves copc on a free port of 127.0.0.1 while screenshot.mjs views it in headless Chromium (the
+    page's URL query `query`, e.g. "budget=100000"), far, near and far again; returns the viewer's state
+    at the three and the errors it logged, and stops the server."""
     httpd = server(copc)
     thread = threading.Thread(target=httpd.serve_forever, daemon=True)
     thread.start()
     try:
-        url = f"http://127.0.0.1:{httpd.server_address[1]}/"
+        url = f"http://127.0.0.1:{httpd.server_address[1]}/" + (f"?{query}" if query else "")
         proc = subprocess.run(["node", str(DIST.parent / "screenshot.mjs"), url, str(folder)], capture_output=True,
                               text=True, timeout=timeout, cwd=DIST.parent)
         if proc.returncode != 0:

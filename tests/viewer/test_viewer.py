@@ -1,6 +1,7 @@
 """The COPC viewer (viewer/) in headless Chromium on a COPC file geodesic-lod wrote: the page loads,
-draws points, fetches deeper nodes when the camera comes closer, and logs no error. The screenshots are
-kept in out/viewer/ for a person to look at."""
+draws points, fetches deeper nodes when the camera comes closer, draws what it drew from afar when the
+camera goes back, keeps to a point budget and a cache, and logs no error. The screenshots are kept in
+out/viewer/ for a person to look at."""
 import pathlib
 import shutil
 import subprocess
@@ -22,7 +23,7 @@ def needs(ok, what):
 
 
 @pytest.fixture(scope="module")
-def snapshots(tmp_path_factory):
+def copc_file(tmp_path_factory):
     needs(shutil.which("node"), "Node.js")
     needs(pathlib.Path("/usr/bin/chromium").is_file(), "Debian's chromium")
     needs((VIEWER / "dist" / "viewer.js").is_file(), "the built viewer (scripts/build)")
@@ -40,13 +41,29 @@ def snapshots(tmp_path_factory):
     r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(d / "hills.laz"), "-o", str(copc), "-q"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
-    ARTEFACTS.mkdir(parents=True, exist_ok=True)
+    return copc
+
+
+def view(copc, folder, query=""):
+    folder.mkdir(parents=True, exist_ok=True)
     sys.path.insert(0, str(VIEWER))
     import serve
-    state = serve.snapshots(copc, ARTEFACTS)
-    with laspy.CopcReader.open(str(copc)) as reader:
+    return serve.snapshots(copc, folder, query=query)
+
+
+@pytest.fixture(scope="module")
+def snapshots(copc_file):
+    state = view(copc_file, ARTEFACTS)
+    with laspy.CopcReader.open(str(copc_file)) as reader:
         depths = max(int(k.level) for k in reader.root_page.entries) + 1
     return state, depths
+
+
+@pytest.fixture(scope="module")
+def budgeted(copc_file, snapshots):
+    """The same views with a budget of a third of the points the near view drew, and no cache to speak of."""
+    budget = snapshots[0]["near"]["drawnPoints"] // 3
+    return view(copc_file, ARTEFACTS / "budget", f"budget={budget}&cache=1"), budget
 
 
 def drawn_fraction(png):
@@ -71,6 +88,24 @@ def test_coming_closer_loads_deeper_nodes(snapshots):
     assert near["drawnPoints"] > far["drawnPoints"] and drawn_fraction(ARTEFACTS / "near.png") > 0.02
 
 
+def test_going_back_draws_the_far_view_again_from_what_is_loaded(snapshots):
+    state, _ = snapshots
+    far, near, back = state["far"], state["near"], state["back"]
+    assert back["ready"] and back["drawnPoints"] == far["drawnPoints"] and back["drawnNodes"] == far["drawnNodes"]
+    assert back["requests"] == near["requests"] and back["unloadedNodes"] == 0  # within the default cache
+
+
+def test_a_budget_caps_the_points_drawn_and_the_cache_the_points_kept(snapshots, budgeted):
+    state, budget = budgeted
+    near, back = state["near"], state["back"]
+    assert state["far"]["budget"] == budget and state["far"]["cache"] == 1
+    assert near["ready"] and 0 < near["drawnPoints"] <= budget < snapshots[0]["near"]["drawnPoints"]
+    # Only what is drawn stays loaded: going back unloads the nodes only the near view drew.
+    assert back["ready"] and back["drawnPoints"] == back["loadedPoints"] > 0
+    assert near["drawnPoints"] == near["loadedPoints"] and back["unloadedNodes"] > near["unloadedNodes"]
+    assert state["errors"] == [] and all(state[k]["errors"] == [] for k in ("far", "near", "back"))
+
+
 def test_no_error_is_logged(snapshots):
     state, _ = snapshots
-    assert state["errors"] == [] and state["far"]["errors"] == [] and state["near"]["errors"] == []
+    assert state["errors"] == [] and all(state[k]["errors"] == [] for k in ("far", "near", "back"))

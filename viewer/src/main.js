@@ -1,7 +1,9 @@
 // Streams a COPC file by screen-space error: a node is drawn while its box is in view, and its
 // children are fetched (HTTP range requests) while its points' spacing, spacing / 2^depth, covers more
-// than MAX_GAP_PX pixels on screen. With geodesic-lod's files every depth cut drawn is one of its
-// nested LODs. window.viewerState reports what was loaded, for people and for the tests.
+// than MAX_GAP_PX pixels on screen, the coarsest gaps first, until the drawn points would pass the
+// point budget. Nodes out of view stay loaded up to a cache of points, the least recently drawn
+// unloaded first. With geodesic-lod's files every depth cut drawn is one of its nested LODs.
+// window.viewerState reports what was loaded, for people and for the tests.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { Copc } from 'copc';
@@ -11,10 +13,16 @@ const MAX_GAP_PX = 6;        // refine a node while its point spacing spans more
 const MAX_IN_FLIGHT = 4;     // node requests at once
 const BACKGROUND = 0x101418;
 
-const file = new URLSearchParams(location.search).get('file') || 'data.copc.laz';
+const query = new URLSearchParams(location.search);
+const file = query.get('file') || 'data.copc.laz';
+// Points drawn at most (?budget=), and points kept loaded at most (?cache=) besides those drawn: a
+// few million points is what a laptop's GPU draws smoothly; the cache spares fetching nodes again
+// when the camera comes back.
+const POINT_BUDGET = Number(query.get('budget')) || 4_000_000;
+const CACHE_POINTS = Number(query.get('cache')) || 2 * POINT_BUDGET;
 const state = (window.viewerState = {
-  file, ready: false, busy: 0, requests: 0, loadedNodes: 0, drawnNodes: 0, drawnPoints: 0, maxDepth: -1,
-  errors: [],
+  file, ready: false, busy: 0, requests: 0, loadedNodes: 0, loadedPoints: 0, unloadedNodes: 0, drawnNodes: 0,
+  drawnPoints: 0, maxDepth: -1, budget: POINT_BUDGET, cache: CACHE_POINTS, errors: [],
 });
 const fail = (what) => { state.errors.push(String(what)); status(`error: ${what}`); };
 window.addEventListener('error', (e) => fail(e.message));
@@ -85,25 +93,52 @@ async function main() {
     return new THREE.Box3(min, min.clone().addScalar(s));
   };
 
+  // The nodes to draw: in view, each refined while its gap on screen is above MAX_GAP_PX, the
+  // largest gap first, as long as its points fit in the budget (the root always).
   function wanted() {
     const frustum = new THREE.Frustum().setFromProjectionMatrix(
       new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
     const pixels = innerHeight / (2 * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2));
     const out = [];
-    const stack = ['0-0-0-0'];
-    while (stack.length) {
-      const key = stack.pop();
-      if (!nodes[key]) continue;
+    let points = 0;
+    const queue = [{ key: '0-0-0-0', gap: Infinity }];  // sorted by gap, largest last
+    while (queue.length) {
+      const { key } = queue.pop();
+      const node = nodes[key];
+      if (!node) continue;
       const [d, x, y, z] = key.split('-').map(Number);
       const box = boxOf(d, x, y, z);
       if (!frustum.intersectsBox(box)) continue;
+      if (out.length > 0 && points + node.pointCount > POINT_BUDGET) continue;
       out.push(key);
+      points += node.pointCount;
       const distance = Math.max(box.distanceToPoint(camera.position), side * 1e-6);
-      if ((copc.info.spacing / 2 ** d) / distance * pixels > MAX_GAP_PX) {
-        for (let c = 0; c < 8; c++) stack.push(`${d + 1}-${2 * x + (c & 1)}-${2 * y + ((c >> 1) & 1)}-${2 * z + (c >> 2)}`);
+      const gap = (copc.info.spacing / 2 ** d) / distance * pixels;
+      if (gap > MAX_GAP_PX) {
+        for (let c = 0; c < 8; c++) {
+          queue.push({ key: `${d + 1}-${2 * x + (c & 1)}-${2 * y + ((c >> 1) & 1)}-${2 * z + (c >> 2)}`, gap });
+        }
+        queue.sort((a, b) => a.gap - b.gap);
       }
     }
     return out;
+  }
+
+  // Unloads the nodes not drawn, least recently drawn first, until the loaded points fit the cache
+  // (or only drawn nodes are left).
+  const lastDrawn = new Map();  // key -> frame number
+  let frameNumber = 0;
+  function unload(want) {
+    const idle = [...loaded].filter(([key, points]) => points && !want.has(key))
+      .sort(([a], [b]) => (lastDrawn.get(a) || 0) - (lastDrawn.get(b) || 0));
+    for (const [key, points] of idle) {
+      if (state.loadedPoints <= CACHE_POINTS) break;
+      scene.remove(points);
+      points.geometry.dispose();
+      loaded.delete(key);
+      state.loadedPoints -= points.userData.count;
+      state.unloadedNodes++;
+    }
   }
 
   async function load(key) {
@@ -127,6 +162,7 @@ async function main() {
         points.userData = { depth: Number(key.split('-')[0]), count: view.pointCount };
         scene.add(points);
         loaded.set(key, points);
+        state.loadedPoints += view.pointCount;
       }
       state.loadedNodes++;
     } catch (e) {
@@ -139,11 +175,14 @@ async function main() {
   function update() {
     const keys = wanted();
     const want = new Set(keys);
+    frameNumber++;
+    unload(want);
     let drawnNodes = 0, drawnPoints = 0;
     for (const [key, points] of loaded) {
       if (!points) continue;
       points.visible = want.has(key);
       if (points.visible) {
+        lastDrawn.set(key, frameNumber);
         drawnNodes++;
         drawnPoints += points.userData.count;
         state.maxDepth = Math.max(state.maxDepth, points.userData.depth);
