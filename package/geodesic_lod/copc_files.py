@@ -5,7 +5,8 @@ The writer is given each record's depth; a record goes to the node of that depth
 each node is one LASzip chunk (variable-size chunks, lazrs). The records of point formats 6 to 8 are
 written bit for bit; those of formats 0 to 5 are converted to 6 or 7 (COPC allows only 6 to 8; the
 scan angle is rescaled, waveform packets are dropped). The header's fields, and the input's own VLR and
-EVLR bytes (CRS, extra bytes), are kept; the COPC info VLR comes first, as readers expect.
+EVLR bytes (CRS, extra bytes), are kept; the COPC info VLR comes first, as readers expect; a CRS given
+only as GeoTIFF keys naming an EPSG code is written as WKT too.
 """
 from __future__ import annotations
 
@@ -184,7 +185,7 @@ def assemble(f: BinaryIO, source: LasSource, fmt, stats: dict, octree: Octree, p
     laz = laz_vlr(fmt)
     info = laspy.VLR(INFO_VLR[0], INFO_VLR[1], "COPC info", bytes(INFO_VLR[2]))
     header._vlrs = VLRList([info, laspy.VLR("laszip encoded", 22204, "lazrs variable-size chunks",
-                                            laz.record_data())] + copy.copy(source.vlrs))
+                                            laz.record_data())] + copy.copy(source.vlrs) + wkt_of_geokeys(source))
     header.number_of_evlrs = 1 + len(source.evlrs)
     header.start_of_first_evlr = 0
     header.write_to(f)
@@ -222,6 +223,26 @@ def assemble(f: BinaryIO, source: LasSource, fmt, stats: dict, octree: Octree, p
     f.seek(0)
     header.write_to(f, ensure_same_size=True)
     return [(k[0], k[1], k[2], k[3], v[2]) for k, v in sorted(entries.items())]
+
+
+def wkt_of_geokeys(source: LasSource) -> list:
+    """The CRS as a WKT record, for a source that gives it only as GeoTIFF keys naming an EPSG code:
+    COPC readers look for WKT (formats 6 to 10 give the CRS as WKT). None when the source has a WKT
+    record, no CRS, or keys naming no EPSG code (a CRS defined key by key: its keys are kept as they are)."""
+    import laspy
+    from laspy.vlrs.known import GeoKeyDirectoryVlr, WktCoordinateSystemVlr
+    crs = [v for v in source.vlrs + source.evlrs if v.user_id == "LASF_Projection"]
+    keys = [v for v in crs if v.record_id == GeoKeyDirectoryVlr.official_record_ids()[0]]
+    if not keys or any(v.record_id in WktCoordinateSystemVlr.official_record_ids() for v in crs):
+        return []
+    directory = GeoKeyDirectoryVlr()
+    directory.parse_record_data(keys[0].record_data)
+    parsed = directory.parse_crs()
+    if parsed is None:
+        return []
+    wkt = WktCoordinateSystemVlr(parsed.to_wkt())
+    return [laspy.VLR("LASF_Projection", WktCoordinateSystemVlr.official_record_ids()[0],
+                      "OGC WKT, from the GeoTIFF keys", wkt.record_data_bytes())]
 
 
 def _evlr(user_id: str, record_id: int, description, data: bytes) -> bytes:

@@ -2,6 +2,8 @@
 (laspy's CopcReader and copclib) accept, holding every input record once (bit for bit for point formats 6
 to 8), with the input's own VLRs and EVLRs, whose depth-d cut is the octree LOD's; refused with one line
 for what it cannot hold, and never left half-written."""
+import struct
+
 import copclib
 import laspy
 import numpy as np
@@ -93,8 +95,48 @@ def test_every_shared_lidar_file_becomes_a_copc_file(tmp_path, name):
     for dim in ("X", "Y", "Z", "intensity", "return_number", "classification", "gps_time"):
         if dim in las.point_format.dimension_names:
             assert np.array_equal(np.sort(np.asarray(got[dim])), np.sort(np.asarray(las[dim]))), dim
-    assert own_records(out) == own_records(src)
+    assert own_records(out)[:len(own_records(src))] == own_records(src)
+    crs = las.header.parse_crs()
+    if crs is not None:  # the input's CRS is the output's, as WKT
+        assert wkt_crs(out) == crs
     assert copclib.FileReader(str(out)).ValidateSpatialBounds(False)
+
+
+def wkt_crs(path):
+    """The CRS of a file's WKT record (None without one)."""
+    h = laspy.read(str(path)).header
+    records = [v for v in list(h.vlrs) + list(h.evlrs or []) if isinstance(v, laspy.vlrs.known.WktCoordinateSystemVlr)]
+    return records[0].parse_crs() if records else None
+
+
+def geokeys_cloud(path, epsg):
+    """A LAS 1.2 cloud whose CRS is only GeoTIFF keys: ProjectedCSTypeGeoKey = epsg (32767: user-defined)."""
+    header = laspy.LasHeader(point_format=3, version="1.2")
+    header.scales, header.offsets = [0.01] * 3, [500000.0, 4000000.0, 0.0]
+    # Directory version 1.1.0, 2 keys: GTModelTypeGeoKey = 1 (projected), ProjectedCSTypeGeoKey = epsg.
+    keys = struct.pack("<12H", 1, 1, 0, 2, 1024, 0, 1, 1, 3072, 0, 1, epsg)
+    header.vlrs.append(laspy.VLR("LASF_Projection", 34735, "GeoTIFF GeoKeyDirectoryTag", keys))
+    las = laspy.LasData(header)
+    p = wavy_strip()
+    las.x, las.y, las.z = 500000 + p[:, 0], 4000000 + p[:, 1], p[:, 2]
+    las.write(str(path))
+    return path
+
+
+def test_a_crs_given_as_geotiff_keys_naming_an_epsg_code_is_written_as_wkt_too(tmp_path):
+    import pyproj
+    for epsg, wkt in ((32617, True), (32767, False)):
+        src = geokeys_cloud(tmp_path / f"keys{epsg}.las", epsg)
+        out = tmp_path / f"keys{epsg}.copc.laz"
+        r = run(src, "-o", out, "-q")
+        assert r.returncode == 0, r.stderr
+        kept, added = own_records(out)[:len(own_records(src))], own_records(out)[len(own_records(src)):]
+        assert kept == own_records(src)  # the keys, as they were
+        if wkt:
+            assert [(a[0], a[1]) for a in added] == [(b"LASF_Projection", (2112).to_bytes(2, "little"))]
+            assert wkt_crs(out) == pyproj.CRS.from_epsg(epsg)
+        else:
+            assert added == [] and wkt_crs(out) is None  # a CRS defined key by key: no WKT to give
 
 
 def test_formats_0_to_5_are_converted_with_their_values(tmp_path):
