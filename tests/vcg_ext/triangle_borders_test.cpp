@@ -1,7 +1,11 @@
 // vcg_ext/triangle_borders.h: the edges of one triangle only, in the order
 // the triangle runs them, and the points that end them.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <array>
+#include <map>
+#include <random>
+#include <utility>
 #include <vector>
 #include <vcg_ext/triangle_borders.h>
 
@@ -37,6 +41,26 @@ TEST(TriangleBorders, PointsAreTheBordersEnds) {
   // Opened: the centre too.
   EXPECT_EQ(TriangleBorders::Points({{0, 1, 2}, {0, 2, 3}}, 4), (std::vector<char>{1, 1, 1, 1}));
   EXPECT_TRUE(TriangleBorders::Points({}, 0).empty());
+}
+
+TEST(TriangleBorders, EdgesAreTheEdgesOfOneTriangleOnRandomSoups) {
+  // Against a count of every edge in a map: soups with repeated, degenerate and crowded edges.
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 100; ++trial) {
+    const int n = 3 + int(rng() % 30);
+    Triangles tri(1 + rng() % 60);
+    for (auto& t : tri) t = {int(rng() % n), int(rng() % n), int(rng() % n)};
+    std::map<std::pair<int, int>, std::vector<std::array<int, 3>>> seen;  // (lower, higher) -> (u, v, face)
+    for (size_t f = 0; f < tri.size(); ++f)
+      for (size_t e = 0; e < 3; ++e) {
+        const int u = tri[f][e], v = tri[f][(e + 1) % 3];
+        seen[{std::min(u, v), std::max(u, v)}].push_back({u, v, int(f)});
+      }
+    std::vector<std::array<int, 3>> want;
+    for (const auto& [edge, in] : seen)
+      if (in.size() == 1) want.push_back(in[0]);
+    ASSERT_EQ(Listed(tri), want) << "trial " << trial;
+  }
 }
 
 }  // namespace triangle_borders_test
