@@ -379,9 +379,12 @@ def time_line(runs, models, rates):
             faster.append(f"{label(peer)} ({np.median(ratios):.1f}x, median)")
         elif ratios and max(ratios) < 1:
             slower.append(f"{label(peer)} ({1 / np.median(ratios):.1f}x, median)")
-    return ("Time to the count (searches included for every method): our curvature-density Poisson LOD is "
-            "slower in every cell than " + (", ".join(faster) if faster else "none of the peers")
-            + "; faster in every cell than " + (", ".join(slower) if slower else "none of them") + ".")
+    ours = "our curvature-density Poisson LOD"
+    return ("Time to the count (searches included for every method): "
+            + (f"{ours} is slower in every cell than {', '.join(faster)}" if faster
+               else f"no peer is faster than {ours} in every cell")
+            + "; " + (f"it is faster in every cell than {', '.join(slower)}" if slower
+                      else "it is faster than no peer in every cell") + ".")
 
 
 def mean_rank(runs, models, rates, what):
