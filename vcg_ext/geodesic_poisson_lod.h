@@ -97,7 +97,7 @@ class GeodesicPoissonLod {
   /// in its order. Every border point then lies within a disk of a border
   /// sample, so the LOD's border follows the input's; in random order a border
   /// stretch may hold no sample and the LOD's border cuts up to a radius inside
-  /// it, the largest error on open meshes (docs/mesh_lod.md). O(triangles log triangles).
+  /// it, the largest error on open meshes (docs/mesh_lod.md). O(triangles).
   static void BorderFirst(const Domain& d, std::vector<int>& order) {
     if (d.triangles.empty()) return;
     const std::vector<char> border = TriangleBorders::Points(d.triangles, d.size());

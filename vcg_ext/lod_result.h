@@ -55,8 +55,10 @@ struct LodResult {
 
   /// The triangle mesh of `samples` (point indices of `d`): their geodesic
   /// Delaunay triangles read from `voronoi` (per point, the rank of its nearest
-  /// sample; on the input's border, of its border's nearest, BorderOwners), small holes the input lacks closed (HoleClosing), and `position` (the samples' input points) placed as
-  /// `placement` says, the optimization reported to `progress`. `borderPoints`: TriangleBorders::Points of the
+  /// sample; on the input's border, of its border line's nearest, BorderOwners),
+  /// small holes the input lacks closed (HoleClosing), and `position` (the
+  /// samples' input points) placed as `placement` says, the optimization
+  /// reported to `progress`. `borderPoints`: TriangleBorders::Points of the
   /// domain's triangles, when the caller makes several meshes of one domain (else found here).
   static void MeshOf(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, const std::vector<int>& voronoi,
                      Placement placement, std::vector<std::array<int, 3>>& faces,
