@@ -10,7 +10,8 @@
 // to its nearest input border point, as no point lies beyond a border. A
 // flip never makes an edge of more than two triangles, never makes a triangle
 // facing away from either of the two it replaces, and keeps the orientation; a
-// fit never turns a triangle over (a vertex that would stays where it was).
+// fit never turns a triangle over, nor takes a vertex farther from its region's
+// points than they lay from where it started (a vertex that would stays where it was).
 // Cost per round: the flips, O(edges x points of four regions x triangles
 // around them) per pass; the fit, O(points x triangles around their sample)
 // and a sparse Cholesky factorization of a samples x samples system.
@@ -51,6 +52,7 @@ class MeshOptimization {
                       Progress progress = Progress(nullptr), const Param& p = Param()) {
     if (faces.empty()) return;
     Mesh m(pts, owner, onBorder, normal, pos, faces);
+    m.SetReach();
     const size_t steps = size_t(p.rounds) * size_t(p.flipPasses + p.fitIterations);
     size_t step = 0;
     for (int round = 0; round < p.rounds; ++round) {
@@ -123,6 +125,7 @@ class MeshOptimization {
     std::vector<Eigen::Vector3d> up;         // per sample, the surface's normal
     std::vector<std::array<int, 3>> faces;
     std::vector<std::vector<int>> around;    // per sample, its faces
+    std::vector<double> reach;               // per sample, how far from its region's points it may go
 
     Mesh(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner, const std::vector<char>& onBorder,
          const std::vector<vcg::Point3<Scalar>>& normal, const std::vector<vcg::Point3<Scalar>>& pos,
@@ -144,6 +147,23 @@ class MeshOptimization {
       for (const auto& v : normal) up.emplace_back(v[0], v[1], v[2]);
       for (size_t t = 0; t < faces.size(); ++t)
         for (int v : faces[t]) around[size_t(v)].push_back(int(t));
+    }
+
+    // The squared distance from `y` to the nearest point of sample s's region (infinite: none).
+    double ToRegion(size_t s, const Eigen::Vector3d& y) const {
+      double best = std::numeric_limits<double>::infinity();
+      for (size_t i = first[s]; i < first[s + 1]; ++i) best = std::min(best, (q[i] - y).squaredNorm());
+      return best;
+    }
+    // A vertex may end as far from its region's points as it started, or as
+    // the farthest of them lay from it: the region's own scale.
+    void SetReach() {
+      reach.assign(x.size(), 0);
+      for (size_t s = 0; s < x.size(); ++s) {
+        double farthest = 0;
+        for (size_t i = first[s]; i < first[s + 1]; ++i) farthest = std::max(farthest, (q[i] - x[s]).squaredNorm());
+        reach[s] = std::max(farthest, ToRegion(s, x[s]));
+      }
     }
 
     double Dist(size_t k, const std::array<int, 3>& t) const {
@@ -338,7 +358,13 @@ class MeshOptimization {
       std::vector<Eigen::Vector3d> before = x;
       std::vector<char> wasUp(faces.size());
       for (size_t t = 0; t < faces.size(); ++t) wasUp[t] = FacesUp(faces[t]);
-      for (size_t s = 0; s < n; ++s) x[s] = solved.row(Eigen::Index(s)).transpose();
+      for (size_t s = 0; s < n; ++s) {
+        const Eigen::Vector3d y = solved.row(Eigen::Index(s)).transpose();
+        // A vertex few points hold (a corner of one triangle, a border's end) can
+        // swing far off the surface to tilt its triangles for points near their
+        // other edges: it stays where it was.
+        if (ToRegion(s, y) <= reach[s]) x[s] = y;
+      }
       for (bool turned = true; turned;) {
         turned = false;
         for (size_t k = 0; k < faces.size(); ++k) {
