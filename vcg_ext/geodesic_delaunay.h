@@ -45,7 +45,7 @@ class GeodesicDelaunay {
   /// fewer than three samples keep theirs: one or two would close the hole.
   static std::vector<int> BorderOwners(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples,
                                        const std::vector<int>& owner) {
-    const std::vector<typename TriangleBorders::Edge> edges = TriangleBorders::Edges(d.triangles);
+    const std::vector<TriangleBorders::Edge>& edges = d.borderEdges;
     std::vector<int> out = owner;
     if (edges.empty()) return out;
     std::vector<std::vector<std::pair<int, float>>> next(d.size());

@@ -15,6 +15,7 @@
 #include "geodesic_metric.h"
 #include "knn_table.h"
 #include "mesh_triangles.h"
+#include "triangle_borders.h"
 #include "neighbour_graph.h"
 #include "normal_variation.h"
 #include "point_normals.h"
@@ -59,6 +60,10 @@ class GeodesicDomain {
   NeighbourGraph<Scalar> graph;     ///< point-graph geodesics, weights by Lengths()
   FastMarchingMesh<Scalar> fmMesh;  ///< mesh geodesics
   std::vector<std::array<int, 3>> triangles;  ///< the layer's usable triangles, point indices
+  /// The edges of one of those triangles (TriangleBorders): where a mesh LOD's
+  /// border must follow the input's (its samples' order, regions and fit).
+  std::vector<TriangleBorders::Edge> borderEdges;
+  std::vector<char> onBorder;       ///< per point, whether it ends a border edge (empty without triangles)
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
@@ -159,6 +164,10 @@ class GeodesicDomain {
                                                   progress.Sub(75, 95));
     }
     progress(95, 100, "Building the geodesic domain");
+    if (!d.triangles.empty()) {
+      d.borderEdges = TriangleBorders::Edges(d.triangles);
+      d.onBorder = TriangleBorders::Ends(d.borderEdges, d.size());
+    }
     if (d.meshGeodesics) {
       // Vertices a mesh repeats (seams, split normals) are joined at no cost.
       d.fmMesh = FastMarchingMesh<Scalar>::Build(d.points.pos, d.triangles, d.Lengths().weight,
@@ -188,7 +197,7 @@ class GeodesicDomain {
     const auto& g = meshGeodesics ? fmMesh.edges : graph;
     return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) +
            Bytes(g.offset) + Bytes(g.adj) + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
-           Bytes(triangles) + Bytes(reach);
+           Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach);
   }
 
   /// The point number of each mesh vertex (index in m.vert, below

@@ -13,7 +13,6 @@
 #include "geodesic_fps_lod.h"
 #include "geodesic_delaunay.h"
 #include "geodesic_poisson_lod.h"
-#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -80,8 +79,6 @@ class GeodesicLodPyramid {
     r.coarsest.assign(order.size(), 0);
     for (size_t k = 1; k < p.counts.size(); ++k)
       for (size_t i = 0; i < p.counts[k]; ++i) r.coarsest[i] = int(k);
-    const std::vector<char> borderPoints =
-        p.meshOutput ? TriangleBorders::Points(d.triangles, d.size()) : std::vector<char>();
     if (p.meshOutput)
       for (size_t k = 0; k < p.counts.size(); ++k) {
         const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
@@ -90,7 +87,7 @@ class GeodesicLodPyramid {
         r.levelPositions.emplace_back(r.position.begin(), r.position.begin() + p.counts[k]);
         const int from = int(83 + 17 * k / p.counts.size()), to = int(83 + 17 * (k + 1) / p.counts.size());
         LodResult<Scalar>::MeshOf(d, level, owner, p.placement, r.levelFaces.back(), r.levelPositions.back(),
-                                  progress.Sub(from, to), &borderPoints);
+                                  progress.Sub(from, to));
         progress(size_t(to), 100, "Triangulating the levels");
       }
     if (p.meshOutput) r.position = r.levelPositions[0];

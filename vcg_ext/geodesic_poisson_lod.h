@@ -15,7 +15,6 @@
 #include "poisson_target_count.h"
 #include "priority_order.h"
 #include "prominence.h"
-#include "triangle_borders.h"
 
 namespace vcg_ext {
 
@@ -97,11 +96,10 @@ class GeodesicPoissonLod {
   /// in its order. Every border point then lies within a disk of a border
   /// sample, so the LOD's border follows the input's; in random order a border
   /// stretch may hold no sample and the LOD's border cuts up to a radius inside
-  /// it, the largest error on open meshes (docs/mesh_lod.md). O(triangles).
+  /// it, the largest error on open meshes (docs/mesh_lod.md). O(points).
   static void BorderFirst(const Domain& d, std::vector<int>& order) {
-    if (d.triangles.empty()) return;
-    const std::vector<char> border = TriangleBorders::Points(d.triangles, d.size());
-    std::stable_partition(order.begin(), order.end(), [&](int i) { return border[size_t(i)] != 0; });
+    if (d.onBorder.empty()) return;
+    std::stable_partition(order.begin(), order.end(), [&](int i) { return d.onBorder[size_t(i)] != 0; });
   }
 
   /// Samples of the domain, by disks of its metric and geodesics.

@@ -58,28 +58,23 @@ struct LodResult {
   /// sample; on the input's border, of its border line's nearest, BorderOwners),
   /// small holes the input lacks closed (HoleClosing), and `position` (the
   /// samples' input points) placed as `placement` says, the optimization
-  /// reported to `progress`. `borderPoints`: TriangleBorders::Points of the
-  /// domain's triangles, when the caller makes several meshes of one domain (else found here).
+  /// reported to `progress`.
   static void MeshOf(const GeodesicDomain<Scalar>& d, const std::vector<int>& samples, const std::vector<int>& voronoi,
                      Placement placement, std::vector<std::array<int, 3>>& faces,
-                     std::vector<vcg::Point3<Scalar>>& position, Progress progress = Progress(nullptr),
-                     const std::vector<char>* borderPoints = nullptr) {
+                     std::vector<vcg::Point3<Scalar>>& position, Progress progress = Progress(nullptr)) {
     faces = GeodesicDelaunay<Scalar>::Compute(d.points.pos, d.triangles,
                                               GeodesicDelaunay<Scalar>::BorderOwners(d, samples, voronoi), samples);
     // The holes the read-off leaves where regions wrap a thin part close; the input's own stay open.
-    std::vector<char> found;
-    if (!borderPoints) found = TriangleBorders::Points(d.triangles, d.size());
-    const std::vector<char>& inputBorder = borderPoints ? *borderPoints : found;
     std::vector<char> stayOpen(samples.size(), 0);
-    for (size_t i = 0; i < inputBorder.size(); ++i)
-      if (inputBorder[i] && voronoi[i] >= 0) stayOpen[size_t(voronoi[i])] = 1;
+    for (size_t i = 0; i < d.onBorder.size(); ++i)
+      if (d.onBorder[i] && voronoi[i] >= 0) stayOpen[size_t(voronoi[i])] = 1;
     HoleClosing<Scalar>::Compute(position, stayOpen, faces);
     if (placement == Placement::InputVertices) return;
     position = QuadricPlacement<Scalar>::Compute(d.points.pos, d.triangles, voronoi, samples);
     if (placement != Placement::Optimized) return;
     std::vector<vcg::Point3<Scalar>> normal;
     for (int i : samples) normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[size_t(i)]));
-    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, inputBorder, normal, position, faces, progress);
+    MeshOptimization<Scalar>::Compute(d.points.pos, voronoi, d.onBorder, normal, position, faces, progress);
   }
 
   /// The data of `samples` (point indices of `d`).

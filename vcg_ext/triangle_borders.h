@@ -50,12 +50,14 @@ class TriangleBorders {
     return borders;
   }
 
-  /// Per index below `n`, whether it ends a border edge.
-  static std::vector<char> Points(const std::vector<std::array<int, 3>>& tri, size_t n) {
+  /// Per index below `n`, whether it ends one of the border edges `edges`.
+  static std::vector<char> Ends(const std::vector<Edge>& edges, size_t n) {
     std::vector<char> on(n, 0);
-    for (const Edge& e : Edges(tri)) on[size_t(e.u)] = on[size_t(e.v)] = 1;
+    for (const Edge& e : edges) on[size_t(e.u)] = on[size_t(e.v)] = 1;
     return on;
   }
+  /// Per index below `n`, whether it ends a border edge of `tri`.
+  static std::vector<char> Points(const std::vector<std::array<int, 3>>& tri, size_t n) { return Ends(Edges(tri), n); }
 };
 
 }  // namespace vcg_ext

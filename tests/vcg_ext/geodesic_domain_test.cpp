@@ -2,8 +2,9 @@
 // usable or not; `vertexCount` is the input's vertex count, deleted vertices
 // included, and at least one past the largest vertIndex of a hand-made point
 // set; in Mesh mode the vertices in no triangle are left out (counted in
-// `leftOut`) and never sampled; PointOfVertex maps every vertex back to its
-// point, -1 for the left-out and the deleted ones.
+// `leftOut`) and never sampled; its border is the edges of one triangle;
+// PointOfVertex maps every vertex back to its point, -1 for the left-out and
+// the deleted ones.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <set>
@@ -70,6 +71,26 @@ TEST(GeodesicDomain, ACloudHasNoFaces) {
   test::TMesh mesh;
   test::GridMesh(mesh, 15, [](float, float) { return 0.f; });
   EXPECT_TRUE(Domain::FromMesh(mesh, Domain::Param()).hasFaces);
+}
+
+TEST(GeodesicDomain, ItsBorderIsTheRimOfAnOpenGridAndACloudHasNone) {
+  test::TMesh mesh;
+  const int n = 15;
+  test::GridMesh(mesh, n, [](float x, float y) { return test::HalfBumpy(x, y); });
+  const Domain d = Domain::FromMesh(mesh, Mode(GeodesicMode::Mesh));
+  ASSERT_EQ(d.onBorder.size(), d.size());
+  EXPECT_EQ(d.borderEdges.size(), size_t(4 * (n - 1)));
+  for (size_t i = 0; i < d.size(); ++i) {
+    const auto& p = d.points.pos[i];
+    const bool rim = p[0] == 0 || p[1] == 0 || p[0] == 1 || p[1] == 1;
+    EXPECT_EQ(d.onBorder[i] != 0, rim) << "point " << i;
+  }
+  for (const auto& e : d.borderEdges) EXPECT_TRUE(d.onBorder[size_t(e.u)] && d.onBorder[size_t(e.v)]);
+  test::TMesh cloud;
+  test::Plane(cloud, n);
+  const Domain c = Domain::FromMesh(cloud, Domain::Param());
+  EXPECT_TRUE(c.onBorder.empty());
+  EXPECT_TRUE(c.borderEdges.empty());
 }
 
 TEST(GeodesicDomain, VertexCountIsTheMeshsWithItsDeletedVertices) {
