@@ -38,10 +38,17 @@ def _node_counts(cells: partition.Partition, cell: int, octree: Octree) -> list:
     """A Dask task: per depth 0 to MAX_TILE_DEPTH, a cell's points per node, as (packed keys, counts)."""
     parts = [[] for _ in range(MAX_TILE_DEPTH + 1)]
     for xyz in cells.cell_xyz(cell):
-        finest = octree.finest(xyz)
-        for t in range(MAX_TILE_DEPTH + 1):
-            parts[t].append(np.unique(packed(finest >> (FINEST_BITS - t)), return_counts=True))
+        # The points are sorted once, at the deepest depth; each shallower depth merges the nodes below it.
+        nodes = np.unique(packed(octree.finest(xyz) >> (FINEST_BITS - MAX_TILE_DEPTH)), return_counts=True)
+        for t in reversed(range(MAX_TILE_DEPTH + 1)):
+            parts[t].append(nodes)
+            nodes = _add_counts([(_parent(nodes[0]), nodes[1])])
     return [_add_counts(p) for p in parts]
+
+
+def _parent(keys: np.ndarray) -> np.ndarray:
+    """The packed keys (``octree.packed``) of the nodes one depth up: each coordinate halved."""
+    return (keys >> 1) & ~np.int64((1 << 41) | (1 << 20))
 
 
 def _add_counts(parts) -> tuple:

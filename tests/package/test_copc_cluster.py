@@ -46,6 +46,25 @@ def client():
         yield c
 
 
+def test_node_counts_at_every_tile_depth_are_the_points_per_node():
+    """The counts the tiling is chosen by: per depth, each node's points, the points split in two batches."""
+    from geodesic_lod.copc_files import FINEST_BITS, Octree
+    from geodesic_lod.octree import packed
+    xyz = np.random.default_rng(3).random((50000, 3)) * [100, 70, 5]
+    octree = Octree.around(xyz)
+
+    class Cells:
+        def cell_xyz(self, cell):
+            return [xyz[:20000], xyz[20000:]]
+    counts = copc_cluster._node_counts(Cells(), 0, octree)
+    assert len(counts) == copc_cluster.MAX_TILE_DEPTH + 1
+    for depth, (keys, n) in enumerate(counts):
+        want, want_n = np.unique(packed(octree.finest(xyz) >> (FINEST_BITS - depth)), return_counts=True)
+        np.testing.assert_array_equal(keys, want)
+        np.testing.assert_array_equal(n, want_n)
+    assert len(counts[-1][0]) > 1000, "too few nodes at the deepest depth for the test to mean anything"
+
+
 @pytest.mark.parametrize("tile_points", [2000, 7000, 10 ** 6])
 def test_any_tiling_gives_the_single_machine_nodes(strip, client, tmp_path, tile_points):
     parts, one = strip
