@@ -27,6 +27,9 @@ FINEST_BITS = (CELLS << MAX_DEPTH).bit_length() - 1
 INFO_VLR = ("copc", 1, 160)  # user id, record id, size
 HIERARCHY_EVLR = ("copc", 1000)
 ENTRY = struct.Struct("<iiiiQii")  # a hierarchy entry: the node's key (depth, x, y, z), offset, bytes, points
+# The most entries a hierarchy page holds: a viewer reads the root page first and a subtree's page when it
+# gets there, a few hundred kilobytes each (32 bytes an entry), rather than one page of every node.
+PAGE_ENTRIES = 8192
 
 
 @dataclass
@@ -210,19 +213,50 @@ def assemble(f: BinaryIO, source: LasSource, fmt, stats: dict, octree: Octree, p
         while d > 0:
             d, x, y, z = d - 1, x >> 1, y >> 1, z >> 1
             entries.setdefault((d, x, y, z), (0, 0, 0))
-    page = b"".join(ENTRY.pack(*k, *v) for k, v in sorted(entries.items()))
+    root, pages = hierarchy_pages(entries, end + 60)
 
     f.seek(end)
     header.start_of_first_evlr = end
-    f.write(_evlr(*HIERARCHY_EVLR, "EPT hierarchy", page))
+    f.write(_evlr(*HIERARCHY_EVLR, "EPT hierarchy", root + b"".join(pages)))
     for v in source.evlrs:
         f.write(_evlr(v.user_id, v.record_id, v.description, v.record_data))
     gps = stats.get("gps", [0.0, 0.0])
     info.record_data = struct.pack("<5d2Q2d88x", *octree.center, octree.halfsize, octree.spacing, end + 60,
-                                   len(page), gps[0], gps[1])
+                                   len(root), gps[0], gps[1])
     f.seek(0)
     header.write_to(f, ensure_same_size=True)
     return [(k[0], k[1], k[2], k[3], v[2]) for k, v in sorted(entries.items())]
+
+
+def hierarchy_pages(entries: dict, at: int) -> tuple:
+    """The hierarchy as pages of at most PAGE_ENTRIES entries where the nodes allow: the root page, then
+    the child pages, laid out from file offset `at`. `entries`: per node key (depth, x, y, z), its (offset,
+    bytes, points). Past PAGE_ENTRIES nodes, the root page holds the nodes above a depth p and, for each
+    node of depth p, an entry of -1 points giving its subtree's page (that node and all below it); p is
+    the shallowest depth whose subtrees each fit a page."""
+    def pack(keys):
+        return b"".join(ENTRY.pack(*k, *entries[k]) for k in keys)
+    keys = sorted(entries)
+    if len(keys) <= PAGE_ENTRIES:
+        return pack(keys), []
+    deepest = max(k[0] for k in keys)
+    for p in range(1, deepest + 1):
+        subtrees = {}
+        for k in keys:
+            if k[0] >= p:
+                s = k[0] - p
+                subtrees.setdefault((p, k[1] >> s, k[2] >> s, k[3] >> s), []).append(k)
+        if max(len(v) for v in subtrees.values()) <= PAGE_ENTRIES:
+            break
+    above = [k for k in keys if k[0] < p]
+    root_size = ENTRY.size * (len(above) + len(subtrees))
+    pointers, pages, offset = [], [], at + root_size
+    for top in sorted(subtrees):
+        page = pack(subtrees[top])
+        pointers.append(ENTRY.pack(*top, offset, len(page), -1))
+        pages.append(page)
+        offset += len(page)
+    return pack(above) + b"".join(pointers), pages
 
 
 def wkt_of_geokeys(source: LasSource) -> list:

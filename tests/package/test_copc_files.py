@@ -69,6 +69,40 @@ def test_copclib_reads_the_same_nodes(strip_copc):
     assert np.array_equal(np.unique(xyz, axis=0), np.unique(np.column_stack([las.x, las.y, las.z]), axis=0))
 
 
+def pages(path) -> list:
+    """The hierarchy's pages, root first, each as its entries (depth, x, y, z, offset, bytes, points)."""
+    from geodesic_lod.copc_files import ENTRY
+    with laspy.CopcReader.open(str(path)) as reader:
+        info = reader.copc_info
+    with open(path, "rb") as f:
+        def read(offset, size):
+            f.seek(offset)
+            return list(ENTRY.iter_unpack(f.read(size)))
+        out, todo = [], [(info.hierarchy_root_offset, info.hierarchy_root_size)]
+        while todo:
+            out.append(read(*todo.pop(0)))
+            todo += [(e[4], e[5]) for e in out[-1] if e[6] == -1]
+    return out
+
+
+def test_a_hierarchy_of_many_nodes_is_split_in_pages_that_both_readers_follow(strip_copc, tmp_path, monkeypatch):
+    from geodesic_lod import copc_files
+    from test_copc_cluster import nodes
+    src, one_page = strip_copc
+    assert len(pages(one_page)) == 1
+    monkeypatch.setattr(copc_files, "PAGE_ENTRIES", 12)
+    paged = tmp_path / "paged.copc.laz"
+    gl.write_copc(src, paged)
+    got = pages(paged)
+    assert len(got) > 2 and all(len(p) <= 12 for p in got[1:])
+    keys = [e[:4] for p in got for e in p if e[6] != -1]
+    assert len(keys) == len(set(keys)) == len(pages(one_page)[0]), "every node once, in some page"
+    assert nodes(paged) == nodes(one_page)  # copclib, through the pages
+    with laspy.CopcReader.open(str(paged)) as a, laspy.CopcReader.open(str(one_page)) as b:
+        for d in range(4):
+            assert record_bytes(a.query(level=d).array) == record_bytes(b.query(level=d).array), f"depth {d}"
+
+
 def test_the_inputs_own_records_are_kept(strip_copc):
     src, out = strip_copc
     assert own_records(out) == own_records(src)
