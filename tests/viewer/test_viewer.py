@@ -1,6 +1,7 @@
 """The COPC viewer (viewer/) in headless Chromium on a COPC file geodesic-lod wrote: the page loads,
 draws points, fetches deeper nodes when the camera comes closer, draws what it drew from afar when the
-camera goes back, keeps to a point budget and a cache, and logs no error. The screenshots are kept in
+camera goes back, keeps to a point budget and a cache, reads a hierarchy page below the root only when it
+refines into its subtree, and logs no error. The screenshots are kept in
 out/viewer/ for a person to look at."""
 import pathlib
 import shutil
@@ -109,3 +110,30 @@ def test_a_budget_caps_the_points_drawn_and_the_cache_the_points_kept(snapshots,
 def test_no_error_is_logged(snapshots):
     state, _ = snapshots
     assert state["errors"] == [] and all(state[k]["errors"] == [] for k in ("far", "near", "back"))
+
+
+@pytest.fixture(scope="module")
+def paged(copc_file):
+    """The same points written with at most 4 entries a hierarchy page: the root page holds depths 0 and 1
+    (5 nodes), and a page below it each subtree of depth 2."""
+    out = copc_file.parent / "hills_paged.copc.laz"
+    code = ("import sys; import geodesic_lod as gl; from geodesic_lod import copc_files; "
+            "copc_files.PAGE_ENTRIES = 4; gl.write_copc(sys.argv[1], sys.argv[2])")
+    subprocess.run([sys.executable, "-c", code, str(copc_file.parent / "hills.laz"), str(out)], check=True,
+                   timeout=300)
+    with laspy.CopcReader.open(str(out)) as reader:
+        below = sum(1 for e in reader.root_page.entries.values() if e.point_count == -1)
+    return view(out, ARTEFACTS / "paged"), below
+
+
+def test_a_paged_hierarchy_draws_the_same_reading_pages_as_the_view_reaches_them(snapshots, paged):
+    state, below = paged
+    assert below > 1
+    for k in ("far", "near", "back"):
+        got, one = state[k], snapshots[0][k]
+        assert got["ready"] and got["errors"] == [], k
+        assert (got["drawnNodes"], got["drawnPoints"]) == (one["drawnNodes"], one["drawnPoints"]), k
+    # From afar only depths 0 and 1 are drawn (test_the_page_draws_the_coarse_depths_from_afar): the root
+    # page is all it reads. Closer, it reads the pages of the subtrees it refines into, not more.
+    assert state["far"]["maxDepth"] <= 1 and state["far"]["pages"] == 1
+    assert 1 < state["near"]["pages"] <= 1 + below

@@ -2,7 +2,8 @@
 // children are fetched (HTTP range requests) while its points' spacing, spacing / 2^depth, covers more
 // than MAX_GAP_PX pixels on screen, the coarsest gaps first, until the drawn points would pass the
 // point budget. Nodes out of view stay loaded up to a cache of points, the least recently drawn
-// unloaded first. With geodesic-lod's files every depth cut drawn is one of its nested LODs.
+// unloaded first. A hierarchy page below the root page is read when the refinement first reaches its
+// subtree. With geodesic-lod's files every depth cut drawn is one of its nested LODs.
 // window.viewerState reports what was loaded, for people and for the tests.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -21,7 +22,7 @@ const file = query.get('file') || 'data.copc.laz';
 const POINT_BUDGET = Number(query.get('budget')) || 4_000_000;
 const CACHE_POINTS = Number(query.get('cache')) || 2 * POINT_BUDGET;
 const state = (window.viewerState = {
-  file, ready: false, busy: 0, requests: 0, loadedNodes: 0, loadedPoints: 0, unloadedNodes: 0, drawnNodes: 0,
+  file, ready: false, busy: 0, requests: 0, pages: 0, loadedNodes: 0, loadedPoints: 0, unloadedNodes: 0, drawnNodes: 0,
   drawnPoints: 0, maxDepth: -1, budget: POINT_BUDGET, cache: CACHE_POINTS, errors: [],
 });
 const fail = (what) => { state.errors.push(String(what)); status(`error: ${what}`); };
@@ -63,7 +64,7 @@ async function main() {
   const lazPerf = await createLazPerf({ locateFile: (f) => new URL(f, location.href).href });
   const copc = await Copc.create(getter);
   const { nodes, pages } = await Copc.loadHierarchyPage(getter, copc.info.rootHierarchyPage);
-  for (const page of Object.values(pages)) Object.assign(nodes, (await Copc.loadHierarchyPage(getter, page)).nodes);
+  state.pages = 1;
   const [x0, y0, z0, x1, y1, z1] = copc.info.cube;
   const centre = new THREE.Vector3((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2);
   const side = x1 - x0;
@@ -105,7 +106,10 @@ async function main() {
     while (queue.length) {
       const { key } = queue.pop();
       const node = nodes[key];
-      if (!node) continue;
+      if (!node) {
+        if (pages[key]) loadPage(key);
+        continue;
+      }
       const [d, x, y, z] = key.split('-').map(Number);
       const box = boxOf(d, x, y, z);
       if (!frustum.intersectsBox(box)) continue;
@@ -138,6 +142,26 @@ async function main() {
       loaded.delete(key);
       state.loadedPoints -= points.userData.count;
       state.unloadedNodes++;
+    }
+  }
+
+  // Reads the hierarchy page of the subtree at `key` (once), then looks at the view again.
+  const pagesLoading = new Set();
+  async function loadPage(key) {
+    if (pagesLoading.has(key)) return;
+    pagesLoading.add(key);
+    state.busy++;
+    try {
+      const page = await Copc.loadHierarchyPage(getter, pages[key]);
+      Object.assign(nodes, page.nodes);
+      Object.assign(pages, page.pages);
+      delete pages[key];
+      state.pages++;
+    } catch (e) {
+      fail(`hierarchy page ${key}: ${e.message || e}`);
+    } finally {
+      state.busy--;
+      frame();
     }
   }
 
