@@ -125,7 +125,7 @@ class MeshOptimization {
     std::vector<Eigen::Vector3d> up;         // per sample, the surface's normal
     std::vector<std::array<int, 3>> faces;
     std::vector<std::vector<int>> around;    // per sample, its faces
-    std::vector<double> reach;               // per sample, how far from its region's points it may go
+    std::vector<double> reach;               // per sample, how far (squared) from its region's points it may go
 
     Mesh(const std::vector<vcg::Point3<Scalar>>& pts, const std::vector<int>& owner, const std::vector<char>& onBorder,
          const std::vector<vcg::Point3<Scalar>>& normal, const std::vector<vcg::Point3<Scalar>>& pos,
@@ -155,14 +155,16 @@ class MeshOptimization {
       for (size_t i = first[s]; i < first[s + 1]; ++i) best = std::min(best, (q[i] - y).squaredNorm());
       return best;
     }
-    // A vertex may end as far from its region's points as it started, or as
-    // the farthest of them lay from it: the region's own scale.
+    // A vertex may end no farther from its region's points than the farthest
+    // of them lay from where it started: the region's own scale (squared; a
+    // vertex whose region holds no point is not held).
     void SetReach() {
-      reach.assign(x.size(), 0);
+      reach.assign(x.size(), std::numeric_limits<double>::infinity());
       for (size_t s = 0; s < x.size(); ++s) {
+        if (first[s] == first[s + 1]) continue;
         double farthest = 0;
         for (size_t i = first[s]; i < first[s + 1]; ++i) farthest = std::max(farthest, (q[i] - x[s]).squaredNorm());
-        reach[s] = std::max(farthest, ToRegion(s, x[s]));
+        reach[s] = farthest;
       }
     }
 
