@@ -1,8 +1,8 @@
 """Poisson-disk LODs of point files larger than one machine's memory, on a Dask cluster.
 
-The files are cut into spatial tiles of about `tile_points` points each, and decoded once: a task per
-piece of a file writes each tile's share into a work folder (``partition``), which every later task
-reads. Every tile is a Dask task that reads its points and a halo around them, and decides its samples
+The files are decoded once: a task per piece of a file writes each share of a grid's cells into a work
+folder (``partition``), which every later task reads. The cells' points per block then cut the cloud into
+tiles of at most `tile_points` points (``tiles.balanced``, a k-d tree). Every tile is a Dask task that reads its points and a halo around them, and decides its samples
 (``tiles.decide``); the points left open near the seams are settled in one pass where the job was started
 (``tiles.settle``); then every tile writes its samples' records, bit for bit, as a file of the input's
 format. The result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
@@ -316,8 +316,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     check_worker_memory(client)
     surveys = client.gather(client.map(cloud_files.survey, paths, pure=False))
     srcs = cloud_files.sources(paths, surveys)
-    cloud, boxes, shape = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
-                                     sum(s.count for s in srcs), tile_points)
+    cloud, _, shape = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                 sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
     spacing = tiles.spacing_of(cloud, total)
     ticks = Ticks(progress)
@@ -338,6 +338,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     try:
         cells = partition.make(client, srcs, partition.Grid(cloud.lo, cloud.hi, shape), run_dir / CELLS,
                                tile_points, ticks)
+        boxes = tiles.balanced(cloud, [cells.grid.edges(a) for a in range(3)], cells.histogram(), tile_points)
         made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing,
                        total, run_dir, ticks)
     except BaseException:
@@ -345,7 +346,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "adaptivity": adaptivity, "tiles_per_axis": list(shape), "partition": cells.summary(),
+             "adaptivity": adaptivity, "cells_per_axis": list(shape), "partition": cells.summary(),
              "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
     if size["levels"] is not None:

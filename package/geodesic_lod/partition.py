@@ -55,6 +55,11 @@ class Grid:
                 out.append(cell[i + 1:i + 2])
         return np.concatenate(out)
 
+    def edges(self, a: int) -> np.ndarray:
+        """The inner edges of the blocks along axis a (a point x lies in block i when edges[i - 1] <= x <
+        edges[i])."""
+        return self._edges[a]
+
     def _fine_of(self, x: np.ndarray, a: int) -> np.ndarray:
         return np.searchsorted(self._edges[a], x, side="right")
 
@@ -113,7 +118,8 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
     """A Dask task: decodes one piece and writes each cell's share of it, block by block, each block in id
     order (``blocks``: where each block starts, and the end). Returns whether its points carry normals,
-    per cell holding points (count, lowest corner, highest corner), and the bytes written."""
+    per cell holding points (count, lowest corner, highest corner, points per block), and the bytes
+    written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
@@ -126,11 +132,11 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         src = point_files.read(s.path)
         cloud_files.check_finite(s.path, src.points)
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
-    ids = np.uint64(s.first_id + first) + np.arange(len(xyz), dtype=np.uint64)
     key = grid.key_of(xyz)
-    order = np.argsort(key, kind="stable")  # by cell, then block, then id
-    key, xyz, ids, records = key[order], xyz[order], ids[order], records[order]
-    normals = None if normals is None else normals[order]
+    order = _by_key(key)  # by cell, then block, then id
+    key, xyz, records = (_take_rows(a, order) for a in (key, xyz, records))
+    ids = np.uint64(s.first_id + first) + order.astype(np.uint64)
+    normals = None if normals is None else _take_rows(normals, order)
     cell = key // BLOCKS ** 3
     cuts = np.concatenate([[0], np.flatnonzero(np.diff(cell)) + 1, [len(cell)]]) if len(cell) else [0]
     out: dict = {}
@@ -144,8 +150,36 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         for what, array in arrays.items():
             _save(_name(folder, c, number, what), np.ascontiguousarray(array))
             written += array.nbytes
-        out[c] = (int(b - a), arrays["xyz"].min(axis=0), arrays["xyz"].max(axis=0))
+        columns = [xyz[a:b, k] for k in range(3)]  # a column's min is several times faster than min(axis=0)
+        out[c] = (int(b - a), np.array([v.min() for v in columns]), np.array([v.max() for v in columns]),
+                  np.diff(arrays["blocks"]))
     return {"normals": normals is not None, "cells": out, "bytes": written}
+
+
+def _by_key(key: np.ndarray) -> np.ndarray:
+    """The stable order of `key`: a radix sort of the keys numbered densely (a piece's points lie in a few
+    cells, so their keys take a few thousand values), numpy's merge sort where they spread too far."""
+    if not len(key):
+        return np.empty(0, np.int64)
+    low = int(key.min())
+    span = int(key.max()) - low + 1
+    if span > 1 << 24:
+        return np.argsort(key, kind="stable")
+    present = np.bincount(key - low, minlength=span) > 0
+    dense = np.cumsum(present) - 1
+    small = np.uint16 if dense[-1] < 1 << 16 else np.uint32
+    return np.argsort(dense.astype(small)[key - low], kind="stable")
+
+
+def _take_rows(a: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """a[order] along the first axis, through np.take on the rows' bytes: several times faster than a
+    fancy index, most of all on the records' structured dtype."""
+    a = np.ascontiguousarray(a)
+    if a.dtype.hasobject or not a.size:
+        return a[order]
+    row = a.dtype.itemsize * (a.size // len(a))
+    taken = np.take(a.reshape(len(a), -1).view(np.uint8).reshape(len(a), row), order, axis=0)
+    return taken.view(a.dtype).reshape((len(order),) + a.shape[1:])
 
 
 @dataclass
@@ -162,6 +196,8 @@ class Partition:
         Per cell holding points, the pieces with a share in it, increasing.
     bounds : dict of int to (int, ndarray, ndarray)
         Per cell holding points, their count, lowest and highest corner.
+    block_counts : dict of int to ndarray of int64
+        Per cell holding points, the points in each of its blocks (BLOCKS^3, numbered as ``Grid.key_of``).
     normals : bool
         Whether every point carries a normal.
     pieces, bytes : int
@@ -173,6 +209,7 @@ class Partition:
     grid: Grid
     cells: dict = field(default_factory=dict)
     bounds: dict = field(default_factory=dict)
+    block_counts: dict = field(default_factory=dict)
     normals: bool = False
     pieces: int = 0
     bytes: int = 0
@@ -182,6 +219,15 @@ class Partition:
         """What an index says of it."""
         return {"pieces": self.pieces, "cells": len(self.cells), "bytes": self.bytes,
                 "seconds": round(self.seconds, 3)}
+
+    def histogram(self) -> np.ndarray:
+        """The points per block over the whole grid, shape ``shape * BLOCKS``: element (i, j, k) counts the
+        points between inner edges i - 1 and i of ``Grid.edges(0)``, j - 1 and j of axis 1, k - 1 and k of 2."""
+        n = tuple(int(v) for v in self.grid.shape)
+        h = np.zeros(n + (BLOCKS,) * 3, np.int64)
+        for c, k in self.block_counts.items():
+            h[np.unravel_index(c, n)] = k.reshape((BLOCKS,) * 3)
+        return h.transpose(0, 3, 1, 4, 2, 5).reshape(tuple(v * BLOCKS for v in n))
 
     def _load(self, cell: int, what: str) -> list:
         return [np.load(_name(self.folder, cell, p, what), mmap_mode="r") for p in self.cells.get(cell, [])]
@@ -272,8 +318,9 @@ def collect(folder, grid: Grid, done: Sequence[dict]) -> Partition:
     for number, piece in enumerate(done):
         p.normals &= piece["normals"]
         p.bytes += piece["bytes"]
-        for c, (n, lo, hi) in piece["cells"].items():
+        for c, (n, lo, hi, blocks) in piece["cells"].items():
             p.cells.setdefault(c, []).append(number)
+            p.block_counts[c] = p.block_counts.get(c, 0) + blocks
             old = p.bounds.get(c)
             p.bounds[c] = (n, lo, hi) if old is None else (old[0] + n, np.minimum(old[1], lo), np.maximum(old[2], hi))
     return p

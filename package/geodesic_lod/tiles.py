@@ -71,6 +71,49 @@ def plan(lo: np.ndarray, hi: np.ndarray, total: int, tile_points: int) -> tuple:
     return cloud, grid_tiles(cloud, shape), tuple(shape)
 
 
+def balanced(cloud: Box, edges: Sequence[np.ndarray], counts: np.ndarray, tile_points: int) -> list:
+    """The cloud's box cut into tiles of at most `tile_points` points where the bins allow, from the points
+    per bin of a grid (`counts`; bin i along axis a lies between inner edges ``edges[a][i - 1]`` and
+    ``edges[a][i]``, the outer bins reach the cloud's sides): a k-d tree that cuts a box of more than
+    m - 1 tiles' points in two holding m // 2 and m - m // 2 tiles' worth (at the bin edge nearest that
+    share), across the widest extent of its nonempty bins.
+
+    Equal boxes would cut a surface wherever the box is long (a height field's relief, a facade's
+    depth): tiles far below the count, seams across the surface and their halos read for nothing."""
+    bounds = [np.concatenate([[cloud.lo[a]], np.clip(edges[a], cloud.lo[a], cloud.hi[a]), [cloud.hi[a]]])
+              for a in range(3)]
+    out = []
+
+    def cut(span):
+        sub = counts[tuple(slice(a, b) for a, b in span)]
+        total = int(sub.sum())
+        if total == 0:
+            return
+        profiles = [sub.sum(axis=tuple(b for b in range(3) if b != a)) for a in range(3)]
+        used = [np.flatnonzero(p) for p in profiles]
+        widths = [bounds[a][span[a][0] + u[-1] + 1] - bounds[a][span[a][0] + u[0]] if len(u) > 1 else -1.0
+                  for a, u in enumerate(used)]
+        a = int(np.argmax(widths))
+        if total <= tile_points or widths[a] < 0:
+            out.append(Box(np.array([bounds[b][span[b][0]] for b in range(3)]),
+                           np.array([bounds[b][span[b][1]] for b in range(3)])))
+            return
+        first, last = used[a][0], used[a][-1]
+        below = np.cumsum(profiles[a])[first:last]  # points below each edge between the first and last bin
+        m = -(-total // tile_points)
+        miss = np.abs(below - total * (m // 2) / m)
+        fits = (below <= m // 2 * tile_points) & (total - below <= (m - m // 2) * tile_points)
+        s = first + 1 + int(np.argmin(np.where(fits, miss, miss + total) if fits.any() else miss))
+        lo, hi = list(span), list(span)
+        lo[a] = (span[a][0], span[a][0] + s)
+        hi[a] = (span[a][0] + s, span[a][1])
+        cut(lo)
+        cut(hi)
+
+    cut([(0, n) for n in counts.shape])
+    return out
+
+
 @dataclass
 class Decision:
     """One tile's decisions: its samples, and what the seams need (the band and the open points).

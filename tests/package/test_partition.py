@@ -75,6 +75,17 @@ def test_a_regions_blocks_hold_every_point_of_the_cell_in_it():
         check_regions(rng, mine, block, lambda lo, hi: grid.blocks_in(c, lo, hi), 20)
 
 
+def test_the_histogram_counts_the_points_between_the_grids_edges(files, tmp_path):
+    lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)
+    grid = partition.Grid(lo, hi, (3, 2, 2))
+    cells = split_all(files, grid, tmp_path / "cells", 1000)
+    xyz = np.concatenate([s.points for s in map(point_files.read, [f.path for f in files])])
+    fine = [np.searchsorted(grid.edges(a), xyz[:, a], side="right") for a in range(3)]
+    want = np.zeros(tuple(n * partition.BLOCKS for n in grid.shape), np.int64)
+    np.add.at(want, tuple(fine), 1)
+    assert np.array_equal(cells.histogram(), want)
+
+
 @pytest.mark.parametrize("piece_points, shape", [(1000, (3, 2, 2)), (10 ** 6, (1, 1, 1)), (700, (4, 4, 1))])
 def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, piece_points, shape):
     lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)

@@ -8,6 +8,7 @@ import pytest
 import geodesic_lod as gl
 import geodesic_lod.pymeshlab  # noqa: F401  (binds the filters)
 from conftest import bumpy_sphere
+from geodesic_lod import partition, tiles
 from tiled_lod import poisson_lod_tiled
 
 
@@ -64,3 +65,25 @@ def test_separation_and_coverage_hold_across_every_seam():
     assert d2.min() > r * r  # no two samples within r, seams included
     nearest = np.min([((p - q) ** 2).sum(-1) for q in s], axis=0)
     assert nearest.max() <= r * r  # every point within r of a sample
+
+
+def test_balanced_tiles_partition_a_height_field_without_cutting_across_its_relief():
+    """Equal boxes cut this relief in two (its depth is the longest side of a quarter of it), leaving tiles of a
+    few points beside full ones; the k-d tiles hold between a quarter of tile_points and tile_points each."""
+    rng = np.random.default_rng(3)
+    n, tile_points = 200_000, 15_000
+    x, y = rng.random(n), rng.random(n)
+    xyz = np.column_stack([x, y, 0.2 * np.sin(6 * x) * np.cos(5 * y)])
+    cloud = tiles.Box(xyz.min(axis=0), xyz.max(axis=0))
+    _, boxes, shape = tiles.plan(cloud.lo, cloud.hi, n, tile_points)
+    equal = [int(b.core_mask(xyz, cloud).sum()) for b in boxes]
+    assert shape[2] > 1 and min(c for c in equal if c) < tile_points / 4  # what the k-d tiles avoid
+    grid = partition.Grid(cloud.lo, cloud.hi, shape)
+    fine = [np.searchsorted(grid.edges(a), xyz[:, a], side="right") for a in range(3)]
+    counts = np.zeros(tuple(k * partition.BLOCKS for k in shape), np.int64)
+    np.add.at(counts, tuple(fine), 1)
+    kd = tiles.balanced(cloud, [grid.edges(a) for a in range(3)], counts, tile_points)
+    owner = np.array([b.core_mask(xyz, cloud) for b in kd])
+    assert np.array_equal(owner.sum(axis=0), np.ones(n))  # the cores partition the cloud
+    sizes = owner.sum(axis=1)
+    assert sizes.max() <= tile_points and sizes.min() >= tile_points / 4
