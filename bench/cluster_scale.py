@@ -67,7 +67,7 @@ def run(folder, out, workers, memory, tile_points, radius):
             "partition_bytes": index["partition"]["bytes"], "radius": radius}
 
 
-def one_process(folder, tile):
+def one_process(folder, tile, radius):
     """One tile's core points (`tile`, [lo, hi] as the index gives it) sampled by one process on one thread,
     the points in memory beforehand: its points per second."""
     import geodesic_lod as gl
@@ -100,7 +100,7 @@ def main():
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
     rows = [run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius)
             for w in a.workers.split(",")]
-    single = one_process(folder, rows[0].pop("median_tile"))
+    single = one_process(folder, rows[0].pop("median_tile"), radius)
     for r in rows[1:]:
         r.pop("median_tile")
     for r in rows:  # a worker's rate against one process's on a tile of the same size
@@ -142,6 +142,13 @@ def report(rows):
               f"beforehand, one thread) took {single['seconds']} s, {single['points_per_second']:,} points/s: the rate each worker's "
               "share is measured against. Each input record is decoded once, in the split; the cells it writes take "
               f"{best['partition_bytes'] / 1e9:.1f} GB."]
+    one = min(rows, key=lambda r: r["workers"])
+    if one["workers"] == 1:  # where one worker's time goes, per input point
+        ph = one["phase_seconds"]
+        lines += ["", f"Per point, one worker's tiles take {1e6 * ph['tiles'] / (n * (1 + one['halo_share'])):.2f} us "
+                  f"for each point read against one process's {1e6 / single['points_per_second']:.2f} us on its "
+                  f"tile; the split adds {1e6 * ph['split'] / n:.2f} us and the writing "
+                  f"{1e6 * ph['writing'] / n:.2f} us a point of the input."]
     by_workers = {r["workers"]: r["seconds"] for r in rows}
     if 1 in by_workers and 2 in by_workers:
         lines += ["", f"2 workers took {by_workers[1] / by_workers[2]:.2f}x less time than 1."]
