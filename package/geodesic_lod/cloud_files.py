@@ -9,7 +9,7 @@ from typing import Sequence
 
 import numpy as np
 
-from . import las_files, point_files
+from . import las_files, point_files, tiles
 
 
 @dataclass
@@ -101,7 +101,7 @@ def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple
     pts, nrm, ids = [], [], []
     for s in _overlapping(srcs, lo, hi):
         for start, xyz, normals in chunks(s):
-            keep = np.all((xyz >= lo) & (xyz <= hi), axis=1)
+            keep = tiles.within(xyz, lo, hi)
             pts.append(xyz[keep])
             nrm.append(None if normals is None else normals[keep])
             ids.append(np.uint64(s.first_id + start) + np.flatnonzero(keep).astype(np.uint64))

@@ -255,7 +255,7 @@ class Partition:
         pts, nrm, ids = [], [], []
         for c, p, rows in self._rows_in(lo, hi):
             x = self._part(c, p, "xyz", rows)
-            inside = np.all((x >= lo) & (x <= hi), axis=1)
+            inside = tiles.within(x, lo, hi)
             keep = rows[inside]
             pts.append(x[inside])
             ids.append(self._part(c, p, "ids", keep))

@@ -42,10 +42,19 @@ class Box:
 
     def core_mask(self, points: np.ndarray, cloud: "Box") -> np.ndarray:
         b = self.outer(cloud)
-        return np.all((points >= b.lo) & (points < b.hi), axis=1)
+        return within(points, b.lo, b.hi, upper=np.less)
 
     def as_tuple(self):
         return tuple(float(v) for v in self.lo) + tuple(float(v) for v in self.hi)
+
+
+def within(points: np.ndarray, lo, hi, upper=np.less_equal) -> np.ndarray:
+    """Which of the (n, 3) points lie in the box: lo <= x and upper(x, hi) on every axis (a column at a time,
+    several times faster than one test of all three and a reduction across them)."""
+    inside = (points[:, 0] >= lo[0]) & upper(points[:, 0], hi[0])
+    for a in (1, 2):
+        inside &= (points[:, a] >= lo[a]) & upper(points[:, a], hi[a])
+    return inside
 
 
 def grid_tiles(cloud: Box, shape: Sequence[int]) -> list:
