@@ -124,17 +124,16 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     s = srcs[f]
     if s.kind == "las":
         header = las_files.open_source(s.path).header
-        parts = [(chunk.array, las_files.xyz(chunk, header))
-                 for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
-        records, xyz = (np.concatenate(a) for a in zip(*parts))
-        normals = None
+        parts = [chunk.array for _, chunk in las_files.chunks(s.path, max(1, stop - first), first, stop)]
+        records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # a piece is one chunk: no copy
+        xyz, normals = las_files.xyz(records, header), None
     else:
         src = point_files.read(s.path)
         cloud_files.check_finite(s.path, src.points)
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
     key = grid.key_of(xyz)
-    order = _by_key(key)  # by cell, then block, then id
-    key, xyz, records = (_take_rows(a, order) for a in (key, xyz, records))
+    order, key = _by_key(key)  # by cell, then block, then id
+    xyz, records = _take_rows(xyz, order), _take_rows(records, order)
     ids = np.uint64(s.first_id + first) + order.astype(np.uint64)
     normals = None if normals is None else _take_rows(normals, order)
     cell = key // BLOCKS ** 3
@@ -156,19 +155,23 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     return {"normals": normals is not None, "cells": out, "bytes": written}
 
 
-def _by_key(key: np.ndarray) -> np.ndarray:
-    """The stable order of `key`: a radix sort of the keys numbered densely (a piece's points lie in a few
-    cells, so their keys take a few thousand values), numpy's merge sort where they spread too far."""
+def _by_key(key: np.ndarray) -> tuple:
+    """The stable order of `key`, and the keys in that order: a radix sort of the keys numbered densely (a
+    piece's points lie in a few cells, so their keys take a few thousand values), numpy's merge sort where
+    they spread too far."""
     if not len(key):
-        return np.empty(0, np.int64)
+        return np.empty(0, np.int64), key
     low = int(key.min())
     span = int(key.max()) - low + 1
     if span > 1 << 24:
-        return np.argsort(key, kind="stable")
-    present = np.bincount(key - low, minlength=span) > 0
+        order = np.argsort(key, kind="stable")
+        return order, key[order]
+    counts = np.bincount(key - low, minlength=span)
+    present = counts > 0
     dense = np.cumsum(present) - 1
     small = np.uint16 if dense[-1] < 1 << 16 else np.uint32
-    return np.argsort(dense.astype(small)[key - low], kind="stable")
+    order = np.argsort(dense.astype(small)[key - low], kind="stable")
+    return order, np.repeat(np.flatnonzero(present) + low, counts[present])
 
 
 def _take_rows(a: np.ndarray, order: np.ndarray) -> np.ndarray:
