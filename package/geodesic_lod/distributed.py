@@ -2,11 +2,12 @@
 
 The files are decoded once: a task per piece of a file writes each share of a grid's cells into a work
 folder (``partition``), which every later task reads. The cells' points per block then cut the cloud into
-tiles of at most `tile_points` points (``tiles.balanced``, a k-d tree). Every tile is a Dask task that reads its points and a halo around them, and decides its samples
-(``tiles.decide``); the points left open near the seams are settled in one pass where the job was started
-(``tiles.settle``); then every tile writes its samples' records, bit for bit, as a file of the input's
-format. The result is exactly the point set ``poisson_lod`` gives on all the files' points taken together, in
-file order (for the same parameters and seed), whatever the tiling and the number of workers.
+tiles of at most `tile_points` points (``tiles.balanced``, a k-d tree). Every tile is a Dask task that
+reads its points and a halo around them, and decides its samples (``tiles.decide``); the points left
+open near the seams are settled in one pass where the job was started (``tiles.settle``); then every tile
+writes its samples' records, bit for bit, as a file of the input's format. The result is exactly the
+point set ``poisson_lod`` gives on all the files' points taken together, in file order (for the same
+parameters and seed), whatever the tiling and the number of workers.
 
 With `levels`, each level is the Poisson set of its own radius among the finer level's samples (the
 same visiting order, the geodesics over every point): ``poisson_lod(..., within=finer)`` on one
