@@ -318,7 +318,8 @@ TEXTS = {
     adaptivity : float
         As in ``poisson_lod``. Default {_D.adaptivity:g}.
     tile_points : int
-        Points per tile, about, at least 1000. Default 2,000,000.
+        Points per tile, at most (but where one block of the cells holds more), at least 1000. Default
+        2,000,000.
     client : dask.distributed.Client
         The cluster (see ``local_cluster``).
     threads : int, optional
