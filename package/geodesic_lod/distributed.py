@@ -317,8 +317,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     check_worker_memory(client)
     surveys = client.gather(client.map(cloud_files.survey, paths, pure=False))
     srcs = cloud_files.sources(paths, surveys)
-    cloud, _, shape = tiles.plan(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
-                                 sum(s.count for s in srcs), tile_points)
+    cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                    sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
     spacing = tiles.spacing_of(cloud, total)
     ticks = Ticks(progress)

@@ -124,8 +124,8 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     s = srcs[f]
     if s.kind == "las":
         header = las_files.open_source(s.path).header
-        parts = [chunk.array for _, chunk in las_files.chunks(s.path, max(1, stop - first), first, stop)]
-        records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # a piece is one chunk: no copy
+        parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
+        records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
         xyz, normals = las_files.xyz(records, header), None
     else:
         src = point_files.read(s.path)

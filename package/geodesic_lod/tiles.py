@@ -65,11 +65,12 @@ def grid_tiles(cloud: Box, shape: Sequence[int]) -> list:
             for i in range(len(edges[0]) - 1) for j in range(len(edges[1]) - 1) for k in range(len(edges[2]) - 1)]
 
 
-def plan(lo: np.ndarray, hi: np.ndarray, total: int, tile_points: int) -> tuple:
-    """The cloud's box [lo, hi] cut into tiles of about `tile_points` of its `total` points each (the
-    longest side halved until there are enough): (cloud box, tiles, tiles per axis)."""
+def grid_shape(lo: np.ndarray, hi: np.ndarray, total: int, cell_points: int) -> tuple:
+    """The cloud's box [lo, hi] and a grid over it of about `cell_points` of its `total` points per cell if
+    they filled the box evenly (the longest side cut once more until there are enough cells): (cloud box,
+    cells per axis)."""
     cloud = Box(np.asarray(lo, float), np.asarray(hi, float))
-    want = max(1, math.ceil(total / max(1, tile_points)))
+    want = max(1, math.ceil(total / max(1, cell_points)))
     extent = np.maximum(cloud.hi - cloud.lo, 0)
     shape = [1, 1, 1]
     while np.prod(shape) < want:
@@ -77,7 +78,7 @@ def plan(lo: np.ndarray, hi: np.ndarray, total: int, tile_points: int) -> tuple:
         if extent[a] == 0:
             break
         shape[a] += 1
-    return cloud, grid_tiles(cloud, shape), tuple(shape)
+    return cloud, tuple(shape)
 
 
 def balanced(cloud: Box, edges: Sequence[np.ndarray], counts: np.ndarray, tile_points: int) -> list:

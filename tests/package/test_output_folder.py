@@ -263,7 +263,7 @@ def test_remove_own_of_a_folder_already_gone_is_done(tmp_path):
 
 
 # The names a run writes: level folders (distributed.level_folder of each level the command and lod_files
-# accept) and tile files f"tile_{k:05d}{ext}" for each of the tiles (tiles.plan sets no bound on their number).
+# accept) and tile files f"tile_{k:05d}{ext}" for each of the tiles (tiles.balanced sets no bound on their number).
 @pytest.mark.parametrize("name", [level_folder(item) + "/tile_00000.laz" for item in ("50%", "2.5%", 300, "1e-1%")]
                          + [f"tile_{k:05d}.laz" for k in (0, 99999, 100000)])
 def test_every_name_a_run_writes_is_removed_as_its_own(tmp_path, name):

@@ -144,8 +144,9 @@ def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
     import geodesic_lod as gl
     from geodesic_lod import arrays, distributed as dist
     total = sum(s.count for s in files)
-    cloud, boxes, shape = tiles.plan(np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0),
-                                     total, 1500)
+    cloud, shape = tiles.grid_shape(np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0),
+                                    total, 1500)
+    boxes = tiles.grid_tiles(cloud, shape)
     cells = split_all(files, partition.Grid(cloud.lo, cloud.hi, shape), tmp_path / "cells", 2000)
     points, _, _ = cloud_files.read_region(files, cloud.lo - 1, cloud.hi + 1)
     records = every_record(files)

@@ -75,8 +75,8 @@ def test_balanced_tiles_partition_a_height_field_without_cutting_across_its_reli
     x, y = rng.random(n), rng.random(n)
     xyz = np.column_stack([x, y, 0.2 * np.sin(6 * x) * np.cos(5 * y)])
     cloud = tiles.Box(xyz.min(axis=0), xyz.max(axis=0))
-    _, boxes, shape = tiles.plan(cloud.lo, cloud.hi, n, tile_points)
-    equal = [int(b.core_mask(xyz, cloud).sum()) for b in boxes]
+    _, shape = tiles.grid_shape(cloud.lo, cloud.hi, n, tile_points)
+    equal = [int(b.core_mask(xyz, cloud).sum()) for b in tiles.grid_tiles(cloud, shape)]
     assert shape[2] > 1 and min(c for c in equal if c) < tile_points / 4  # what the k-d tiles avoid
     grid = partition.Grid(cloud.lo, cloud.hi, shape)
     fine = [np.searchsorted(grid.edges(a), xyz[:, a], side="right") for a in range(3)]
