@@ -75,9 +75,10 @@ def one_process(folder, tile, radius):
     paths = cloud_files.expand_inputs([str(folder)])
     srcs = cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
     cloud = tiles.Box(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0))
-    box = tiles.Box(*map(np.array, tile)).outer(cloud)
-    points, _, _ = cloud_files.read_region(srcs, box.lo, box.hi)
-    points = points[np.all(points < box.hi, axis=1)]
+    box = tiles.Box(*map(np.array, tile))
+    outer = box.outer(cloud)
+    points, _, _ = cloud_files.read_region(srcs, outer.lo, outer.hi)
+    points = points[box.core_mask(points, cloud)]
     t = time.perf_counter()
     gl.poisson_lod(points, radius=radius, threads=1)
     seconds = time.perf_counter() - t

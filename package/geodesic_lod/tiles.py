@@ -113,7 +113,7 @@ def balanced(cloud: Box, edges: Sequence[np.ndarray], counts: np.ndarray, tile_p
         m = -(-total // tile_points)
         miss = np.abs(below - total * (m // 2) / m)
         fits = (below <= m // 2 * tile_points) & (total - below <= (m - m // 2) * tile_points)
-        s = first + 1 + int(np.argmin(np.where(fits, miss, miss + total) if fits.any() else miss))
+        s = first + 1 + int(np.argmin(np.where(fits, miss, miss + total)))  # fitting edges first
         lo, hi = list(span), list(span)
         lo[a] = (span[a][0], span[a][0] + s)
         hi[a] = (span[a][0] + s, span[a][1])
