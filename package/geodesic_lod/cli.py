@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from . import _core, arrays, point_files
+from . import _core, arrays, point_files, tile_points
 from .errors import ClusterJobError
 
 PROG = "geodesic-lod"
@@ -93,7 +93,7 @@ def parser() -> argparse.ArgumentParser:
     dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
     p.add_argument("--tolerance", type=float, help="with --count, --rate or --levels, a Poisson set within this "
                    "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
-    dask.add_argument("--tile-points", type=int, default=2_000_000, help="points per tile, at most "
+    dask.add_argument("--tile-points", type=int, default=tile_points.DEFAULT, help="points per tile, at most "
                       "(default: %(default)s)")
     dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
                       "(default: %(default)s, a share of this machine's)")

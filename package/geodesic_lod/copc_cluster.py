@@ -24,11 +24,11 @@ from typing import Optional, Sequence
 import numpy as np
 
 from . import arrays, cloud_files, las_files, partition, point_files, tiles
+from . import tile_points as tile_points_
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
 from .distributed import (Job, Ticks, _ids_file, check_worker_memory, domain_fields, finer_samples, poisson_run,
                           write_tile)
-from .errors import InputError
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
@@ -165,7 +165,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
 
 
 def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
-              adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = 2_000_000, client=None,
+              adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = tile_points_.DEFAULT, client=None,
               threads: Optional[int] = None, overwrite: bool = False, progress=None) -> dict:
     """Writes the point files (LAS/LAZ, as one cloud) as one COPC file whose octree depths are nested
     Poisson-disk LODs, on the Dask cluster of `client`: the file write_copc writes on one machine from
@@ -176,8 +176,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     point_files.check_outputs(paths, [output], overwrite=overwrite)
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
-    if not isinstance(tile_points, int) or tile_points < 1000:
-        raise InputError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
+    tile_points = tile_points_.checked(tile_points)
     check_worker_memory(client)
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, client.gather(client.map(cloud_files.survey, paths, pure=False)))

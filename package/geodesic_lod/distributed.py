@@ -31,6 +31,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, tiles
+from . import tile_points as tile_points_
 from .cloud_files import Source
 from .docstrings import documented
 from .errors import ClusterJobError, InputError
@@ -161,7 +162,7 @@ def local_cluster(workers: int, memory_limit="auto"):
 def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[int] = None,
               rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
               max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
-              adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = 2_000_000, client=None,
+              adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = tile_points_.DEFAULT, client=None,
               threads: Optional[int] = None, progress=None) -> dict:
     from dask.distributed import KilledWorker
 
@@ -177,8 +178,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
                                "max_runs", 1)
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
-    if not isinstance(tile_points, int) or tile_points < 1000:
-        raise InputError(f"tile_points must be a whole number of at least 1000, got {tile_points!r}")
+    tile_points = tile_points_.checked(tile_points)
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs), seed, metric, adaptivity, domain, tile_points,

@@ -3,7 +3,7 @@ the metric, the run) and the defaults read from vcg_ext's Param structs. ``docum
 function its docstring."""
 from __future__ import annotations
 
-from . import _core
+from . import _core, tile_points
 
 _D = _core.DomainParam()
 
@@ -318,8 +318,8 @@ TEXTS = {
     adaptivity : float
         As in ``poisson_lod``. Default {_D.adaptivity:g}.
     tile_points : int
-        Points per tile, at most (but where one block of the cells holds more), at least 1000. Default
-        2,000,000.
+        Points per tile, at most (but where one block of the cells holds more), at least
+        {tile_points.MINIMUM}. Default {tile_points.DEFAULT:,}.
     client : dask.distributed.Client
         The cluster (see ``local_cluster``).
     threads : int, optional

@@ -109,6 +109,23 @@ def test_lod_files_raises_input_errors(tmp_path, npy_cloud):
         distributed.lod_files([str(tmp_path / "none*.laz")], tmp_path / "lod", radius=0.5, client=_Client(0, 0))
 
 
+@pytest.mark.parametrize("tile_points", [999, 2.5e6, "2000000", True])
+def test_the_cluster_functions_raise_an_input_error_for_a_bad_tile_size(tmp_path, npy_cloud, tile_points):
+    laspy = pytest.importorskip("laspy")
+    from geodesic_lod import copc_cluster, distributed
+    las = laspy.LasData(laspy.LasHeader(point_format=6, version="1.4"))
+    las.header.scales = [1e-3] * 3
+    las.xyz = P
+    las.write(tmp_path / "cloud.las")
+    words = f"tile_points must be a whole number of at least 1000, got {tile_points!r}"
+    with pytest.raises(gl.InputError, match=words.replace(".", r"\.")):
+        distributed.lod_files([npy_cloud], tmp_path / "lod", radius=0.5, tile_points=tile_points, client=_Client(0, 0))
+    with pytest.raises(gl.InputError, match=words.replace(".", r"\.")):
+        copc_cluster.copc_file([str(tmp_path / "cloud.las")], tmp_path / "lod.copc.laz", tile_points=tile_points,
+                               client=_Client(0, 0))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cloud.las", "cloud.npy"]
+
+
 @pytest.mark.parametrize("client, words", [
     (_Client(rss=60e6, limit=50e6), r"a worker's memory limit \(50 MB\) is below what it needs"),
     (_Client(rss=ConnectionError("Stream is closed"), limit=50e6),
