@@ -3,6 +3,7 @@ across files), the points of a region and a source to write records with, read t
 format (las_files, point_files), with the same checks as on one machine."""
 from __future__ import annotations
 
+import os
 import pathlib
 from dataclasses import dataclass, field
 from typing import Sequence
@@ -151,8 +152,16 @@ def expand_inputs(inputs: Sequence[str]) -> list:
             out += found
         else:
             out.append(item)
-    for path in out:
+    seen = {}
+    for k, path in enumerate(out):
         point_files.format_of(path)
+        try:
+            st = os.stat(path)
+        except OSError:
+            continue  # named when it is read
+        first = seen.setdefault((st.st_dev, st.st_ino), k)
+        if first != k:  # its points would be in the cloud twice
+            raise point_files.PointFileError(path, f"is given twice (also as {out[first]}): give each file once")
     kinds = {point_files.format_of(p) for p in out}
     if len(kinds) > 1:
         raise point_files.PointFileError(out[0], "the inputs mix formats: give files of one format")

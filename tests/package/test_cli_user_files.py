@@ -71,3 +71,13 @@ def test_a_poisson_lod_keeps_the_inputs_order(tmp_path):
 def test_version():
     r = run("--version")
     assert r.returncode == 0 and r.stdout.startswith("geodesic-lod ")
+
+
+def test_a_file_given_twice_is_refused(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    (tmp_path / "alias.laz").symlink_to(src)
+    before = contents(tmp_path)
+    for twice in ([src, src], [src, tmp_path / "alias.laz"], [tmp_path, src]):
+        r = run(*twice, "-o", tmp_path / "lod", "--rate", "10%", "-q", "--workers", "1")
+        assert r.returncode == 2 and "is given twice" in r.stderr and len(r.stderr.splitlines()) == 1, r.stderr
+    assert contents(tmp_path) == before

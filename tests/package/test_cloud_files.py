@@ -190,6 +190,25 @@ def test_inputs_that_cannot_be_one_cloud_are_named(tmp_path, items, problem):
         cf.expand_inputs([str(tmp_path / i) for i in items])
 
 
+@pytest.mark.parametrize("items, twice", [
+    (["one.laz", "one.laz"], "one.laz"),
+    (["d/*.laz", "d/two.laz"], "two.laz"),
+    (["d", "d/two.laz"], "two.laz"),
+    (["one.laz", "alias.laz"], "alias.laz"),
+])
+def test_a_file_named_twice_is_refused_not_sampled_twice(tmp_path, items, twice):
+    # Two names of one file would put every point in the cloud twice, and a rate would ask for twice the samples.
+    (tmp_path / "d").mkdir()
+    for name in ("one.laz", "d/two.laz"):
+        (tmp_path / name).write_bytes(b"")
+    (tmp_path / "alias.laz").symlink_to(tmp_path / "one.laz")
+    with pytest.raises(pf.PointFileError, match=f"{twice}: is given twice"):
+        cf.expand_inputs([str(tmp_path / i) for i in items])
+    one = str(tmp_path / items[0])
+    with pytest.raises(pf.PointFileError, match="is given twice"):
+        cf.expand_inputs([one, one])  # one string object twice
+
+
 def test_the_index_states_the_record_layout_and_crs(tmp_path):
     src = one_cloud([str(las_cloud(tmp_path / "a.laz", n=300))])[0]
     fields = cf.format_fields(src)
