@@ -225,6 +225,27 @@ void ParallelFor(size_t n, size_t grain, F&& f) {
   });
 }
 
+/// ParallelFor(n, grain, f) whose calling thread first runs `serial`, a pass
+/// that overlaps the loop (it must not touch what f does): the other threads
+/// start on the rows at once. With one thread, `serial` then the rows.
+template <class Serial, class F>
+void ParallelForBeside(Serial&& serial, size_t n, size_t grain, F&& f) {
+  grain = std::max<size_t>(1, grain);
+  const int threads = n > 0 ? ThreadCount() : 1;
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  ThreadTeam::Mine().Run(threads, [&](int t) {
+    try {
+      if (t == 0) serial();
+      for (size_t b; !failed.load(std::memory_order_relaxed) && (b = next.fetch_add(grain)) < n;)
+        for (size_t i = b, e = std::min(n, b + grain); i < e; ++i) f(i);
+    } catch (...) {
+      failed = true;
+      throw;
+    }
+  });
+}
+
 /// One object per thread: the given one for thread 0, copies for the others
 /// (searches, each with its own scratch space).
 template <class T>

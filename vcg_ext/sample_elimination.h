@@ -48,22 +48,22 @@ class SampleElimination {
     // point another holds notes the pair, at the sum of their distances.
     std::vector<int> owner(n, -1);
     std::vector<double> at(n, std::numeric_limits<double>::infinity());
-    std::vector<std::vector<std::pair<int, double>>> near(m);  // per sample: (sample, distance) pairs
-    auto note = [&](int a, int b, double d) {
-      for (int side = 0; side < 2; ++side, std::swap(a, b)) {
-        auto& list = near[size_t(a)];
-        auto it = std::find_if(list.begin(), list.end(), [&](const std::pair<int, double>& e) { return e.first == b; });
-        if (it == list.end()) list.emplace_back(b, d);
-        else it->second = std::min(it->second, d);
-      }
-    };
+    std::vector<Pair> notes;  // appended in the disks' order, gathered per sample below
     Disks(search, samples, r, [&](int k, const std::vector<std::pair<int, double>>& disk) {
+      const size_t first = notes.size();  // k's pairs: each noted once, at the least distance
       for (const auto& e : disk) {
         const size_t i = size_t(e.first);
-        if (owner[i] >= 0 && owner[i] != k) note(owner[i], k, at[i] + e.second);
+        if (owner[i] >= 0 && owner[i] != k) {
+          const double d = at[i] + e.second;
+          size_t j = first;
+          while (j < notes.size() && notes[j].a != owner[i]) ++j;
+          if (j == notes.size()) notes.push_back({owner[i], k, d});
+          else notes[j].d = std::min(notes[j].d, d);
+        }
         if (e.second < at[i]) at[i] = e.second, owner[i] = k;
       }
     }, progress);
+    const Neighbours near = Gather(m, notes);
 
     // Take out the most crowded, updating the neighbours that lose their nearest.
     const double inf = std::numeric_limits<double>::infinity();
@@ -71,8 +71,8 @@ class SampleElimination {
     std::vector<double> nearest(m, inf);
     auto nearestOf = [&](size_t a) {
       double best = inf;
-      for (const auto& e : near[a])
-        if (!out[size_t(e.first)]) best = std::min(best, e.second);
+      for (size_t e = near.offset[a]; e < near.offset[a + 1]; ++e)
+        if (!out[size_t(near.to[e].first)]) best = std::min(best, near.to[e].second);
       return best;
     };
     typedef std::pair<double, int> Entry;  // (nearest distance, -sample): the later sample first on ties
@@ -89,9 +89,9 @@ class SampleElimination {
       const size_t a = size_t(-top.second);
       if (out[a] || top.first != nearest[a]) continue;  // gone, or stale
       out[a] = 1, ++taken;
-      for (const auto& e : near[a]) {
-        const size_t b = size_t(e.first);
-        if (out[b] || e.second > nearest[b]) continue;  // a was not b's nearest
+      for (size_t e = near.offset[a]; e < near.offset[a + 1]; ++e) {
+        const size_t b = size_t(near.to[e].first);
+        if (out[b] || near.to[e].second > nearest[b]) continue;  // a was not b's nearest
         nearest[b] = nearestOf(b);
         heap.emplace_back(nearest[b], -int(b));
         std::push_heap(heap.begin(), heap.end(), std::greater<Entry>());
@@ -111,18 +111,50 @@ class SampleElimination {
   }
 
  private:
+  struct Pair {
+    int a, b;
+    double d;
+  };
+  // Per sample, the samples it was noted with and the distances.
+  struct Neighbours {
+    std::vector<size_t> offset;              // sample a's in to[offset[a], offset[a + 1])
+    std::vector<std::pair<int, double>> to;  // (sample, distance)
+  };
+
+  // The notes (a, b, d), each pair once, as lists per sample both ways: a
+  // counting sort by sample. O(notes).
+  static Neighbours Gather(size_t m, std::vector<Pair>& notes) {
+    Neighbours g;
+    g.offset.assign(m + 1, 0);
+    for (const Pair& p : notes) ++g.offset[size_t(p.a) + 1], ++g.offset[size_t(p.b) + 1];
+    for (size_t a = 0; a < m; ++a) g.offset[a + 1] += g.offset[a];
+    g.to.resize(g.offset[m]);
+    std::vector<size_t> fill(g.offset.begin(), g.offset.end() - 1);
+    for (const Pair& p : notes) g.to[fill[size_t(p.a)]++] = {p.b, p.d}, g.to[fill[size_t(p.b)]++] = {p.a, p.d};
+    std::vector<Pair>().swap(notes);
+    return g;
+  }
+
   // Calls take(k, disk of src[k]) in order of k, each disk a list of (point,
-  // distance) within r; the disks of a batch are searched on all threads.
+  // distance) within r. The disks of a batch are searched on all threads while
+  // the calling thread first takes those of the batch before: the serial part
+  // hides behind the searches.
   template <class Search, class Take>
   static void Disks(Search& search, const std::vector<int>& src, double r, Take take, Progress progress) {
     PerThread<Search> searches(search);
-    std::vector<std::vector<std::pair<int, double>>> disks(kBatch);
-    for (size_t b = 0; b < src.size(); b += kBatch) {
-      const long long m = (long long)std::min(kBatch, src.size() - b);
+    std::vector<std::vector<std::pair<int, double>>> disks[2];
+    disks[0].resize(kBatch), disks[1].resize(kBatch);
+    auto takeBatch = [&](size_t b) {
+      const size_t m = std::min(kBatch, src.size() - b);
+      for (size_t c = 0; c < m; ++c) take(int(b + c), disks[(b / kBatch) % 2][c]);
+    };
+    for (size_t b = 0; b < src.size() + kBatch; b += kBatch) {  // one more round: the last batch's take
+      const size_t m = b < src.size() ? std::min(kBatch, src.size() - b) : 0;
+      auto& batch = disks[(b / kBatch) % 2];
       std::atomic<bool> outOfMemory{false};  // a search's bad_alloc, rethrown after the loop
-      ParallelFor(size_t(m), 16, [&](size_t c) {
+      ParallelForBeside([&] { if (b > 0) takeBatch(b - kBatch); }, m, 16, [&](size_t c) {
         Search& s = searches.Mine();
-        auto& disk = disks[c];
+        auto& disk = batch[c];
         disk.clear();
         try {
           s.Visit(src[b + c], r, [&](int i, double d) { disk.emplace_back(i, d); });
@@ -131,8 +163,7 @@ class SampleElimination {
         }
       });
       if (outOfMemory) throw std::bad_alloc();
-      for (long long c = 0; c < m; ++c) take(int(b + size_t(c)), disks[size_t(c)]);
-      progress(b + size_t(m), src.size(), "Thinning to the exact count");
+      if (b > 0) progress(std::min(b, src.size()), src.size(), "Thinning to the exact count");
     }
   }
 

@@ -1,5 +1,6 @@
 // vcg_ext/parallel.h: a loop calls its body once for every index on any
-// number of threads, on distinct threads when there are several; a nested
+// number of threads, on distinct threads when there are several (beside a
+// serial pass on the caller, too); a nested
 // loop runs on its caller alone; an exception or a stop request ends the loop
 // and is rethrown; progress comes from the calling thread only; each calling
 // thread has its own team; waiting workers leave the cores to others.
@@ -36,6 +37,38 @@ TEST(Parallel, ALoopVisitsEveryIndexOnceOnAnyNumberOfThreads) {
     OnThreads(threads, [&] {
       for (size_t n : {0, 1, 7, 1000, 100003})
         for (size_t grain : {1, 8, 4096}) EXPECT_EQ(Visits(n, grain), std::vector<int>(n, 1)) << threads << " " << n;
+    });
+}
+
+TEST(Parallel, ALoopBesideASerialPassVisitsEveryIndexOnceWhileThePassRunsOnTheCaller) {
+  for (int threads : {1, 2, 3})
+    OnThreads(threads, [&] {
+      for (size_t n : {0, 1, 7, 100003}) {
+        std::vector<std::atomic<int>> seen(n);
+        std::atomic<size_t> rowsDuringPass{0};
+        std::atomic<bool> inPass{false};
+        int passes = 0;
+        const std::thread::id caller = std::this_thread::get_id();
+        vcg_ext::ParallelForBeside(
+            [&] {
+              EXPECT_EQ(std::this_thread::get_id(), caller);
+              ++passes;
+              inPass = true;
+              // Long enough for another thread to start on the rows meanwhile.
+              const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(threads > 1 ? 50 : 0);
+              while (std::chrono::steady_clock::now() < until && rowsDuringPass.load() == 0) std::this_thread::yield();
+              inPass = false;
+            },
+            n, 8, [&](size_t i) {
+              seen[i].fetch_add(1);
+              if (inPass) rowsDuringPass.fetch_add(1);
+            });
+        EXPECT_EQ(passes, 1);
+        std::vector<int> out;
+        for (auto& s : seen) out.push_back(s.load());
+        EXPECT_EQ(out, std::vector<int>(n, 1)) << threads << " " << n;
+        if (threads > 1 && n > 1000) EXPECT_GT(rowsDuringPass.load(), 0u) << "the rows waited for the pass";
+      }
     });
 }
 
