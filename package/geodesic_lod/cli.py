@@ -226,6 +226,7 @@ SIZE_OPTIONS = ("--rate", "--count", "--radius", "--levels")
 
 def _request(args) -> dict:
     """The options that need no input, checked before the file is read (a bad one fails at once)."""
+    point_files.check_named(args.output)
     given = [o for o in SIZE_OPTIONS if getattr(args, o[2:]) is not None]
     if point_files.is_copc(args.output):
         extra = given + [o for o, on in (("--fps", args.fps), ("--height-field", args.height_field),

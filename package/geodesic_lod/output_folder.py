@@ -14,6 +14,7 @@ import pathlib
 import re
 from typing import Optional, Sequence
 
+from . import point_files
 from .errors import PointFileError
 
 INDEX = "index.json"
@@ -32,6 +33,7 @@ class OutputFolder:
     """A folder for a run's output, checked before any work (see the module's docstring)."""
 
     def __init__(self, path, inputs: Sequence[str]):
+        point_files.check_named(path)
         self.path = pathlib.Path(path)
         out = self.path
         if out.is_symlink() and not out.is_dir():

@@ -16,7 +16,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from . import las_files
-from .errors import PointFileError
+from .errors import InputError, PointFileError
 
 COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
 FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
@@ -61,6 +61,12 @@ def format_of(path, role: str = "input") -> str:
     return FORMATS[ext]
 
 
+def check_named(path) -> None:
+    """Refuses an empty output name, which a path would read as the current folder."""
+    if os.fspath(path) == "":
+        raise InputError("the output's name is empty: give a file or folder name")
+
+
 def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) -> None:
     """Refuses, before any input is read, outputs that could not be written or would replace a file:
     an unknown or unfitting format, a missing or read-only folder, a name too long, a folder, a name
@@ -68,6 +74,7 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
     kinds = {format_of(p) for p in inputs}
     seen = set()
     for path in outputs:
+        check_named(path)
         out = pathlib.Path(path)
         format_of(out, "output")
         for kind in kinds:

@@ -81,3 +81,12 @@ def test_a_file_given_twice_is_refused(tmp_path):
         r = run(*twice, "-o", tmp_path / "lod", "--rate", "10%", "-q", "--workers", "1")
         assert r.returncode == 2 and "is given twice" in r.stderr and len(r.stderr.splitlines()) == 1, r.stderr
     assert contents(tmp_path) == before
+
+
+@pytest.mark.parametrize("where", [[], ["--workers", "1"]], ids=["one machine", "cluster"])
+def test_an_empty_output_name_is_refused_not_taken_for_the_current_folder(tmp_path, where):
+    src = las_cloud(tmp_path / "in.laz")
+    before = contents(tmp_path)
+    r = run(src, "-o", "", "--rate", "10%", "-q", *where, cwd=tmp_path)
+    assert r.returncode == 2 and "the output's name is empty" in r.stderr, r.stderr
+    assert contents(tmp_path) == before

@@ -107,6 +107,8 @@ def test_lod_files_raises_input_errors(tmp_path, npy_cloud):
         distributed.lod_files([npy_cloud], tmp_path / "lod", client=_Client(0, 0))
     with pytest.raises(gl.PointFileError, match="matches no files"):
         distributed.lod_files([str(tmp_path / "none*.laz")], tmp_path / "lod", radius=0.5, client=_Client(0, 0))
+    with pytest.raises(gl.InputError, match="the output's name is empty"):
+        distributed.lod_files([npy_cloud], "", radius=0.5, client=_Client(0, 0))
 
 
 @pytest.mark.parametrize("tile_points", [999, 2.5e6, "2000000", True])
