@@ -46,22 +46,23 @@ TEST(Parallel, ALoopBesideASerialPassVisitsEveryIndexOnceWhileThePassRunsOnTheCa
       for (size_t n : {0, 1, 7, 100003}) {
         std::vector<std::atomic<int>> seen(n);
         std::atomic<size_t> rowsDuringPass{0};
-        std::atomic<bool> inPass{false};
+        std::atomic<bool> passStarted{false}, passDone{false};
         int passes = 0;
         const std::thread::id caller = std::this_thread::get_id();
         vcg_ext::ParallelForBeside(
             [&] {
               EXPECT_EQ(std::this_thread::get_id(), caller);
               ++passes;
-              inPass = true;
-              // Long enough for another thread to start on the rows meanwhile.
-              const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(threads > 1 ? 50 : 0);
+              passStarted = true;
+              // On several threads, another thread runs rows while the pass lasts.
+              const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(threads > 1 && n > 1000 ? 5 : 0);
               while (std::chrono::steady_clock::now() < until && rowsDuringPass.load() == 0) std::this_thread::yield();
-              inPass = false;
+              passDone = true;
             },
             n, 8, [&](size_t i) {
+              while (!passStarted.load()) std::this_thread::yield();  // rows are quick: start them inside the pass
               seen[i].fetch_add(1);
-              if (inPass) rowsDuringPass.fetch_add(1);
+              if (!passDone.load()) rowsDuringPass.fetch_add(1);
             });
         EXPECT_EQ(passes, 1);
         std::vector<int> out;
