@@ -41,6 +41,17 @@ def ours(pymeshlab, xyz, n, seed, **options):
     return gl.poisson_lod(xyz, count=n, seed=seed, **options).indices
 
 
+def ours_rims_first(pymeshlab, xyz, n, seed):
+    """The Euclidean metric, visiting the rims of the points' surroundings first (vcg_ext/border_order.h, its
+    default discount): in the core only, not yet an option of the front ends."""
+    from geodesic_lod import _core, arrays
+    points, normals, _, _ = arrays.input_arrays(xyz, None, None)
+    param = _core.PoissonParam()
+    param.domain = arrays.DomainOptions(metric="euclidean").param(len(points), False)
+    param.sample_num, param.seed, param.order = n, seed, _core.VisitOrder.Border
+    return np.asarray(_core.poisson_lod(points, normals, None, param, None, None)["indices"])
+
+
 def meshlab_simplification(pymeshlab, xyz, n, seed):
     """MeshLab's point cloud simplification of the points in a seeded order (seed 0: the file's), its
     radius searched to the count; its points are input points."""
@@ -70,6 +81,7 @@ def uniform_random(pymeshlab, xyz, n, seed):
 
 METHODS = {"ours (defaults)": ours,
            "ours, Euclidean metric": lambda pm, xyz, n, seed: ours(pm, xyz, n, seed, metric="euclidean"),
+           "ours, Euclidean metric, rims first": ours_rims_first,
            "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
 
 

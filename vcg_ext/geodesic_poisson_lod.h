@@ -14,6 +14,7 @@
 #include "poisson_disk.h"
 #include "poisson_target_count.h"
 #include "priority_order.h"
+#include "border_order.h"
 #include "prominence.h"
 
 namespace vcg_ext {
@@ -41,13 +42,18 @@ class GeodesicPoissonLod {
     /// among them, in the same visiting order, with geodesics over every point.
     std::vector<int> within;
     /// Which point of a neighbourhood a disk keeps: any order keeps separation
-    /// and coverage (Prominence: the most prominent at the disk's scale first).
+    /// and coverage (Prominence: the most prominent at the disk's scale first;
+    /// Border: the rims of the points' surroundings first).
     VisitOrder order = VisitOrder::Random;
     /// With Prominence: the standard errors of the noise discounted from each
     /// point's prominence (Prominence::Compute). On the tuning models
     /// (docs/visit_order_tuning.json) 2 and 3 tie for the lowest mean error
     /// ratio; 2 has the smaller worst one.
     double prominenceNoise = 2.0;
+    /// With Border: the standard errors discounted from each point's offset
+    /// (BorderOrder::Compute): well beyond an even scatter's, so that flat
+    /// ground keeps the random order (docs/airborne_classes.md).
+    double borderNoise = 4.0;
   };
   struct Result : LodResult<Scalar> {
     double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
@@ -64,14 +70,18 @@ class GeodesicPoissonLod {
 
   /// The Poisson visiting order of the domain's points: by the seed and each
   /// point's input index, so the same point has the same rank in any subset;
-  /// with VisitOrder::Prominence first by their prominence at `scale`; a
-  /// mesh's border points before the rest (BorderFirst).
+  /// with VisitOrder::Prominence first by their prominence at `scale`, with
+  /// VisitOrder::Border by their offset from the rim of their surroundings
+  /// (noise < 0: the order's default discount); a mesh's border points
+  /// before the rest (BorderFirst).
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
-                                        VisitOrder visit = VisitOrder::Random, double scale = 0,
-                                        double noise = Param().prominenceNoise) {
+                                        VisitOrder visit = VisitOrder::Random, double scale = 0, double noise = -1) {
+    if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
-        visit == VisitOrder::Prominence
-            ? Prominence<Scalar>::Order(
+        visit == VisitOrder::Border
+            ? KeyFirstOrder(BorderOrder<Scalar>::Compute(d.points.pos, scale, noise), d.points.vertIndex, seed)
+        : visit == VisitOrder::Prominence
+            ? KeyFirstOrder(
                   Prominence<Scalar>::Compute(d.points.pos, d.normal, scale,
                                               Prominence<Scalar>::SmoothingRadius(d.points.pos, scale), noise),
                   d.points.vertIndex, seed)
@@ -92,6 +102,11 @@ class GeodesicPoissonLod {
     return order;
   }
 
+  /// The noise discount p gives the visiting order `visit`.
+  static double NoiseOf(VisitOrder visit, const Param& p) {
+    return visit == VisitOrder::Border ? p.borderNoise : p.prominenceNoise;
+  }
+
   /// Moves a mesh's border points (TriangleBorders) ahead of the rest, each part
   /// in its order. Every border point then lies within a disk of a border
   /// sample, so the LOD's border follows the input's; in random order a border
@@ -105,7 +120,7 @@ class GeodesicPoissonLod {
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
-                                    VisitOrder visit = VisitOrder::Random, double noise = Param().prominenceNoise) {
+                                    VisitOrder visit = VisitOrder::Random, double noise = -1) {
     CheckRadius(radius);
     const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise);
     PoissonDisk::Param pp;
@@ -129,7 +144,7 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     // One order for every run of the search: prominence at the first radius's scale.
-    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, p.prominenceNoise);
+    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p));
     tp.order = &order;
     PoissonTargetCount::Result r;
     // Its runs compute each edge's length as they go, as one run does: disks
@@ -184,7 +199,7 @@ class GeodesicPoissonLod {
       r.trimmed = t.trimmed;
       r.coveringRadius = t.coveringRadius;
     } else {
-      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, p.order, p.prominenceNoise);
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, p.order, NoiseOf(p.order, p));
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

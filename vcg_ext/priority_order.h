@@ -5,14 +5,16 @@
 // its own id, never on which other points are present or how they are
 // numbered, so a tile of a larger cloud visits its points in the order the
 // whole cloud would: the basis of the same samples tile by tile.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 #include "radix_sort.h"
 
 namespace vcg_ext {
 
-/// The order Poisson-disk sampling visits points in (Prominence: prominence.h).
-enum class VisitOrder { Random = 0, Prominence = 1 };
+/// The order Poisson-disk sampling visits points in (Prominence: prominence.h;
+/// Border: border_order.h).
+enum class VisitOrder { Random = 0, Prominence = 1, Border = 2 };
 
 /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every bit.
 inline uint64_t Mix64(uint64_t x) {
@@ -33,6 +35,19 @@ template <class Id>
 std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
   std::vector<uint64_t> key(id.size());
   for (size_t i = 0; i < id.size(); ++i) key[i] = Priority(seed, uint64_t(id[i]));
+  return SortKeys(key);
+}
+
+/// The order by a per-point value, largest first, then by Priority(seed, id):
+/// values count in steps of 2^-24 (of a scale they are in units of), so that
+/// roundings in the sums that make them rarely reorder two points.
+template <class Id>
+std::vector<int> KeyFirstOrder(const std::vector<float>& value, const std::vector<Id>& id, uint64_t seed) {
+  std::vector<uint64_t> key(id.size());
+  for (size_t i = 0; i < id.size(); ++i) {
+    const double steps = std::min(double(value[i]) * 0x1p24, double(UINT32_MAX));
+    key[i] = (uint64_t(UINT32_MAX - uint32_t(steps)) << 32) | (Priority(seed, uint64_t(id[i])) >> 32);
+  }
   return SortKeys(key);
 }
 

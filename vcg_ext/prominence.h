@@ -15,7 +15,6 @@
 #include <vcg/space/point3.h>
 #include "cell_grid.h"
 #include "parallel.h"
-#include "priority_order.h"
 
 namespace vcg_ext {
 
@@ -74,19 +73,6 @@ class Prominence {
       out[size_t(i)] = float(std::max(0.0, std::abs(gap * n) - noise * sigma / std::sqrt(double(nNear))) / R);
     });
     return out;
-  }
-
-  /// The visiting order by prominence, largest first, then by Priority(seed,
-  /// id) (PriorityOrder): prominence counts in steps of 2^-24 R, so that
-  /// roundings in the sums rarely reorder two points.
-  template <class Id>
-  static std::vector<int> Order(const std::vector<float>& prominence, const std::vector<Id>& id, uint64_t seed) {
-    std::vector<uint64_t> key(id.size());
-    for (size_t i = 0; i < id.size(); ++i) {
-      const double steps = std::min(double(prominence[i]) * 0x1p24, double(UINT32_MAX));
-      key[i] = (uint64_t(UINT32_MAX - uint32_t(steps)) << 32) | (Priority(seed, uint64_t(id[i])) >> 32);
-    }
-    return SortKeys(key);
   }
 };
 

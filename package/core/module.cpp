@@ -219,7 +219,8 @@ NB_MODULE(_core, m) {
       .value("Optimized", vcg_ext::Placement::Optimized);
   nb::enum_<vcg_ext::VisitOrder>(m, "VisitOrder")
       .value("Random", vcg_ext::VisitOrder::Random)
-      .value("Prominence", vcg_ext::VisitOrder::Prominence);
+      .value("Prominence", vcg_ext::VisitOrder::Prominence)
+      .value("Border", vcg_ext::VisitOrder::Border);
   nb::enum_<vcg_ext::Regions>(m, "Regions")
       .value("None_", vcg_ext::Regions::None)
       .value("Disk", vcg_ext::Regions::Disk)
@@ -248,6 +249,7 @@ NB_MODULE(_core, m) {
       .def_rw("regions", &Poisson::Param::regions)
       .def_rw("order", &Poisson::Param::order)
       .def_rw("prominence_noise", &Poisson::Param::prominenceNoise)
+      .def_rw("border_noise", &Poisson::Param::borderNoise)
       .def_prop_rw(
           "within", [](const Poisson::Param& p) { return p.within; },
           [](Poisson::Param& p, const nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>& v) {

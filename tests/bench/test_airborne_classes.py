@@ -35,3 +35,17 @@ def test_over_seeds_gives_each_class_the_mean_and_range_of_its_runs():
     for r in got:
         assert np.isclose(r["mean_error"], 0.2) and (r["lowest_error"], r["highest_error"]) == (0.1, 0.3)
         assert np.isclose(r["kept"], 0.2) and np.isclose(r["samples"], 101) and r["points"] == 50
+
+
+def test_the_rims_first_method_keeps_exactly_n_input_points_and_puts_a_roofs_edge_first():
+    from airborne_classes import ours_rims_first  # noqa: E402
+    g = np.linspace(0, 1, 41)
+    x, y = np.meshgrid(g, g)
+    z = np.where(x < 0.5, 0.0, 0.3)  # two roofs side by side, no walls: their edges are rims
+    xyz = np.column_stack([x.ravel(), y.ravel(), z.ravel()]) + np.random.default_rng(2).normal(0, 1e-3, (1681, 3))
+    kept = ours_rims_first(None, xyz, 60, 0)
+    assert len(kept) == 60 == len(np.unique(kept)) and kept.min() >= 0 and kept.max() < len(xyz)
+    np.testing.assert_array_equal(kept, ours_rims_first(None, xyz, 60, 0))
+    near_edge = np.minimum.reduce([xyz[:, 0], 1 - xyz[:, 0], xyz[:, 1], 1 - xyz[:, 1], abs(xyz[:, 0] - 0.5)]) < 0.03
+    from airborne_classes import ours  # noqa: E402
+    assert near_edge[kept].sum() > near_edge[np.asarray(ours(None, xyz, 60, 0, metric="euclidean"))].sum()

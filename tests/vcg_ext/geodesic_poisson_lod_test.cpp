@@ -10,6 +10,7 @@
 #include <vcg_ext/priority_order.h>
 #include <vcg_ext/triangle_borders.h>
 #include "distance_fields.h"
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace geodesic_poisson_lod_test {
@@ -355,6 +356,23 @@ TEST(GeodesicPoissonLod, CoreDiagonalLeavesOutAFewStrayPoints) {
   pile.emplace_back(1, 2, 3);
   pile.emplace_back(2, 0, 1);
   EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pile), std::sqrt(17.0));
+}
+
+TEST(GeodesicPoissonLod, ACountIsMetExactlyInEveryVisitingOrder) {
+  test::TMesh m;
+  test::HeightField(m, 41, [](float x, float y) { return x < 0.5f ? 0.f : 0.3f + 0.05f * std::sin(9 * y); });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  Poisson::Param p;
+  p.sampleNum = 80;
+  const auto random = Poisson::Compute(d, p).vertIndex;
+  for (vcg_ext::VisitOrder order : {vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
+    p.order = order;
+    const auto a = test::OnThreads(1, [&] { return Poisson::Compute(d, p); });
+    const auto b = test::OnThreads(2, [&] { return Poisson::Compute(d, p); });
+    EXPECT_EQ(a.vertIndex.size(), 80u) << int(order);
+    EXPECT_EQ(a.vertIndex, b.vertIndex) << int(order);
+    EXPECT_NE(a.vertIndex, random) << int(order);
+  }
 }
 
 }  // namespace geodesic_poisson_lod_test

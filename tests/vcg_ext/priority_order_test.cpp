@@ -1,6 +1,7 @@
 // The Poisson visiting order: a point's place among others depends only on the
 // seed and the ids, so any subset is visited in the order the whole set visits
-// it; seeds give different orders; distinct ids never share a hash.
+// it; seeds give different orders; distinct ids never share a hash; an order
+// by a key keeps the seed's order among equal keys.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cstdint>
@@ -51,6 +52,21 @@ TEST(PriorityOrder, DistinctIdsNeverTieAndEqualIdsKeepTheirNumbering) {
     const uint64_t p0 = vcg_ext::Priority(0, ids[size_t(o[k - 1])]), p1 = vcg_ext::Priority(0, ids[size_t(o[k])]);
     EXPECT_TRUE(p0 < p1 || (p0 == p1 && o[k - 1] < o[k]));
   }
+}
+
+TEST(PriorityOrder, AKeyFirstOrderIsByTheKeyThenBySeededPriority) {
+  const std::vector<float> p = {0.5f, 0.f, 0.5f, 0.9f, 0.f};
+  const std::vector<int> id = {10, 11, 12, 13, 14};
+  const std::vector<int> a = vcg_ext::KeyFirstOrder(p, id, 3), b = vcg_ext::KeyFirstOrder(p, id, 4);
+  EXPECT_EQ(a[0], 3);
+  EXPECT_EQ(std::vector<int>({a[1], a[2]}) == std::vector<int>({0, 2}) ||
+                std::vector<int>({a[1], a[2]}) == std::vector<int>({2, 0}),
+            true);
+  // Equal keys follow the seed's priorities, as the random order does.
+  const bool firstBefore = vcg_ext::Priority(3, 10) < vcg_ext::Priority(3, 12);
+  EXPECT_EQ(a[1], firstBefore ? 0 : 2);
+  const bool firstBefore4 = vcg_ext::Priority(4, 10) < vcg_ext::Priority(4, 12);
+  EXPECT_EQ(b[1], firstBefore4 ? 0 : 2);
 }
 
 }  // namespace priority_order_test

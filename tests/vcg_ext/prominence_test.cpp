@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vcg_ext/bounded_dijkstra.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/prominence.h>
+#include "distance_fields.h"
 #include "on_threads.h"
 #include "test_mesh.h"
 
@@ -76,21 +76,6 @@ TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
   EXPECT_EQ(std::max_element(discounted.begin(), discounted.end()) - discounted.begin(), peak);
 }
 
-TEST(Prominence, OrderIsByProminenceThenBySeededPriority) {
-  const std::vector<float> p = {0.5f, 0.f, 0.5f, 0.9f, 0.f};
-  const std::vector<int> id = {10, 11, 12, 13, 14};
-  const std::vector<int> a = Prominence::Order(p, id, 3), b = Prominence::Order(p, id, 4);
-  EXPECT_EQ(a[0], 3);
-  EXPECT_EQ(std::vector<int>({a[1], a[2]}) == std::vector<int>({0, 2}) ||
-                std::vector<int>({a[1], a[2]}) == std::vector<int>({2, 0}),
-            true);
-  // Equal prominences follow the seed's priorities, as the random order does.
-  const bool firstBefore = vcg_ext::Priority(3, 10) < vcg_ext::Priority(3, 12);
-  EXPECT_EQ(a[1], firstBefore ? 0 : 2);
-  const bool firstBefore4 = vcg_ext::Priority(4, 10) < vcg_ext::Priority(4, 12);
-  EXPECT_EQ(b[1], firstBefore4 ? 0 : 2);
-}
-
 TEST(Prominence, PoissonByProminenceKeepsThePeakSeparatesAndCovers) {
   const Domain d = PeakDomain();
   const double r = 0.12;
@@ -99,33 +84,11 @@ TEST(Prominence, PoissonByProminenceKeepsThePeakSeparatesAndCovers) {
   });
   ASSERT_GT(s.size(), 10u);
   EXPECT_EQ(s[0], Nearest(d, 0.3f, 0.3f));  // the peak is visited first, so it is a sample
-  // Separation and coverage in the domain's metric: full Dijkstra from every sample.
-  vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
-  std::vector<float> nearest(d.size(), std::numeric_limits<float>::infinity());
-  for (int a : s) {
-    const auto dist = search.Distances(a);
-    for (int b : s)
-      if (b != a) EXPECT_GT(dist[size_t(b)], float(r)) << "samples " << a << " and " << b << " too close";
-    for (size_t i = 0; i < dist.size(); ++i) nearest[i] = std::min(nearest[i], dist[i]);
-  }
-  EXPECT_LE(*std::max_element(nearest.begin(), nearest.end()), float(r));
+  test::ExpectSeparatedAndCovering(d, s, r);
   const auto two = test::OnThreads(2, [&] {
     return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence).samples;
   });
   EXPECT_EQ(s, two);
-}
-
-TEST(Prominence, ACountIsMetExactlyInProminenceOrder) {
-  const Domain d = PeakDomain();
-  LOD::Param p;
-  p.sampleNum = 60;
-  p.order = vcg_ext::VisitOrder::Prominence;
-  const auto a = test::OnThreads(1, [&] { return LOD::Compute(d, p); });
-  const auto b = test::OnThreads(2, [&] { return LOD::Compute(d, p); });
-  EXPECT_EQ(a.vertIndex.size(), 60u);
-  EXPECT_EQ(a.vertIndex, b.vertIndex);
-  p.order = vcg_ext::VisitOrder::Random;
-  EXPECT_NE(LOD::Compute(d, p).vertIndex, a.vertIndex);
 }
 
 }  // namespace prominence_test
