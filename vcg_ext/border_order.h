@@ -5,9 +5,9 @@
 // fitted to them, in units of R. Inside a surface the mean falls on the point;
 // at a roof's edge or a cloud's border it lies up to 4 R / (3 pi) inward.
 // Poisson-disk sampling that visits the largest first puts its samples on
-// those rims, which random order cuts by up to a radius (the largest
-// plane-fit errors of buildings in airborne scans, docs/airborne_classes.md),
-// with the same separation and coverage as any order. Cost O(n m) for m
+// those rims, which random order may leave up to a radius from any sample
+// (roof edges in airborne scans, docs/airborne_classes.md), with the same
+// separation and coverage as any order. Cost O(n m) for m
 // points in the 27 cells of side R around a point, on all threads; the same
 // values on any thread count.
 #include <algorithm>

@@ -8,13 +8,13 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include "border_order.h"
 #include "geodesic_delaunay.h"
 #include "geodesic_domain.h"
 #include "lod_result.h"
 #include "poisson_disk.h"
 #include "poisson_target_count.h"
 #include "priority_order.h"
-#include "border_order.h"
 #include "prominence.h"
 
 namespace vcg_ext {
@@ -143,7 +143,7 @@ class GeodesicPoissonLod {
     // middle 98% of the points on each axis (a few stray points far away would
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
-    // One order for every run of the search: prominence at the first radius's scale.
+    // One order for every run of the search: a key order at the first radius's scale.
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p));
     tp.order = &order;
     PoissonTargetCount::Result r;

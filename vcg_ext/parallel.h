@@ -204,34 +204,11 @@ class ThreadTeam {
   pid_t pid_ = getpid();
 };
 
-/// Calls f(i) for every i in [0, n) on all threads, `grain` consecutive i at
-/// a time, handed out in order as threads ask. Each f(i) must depend on i
-/// only, so the result is the same on any number of threads; f must not
-/// throw (an exception is rethrown after the loop, the others stopped).
-template <class F>
-void ParallelFor(size_t n, size_t grain, F&& f) {
-  grain = std::max<size_t>(1, grain);
-  const int threads = int(std::min<size_t>(size_t(ThreadCount()), (n + grain - 1) / grain));
-  std::atomic<size_t> next{0};
-  std::atomic<bool> failed{false};
-  ThreadTeam::Mine().Run(threads, [&](int) {
-    try {
-      for (size_t b; !failed.load(std::memory_order_relaxed) && (b = next.fetch_add(grain)) < n;)
-        for (size_t i = b, e = std::min(n, b + grain); i < e; ++i) f(i);
-    } catch (...) {
-      failed = true;
-      throw;
-    }
-  });
-}
-
-/// ParallelFor(n, grain, f) whose calling thread first runs `serial`, a pass
-/// that overlaps the loop (it must not touch what f does): the other threads
-/// start on the rows at once. With one thread, `serial` then the rows.
+namespace detail {
+/// f(i) for every i in [0, n) on `threads`, `grain` at a time as they ask;
+/// the calling thread runs serial() first.
 template <class Serial, class F>
-void ParallelForBeside(Serial&& serial, size_t n, size_t grain, F&& f) {
-  grain = std::max<size_t>(1, grain);
-  const int threads = n > 0 ? ThreadCount() : 1;
+void Rows(int threads, Serial&& serial, size_t n, size_t grain, F&& f) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   ThreadTeam::Mine().Run(threads, [&](int t) {
@@ -244,6 +221,25 @@ void ParallelForBeside(Serial&& serial, size_t n, size_t grain, F&& f) {
       throw;
     }
   });
+}
+}  // namespace detail
+
+/// Calls f(i) for every i in [0, n) on all threads, `grain` consecutive i at
+/// a time, handed out in order as threads ask. Each f(i) must depend on i
+/// only, so the result is the same on any number of threads; f must not
+/// throw (an exception is rethrown after the loop, the others stopped).
+template <class F>
+void ParallelFor(size_t n, size_t grain, F&& f) {
+  grain = std::max<size_t>(1, grain);
+  detail::Rows(int(std::min<size_t>(size_t(ThreadCount()), (n + grain - 1) / grain)), [] {}, n, grain, f);
+}
+
+/// ParallelFor(n, grain, f) whose calling thread first runs `serial`, a pass
+/// that overlaps the loop (it must not touch what f does): the other threads
+/// start on the rows at once. With one thread, `serial` then the rows.
+template <class Serial, class F>
+void ParallelForBeside(Serial&& serial, size_t n, size_t grain, F&& f) {
+  detail::Rows(n > 0 ? ThreadCount() : 1, serial, n, std::max<size_t>(1, grain), f);
 }
 
 /// One object per thread: the given one for thread 0, copies for the others
