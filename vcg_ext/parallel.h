@@ -5,7 +5,8 @@
 // machine the waiting thread keeps the core the late one needs, and a run on
 // two threads takes several times one thread's (docs/busy_machine.md). These
 // workers spin a few microseconds (a loop's next batch usually follows that
-// soon), then sleep until woken. The thread count is OpenMP's
+// soon), then sleep until woken; a loop's caller takes rows until none is
+// left and waits only for workers that have started. The thread count is OpenMP's
 // (omp_get_max_threads: OMP_NUM_THREADS, or what the host set), one without
 // OpenMP. Cost: a wake-up per loop, microseconds.
 #include <algorithm>
@@ -81,7 +82,11 @@ class ThreadTeam {
   /// more threads); returns when all have returned, then rethrows the
   /// exception of the lowest t that threw. Inside a loop's body (a nested
   /// loop), `threads` must be 1: job(0) on the calling thread.
-  void Run(int threads, const std::function<void(int)>& job) {
+  /// With `helpersOptional`, job(t) for t > 0 only helps job(0), which does
+  /// all the work left: a worker that has not started when job(0) returns
+  /// skips the job. On a busy machine a woken worker may wait milliseconds for
+  /// a core, and the caller, which has done the rows meanwhile, need not wait.
+  void Run(int threads, const std::function<void(int)>& job, bool helpersOptional = false) {
     detail::TeamPlace& place = detail::Place();
     if (place.inLoop || threads <= 1) {
       const detail::TeamPlace outer = place;
@@ -110,7 +115,9 @@ class ThreadTeam {
       job_ = guarded;
       size_ = threads;
       asked_ = asked;
-      pending_.store(threads - 1, std::memory_order_relaxed);
+      optional_ = helpersOptional;
+      closed_ = false;
+      pending_.store(helpersOptional ? 0 : threads - 1, std::memory_order_relaxed);  // optional: counted as they start
       generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
@@ -118,6 +125,10 @@ class ThreadTeam {
     guarded(0);
     for (int t = threads; t < asked; ++t) place.index = t, guarded(t);
     place = {0, 1, false};
+    if (helpersOptional) {
+      std::lock_guard<std::mutex> lock(m_);
+      closed_ = true;  // no worker starts the job now; those that did are counted in pending_
+    }
     Await([&] { return pending_.load(std::memory_order_acquire) == 0; }, done_);
     {
       std::lock_guard<std::mutex> lock(m_);
@@ -166,9 +177,12 @@ class ThreadTeam {
         std::lock_guard<std::mutex> lock(m_);
         if (stop_) return;
         seen = generation_.load(std::memory_order_relaxed);
-        if (w < size_) job = &job_, total = asked_;
+        if (w < size_ && !(optional_ && closed_)) {
+          job = &job_, total = asked_;
+          if (optional_) pending_.fetch_add(1, std::memory_order_relaxed);
+        }
       }
-      if (!job) continue;  // a loop on fewer threads
+      if (!job) continue;  // a loop on fewer threads, or one that ended before this worker started
       detail::Place() = {w, total, true};
       (*job)(w);
       detail::Place() = {0, 1, false};
@@ -199,6 +213,7 @@ class ThreadTeam {
   std::atomic<uint64_t> generation_{0};
   std::atomic<int> pending_{0};
   int size_ = 1, asked_ = 1;  // the workers running the job, and its t's in all
+  bool optional_ = false, closed_ = false;  // helpers optional; and job(0) has returned (under m_)
   std::function<void(int)> job_;
   bool stop_ = false;
   pid_t pid_ = getpid();
@@ -211,6 +226,7 @@ template <class Serial, class F>
 void Rows(int threads, Serial&& serial, size_t n, size_t grain, F&& f) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
+  // The caller takes rows until none is left, so the other threads only help.
   ThreadTeam::Mine().Run(threads, [&](int t) {
     try {
       if (t == 0) serial();
@@ -220,7 +236,7 @@ void Rows(int threads, Serial&& serial, size_t n, size_t grain, F&& f) {
       failed = true;
       throw;
     }
-  });
+  }, true);
 }
 }  // namespace detail
 

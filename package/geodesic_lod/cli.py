@@ -86,7 +86,7 @@ def parser() -> argparse.ArgumentParser:
                    "is the same on any number")
     p.add_argument("--overwrite", action="store_true", help="replace output files that exist (never an input)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary")
-    p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    p.add_argument("--version", action=_Version, help="show the version and exit")
     dask = p.add_argument_group("on a Dask cluster: the same samples as on one machine at the same radius, "
                                 "written as tiles with an index.json")
     dask.add_argument("--workers", type=int, help="a cluster of this many worker processes on this machine")
@@ -100,12 +100,20 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _version() -> str:
-    from importlib import metadata
-    try:
-        return metadata.version("geodesic-lod")
-    except metadata.PackageNotFoundError:  # run from a build tree
-        return "(not installed)"
+class _Version(argparse.Action):
+    """--version, looked up only when asked for (reading the package's metadata takes a while)."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest, nargs=0, default=default, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from importlib import metadata
+        try:
+            version = metadata.version("geodesic-lod")
+        except metadata.PackageNotFoundError:  # run from a build tree
+            version = "(not installed)"
+        print(f"{parser.prog} {version}")
+        parser.exit()
 
 
 def _on_cluster(args) -> bool:

@@ -1,6 +1,6 @@
 // vcg_ext/parallel.h: a loop calls its body once for every index on any
 // number of threads, on distinct threads when there are several (beside a
-// serial pass on the caller, too); a nested
+// serial pass on the caller, too), however short the loops; a nested
 // loop runs on its caller alone; an exception or a stop request ends the loop
 // and is rethrown; progress comes from the calling thread only; each calling
 // thread has its own team; waiting workers leave the cores to others.
@@ -37,6 +37,22 @@ TEST(Parallel, ALoopVisitsEveryIndexOnceOnAnyNumberOfThreads) {
     OnThreads(threads, [&] {
       for (size_t n : {0, 1, 7, 1000, 100003})
         for (size_t grain : {1, 8, 4096}) EXPECT_EQ(Visits(n, grain), std::vector<int>(n, 1)) << threads << " " << n;
+    });
+}
+
+// The caller does every row no other thread has taken, and a worker that
+// starts after that skips the loop: many short loops in a row, where workers
+// often start late or not at all, still visit every index once.
+TEST(Parallel, ManyShortLoopsInARowEachVisitEveryIndexOnce) {
+  for (int threads : {2, 3})
+    OnThreads(threads, [&] {
+      std::vector<std::atomic<int>> seen(16);
+      for (int loop = 0; loop < 20000; ++loop) {
+        for (auto& s : seen) s = 0;
+        vcg_ext::ParallelFor(seen.size(), 1, [&](size_t i) { seen[i].fetch_add(1); });
+        for (size_t i = 0; i < seen.size(); ++i)
+          if (seen[i].load() != 1) FAIL() << "loop " << loop << ", index " << i << ": " << seen[i].load() << " visits";
+      }
     });
 }
 
