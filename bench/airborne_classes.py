@@ -42,14 +42,10 @@ def ours(pymeshlab, xyz, n, seed, **options):
 
 
 def ours_rims_first(pymeshlab, xyz, n, seed):
-    """The Euclidean metric, visiting the rims of the points' surroundings first (vcg_ext/border_order.h, its
-    default discount): in the core only, not yet an option of the front ends."""
-    from geodesic_lod import _core, arrays
-    points, normals, _, _ = arrays.input_arrays(xyz, None, None)
-    param = _core.PoissonParam()
-    param.domain = arrays.DomainOptions(metric="euclidean").param(len(points), False)
-    param.sample_num, param.seed, param.order = n, seed, _core.VisitOrder.Border
-    return np.asarray(_core.poisson_lod(points, normals, None, param, None, None)["indices"])
+    """The Euclidean metric, visiting the rims of the points' surroundings first (``visit_order="rims"``,
+    vcg_ext/border_order.h with its default discount)."""
+    import geodesic_lod as gl
+    return gl.poisson_lod(xyz, count=n, seed=seed, metric="euclidean", visit_order="rims").indices
 
 
 def meshlab_simplification(pymeshlab, xyz, n, seed):

@@ -61,6 +61,10 @@ struct OutputKind {
 const Choices<Regions> kPoissonRegions{
     {{Regions::None, "None"}, {Regions::Disk, "Disk regions"}, {Regions::Voronoi, "Voronoi regions"}}};
 const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, "Voronoi regions"}}};
+using vcg_ext::VisitOrder;
+const Choices<VisitOrder> kVisitOrders{{{VisitOrder::Random, "Random"},
+                                        {VisitOrder::Prominence, "Prominent points first"},
+                                        {VisitOrder::Border, "Rims first"}}};
 using vcg_ext::Placement;
 // A triangle mesh placed as vcg_ext's default, then the other placements, each a choice of its own, in an order
 // that keeps the choices of scripts written before them.
@@ -208,6 +212,13 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "it. 0 gives the exact count.", 0});
   AddDomainParams(p, kPlacedOutputs);
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
+  p.push_back({ParamKind::Enum, kVisitOrder, "Visiting order",
+               "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
+               "Random: the paper's seeded order. Prominent points first: those standing out of the scan's "
+               "scatter at the disks' scale (docs/visit_order.json). Rims first: the points at the rim of their "
+               "surroundings, such as a roof's edges (docs/airborne_classes.md).",
+               kVisitOrders.IndexOf(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().order), 0, 0,
+               kVisitOrders.Names()});
   return p;
 }
 
@@ -247,6 +258,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
     p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kPoissonRegions.Read(src, kRegions);
+    p.order = kVisitOrders.Read(src, kVisitOrder);
     const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;

@@ -19,6 +19,7 @@ constexpr const char* kRecomputeNormals = "recomputenormals";
 constexpr const char* kOutput = "output";
 constexpr const char* kSeed = "seed";
 constexpr const char* kRegions = "regions";
+constexpr const char* kVisitOrder = "visitorder";
 constexpr const char* kLevels = "levels";
 constexpr const char* kReferenceMesh = "referencemesh";
 constexpr const char* kSurfaceMesh = "surfacemesh";

@@ -25,6 +25,8 @@ METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metr
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
+VISIT_ORDERS = {"random": _core.VisitOrder.Random, "prominence": _core.VisitOrder.Prominence,
+                "rims": _core.VisitOrder.Border}
 
 
 def _name_of(table, value):
@@ -33,6 +35,7 @@ def _name_of(table, value):
 
 DEFAULT_METRIC = _name_of(METRICS, DOMAIN_DEFAULTS.metric)
 DEFAULT_GEODESICS = _name_of(GEODESICS, DOMAIN_DEFAULTS.mode)
+DEFAULT_VISIT_ORDER = _name_of(VISIT_ORDERS, _core.PoissonParam().order)
 
 
 # The result classes' docstrings, with their Attributes sections, are docstrings.TEXTS' (by class name).
@@ -365,7 +368,8 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                 adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-                placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0, within=None,
+                placement: Optional[str] = None, regions: Optional[str] = None,
+                visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0, within=None,
                 threads: Optional[int] = None, progress: Progress = None) -> PoissonLod:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
@@ -373,7 +377,7 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
     domain = options.param(p.shape[0], has_faces)
     param, threads = poisson_param(p.shape[0], has_faces, radius, count, rate, tolerance, mesh_output, regions,
-                                    seed, within, threads, progress, lambda: diagonal_of(p))
+                                    seed, within, threads, progress, lambda: diagonal_of(p), visit_order)
     param.domain = domain
     param.placement = placement_of(placement, mesh_output, param.placement)
     return result_of(PoissonLod, call_core(_core.poisson_lod, p, n, f, param, threads, progress))
@@ -385,7 +389,7 @@ def diagonal_of(p: np.ndarray) -> float:
 
 
 def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
-                   progress, diagonal: Callable[[], float]):
+                   progress, diagonal: Callable[[], float], visit_order: str = DEFAULT_VISIT_ORDER):
     """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
     param = _core.PoissonParam()
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
@@ -416,6 +420,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
     param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.regions = _choice(regions, REGIONS, "regions")
+    param.order = _choice(visit_order, VISIT_ORDERS, "visit_order")
     return param, threads
 
 

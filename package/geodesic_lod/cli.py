@@ -76,6 +76,10 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--height-field", action="store_true", help="terrain: greedy insertion (each sample the point "
                    "farthest in height from the TIN of those before it) under a Poisson-disk constraint, with "
                    "--rate, --count or --levels (nested prefixes of one run)")
+    p.add_argument("--visit-order", choices=list(arrays.VISIT_ORDERS), help="Poisson-disk: which point of a "
+                   "neighbourhood a disk keeps: random (the paper's), prominence (points standing out of the "
+                   "scan's scatter first) or rims (points at the rim of their surroundings, such as roof edges, "
+                   f"first); one machine only (default: {arrays.DEFAULT_VISIT_ORDER})")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in (default: %(default)s)")
     p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
@@ -129,6 +133,9 @@ def _run_on_cluster(args, request: dict) -> int:
     if args.fps or args.height_field:
         raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
                          "one machine)")
+    if args.visit_order not in (None, arrays.DEFAULT_VISIT_ORDER):
+        raise ValueError(f"--visit-order {args.visit_order} runs on one machine: a cluster visits in "
+                         f"{arrays.DEFAULT_VISIT_ORDER} order")
     if "levels" in request:  # what can be checked before the cluster starts: levels of one kind get coarser
         for kind in (str, int):
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
@@ -253,6 +260,8 @@ def _request(args) -> dict:
         raise ValueError("--height-field takes --rate, --count or --levels" + (", not --fps" if args.fps else ""))
     if args.height_field and args.tolerance is not None:
         raise ValueError("--tolerance goes with Poisson-disk sets; --height-field counts are exact")
+    if args.visit_order is not None and (args.fps or args.height_field or point_files.is_copc(args.output)):
+        raise ValueError("--visit-order goes with Poisson-disk sets (not --fps, --height-field or a COPC output)")
     if args.tolerance is not None and (args.fps or not counted):
         raise ValueError("--tolerance goes with --count, --rate or --levels (Poisson-disk)")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
@@ -286,6 +295,7 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
     common = dict(faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
+    order = dict(visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
     n = source.points.shape[0]
     if args.height_field:
         return _height_field_levels(request, source, progress)
@@ -293,12 +303,13 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
         return _nested_levels(args, request["levels"], source, progress)
     if "radius" in request:
         return [np.sort(arrays.poisson_lod(source.points, source.normals,
-                                           radius=_radius(request["radius"], source.points), **common).indices)]
+                                           radius=_radius(request["radius"], source.points), **common,
+                                           **order).indices)]
     count = _count_of(request, n)
     if args.fps:
         return [arrays.fps_lod(source.points, source.normals, count=count, **common).indices]
     return [np.sort(arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
-                                       **common).indices)]
+                                       **common, **order).indices)]
 
 
 def _nested_levels(args, items, source: point_files.PointFile, progress) -> list:
@@ -313,6 +324,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
     levels, finer = [], None
     for k, count in enumerate(counts):
         lod = dom.poisson_lod(count=count, tolerance=args.tolerance or 0.0, seed=args.seed, within=finer,
+                              visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER,
                               threads=args.threads, progress=part(0.4 + 0.6 * k / len(counts),
                                                                  0.4 + 0.6 * (k + 1) / len(counts)))
         finer = np.sort(lod.indices)

@@ -122,6 +122,12 @@ LOD_ATTRIBUTES = f"""Attributes
     {LOD_REGIONS}
     {LOD_DOMAIN}"""
 
+VISIT_ORDER = """visit_order : {'random', 'prominence', 'rims'}
+        Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage.
+        'random': the paper's seeded order (default). 'prominence': the points that stand out of their
+        scan's scatter at the disks' scale first (docs/visit_order.json). 'rims': the points at the rim
+        of their surroundings first, such as a roof's edges (docs/airborne_classes.md). Not on a cluster."""
+
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
     point within it of a sample.
@@ -137,6 +143,7 @@ TEXTS = {
     {PLACEMENT}
     regions : {{None, 'disk', 'voronoi'}}
         Fill ``region_of`` with each point's sample: its disk's or its nearest. Default None.
+    {VISIT_ORDER}
     within : array of int or bool, optional
         The only points that may become samples (indices or a mask), such as a finer level's; the
         geodesics still run over every point.
@@ -246,7 +253,7 @@ TEXTS = {
     {POISSON_SIZE}
     {MESH_OUTPUT}
     {PLACEMENT}
-    regions, within
+    regions, visit_order, within
         As in ``poisson_lod``.
     {RUN}
 

@@ -6,8 +6,9 @@ from typing import Optional, Sequence, Union
 
 from . import _core
 from .docstrings import documented
-from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, FpsLod,
-                     LodPyramid, PoissonLod, Progress, call_core, diagonal_of, fps_param, input_arrays, level_counts,
+from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, DEFAULT_VISIT_ORDER, DOMAIN_DEFAULTS, DomainOptions, FpsLod,
+                     LodPyramid, PoissonLod, Progress, call_core, diagonal_of, fps_param, input_arrays,
+                     level_counts,
                      poisson_param, pyramid_param, result_of, run_options,
                      placement_of)
 
@@ -47,11 +48,12 @@ class Domain:
     @functools.partial(documented, name="Domain.poisson_lod")
     def poisson_lod(self, *, radius: Optional[float] = None, count: Optional[int] = None,
                     rate: Optional[float] = None, tolerance: float = 0.0, mesh_output: bool = False,
-                    placement: Optional[str] = None, regions: Optional[str] = None, seed: int = 0, within=None,
+                    placement: Optional[str] = None, regions: Optional[str] = None,
+                    visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0, within=None,
                     threads: Optional[int] = None, progress: Progress = None) -> PoissonLod:
         param, threads = poisson_param(self.point_count, self._built.has_faces, radius, count, rate, tolerance,
                                         mesh_output, regions, seed, within, threads, progress,
-                                        lambda: self._diagonal)
+                                        lambda: self._diagonal, visit_order)
         param.placement = placement_of(placement, mesh_output, param.placement)
         return result_of(PoissonLod, call_core(_core.poisson_on, self._built, param, threads, progress))
 

@@ -144,6 +144,16 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--threads", "0"], "threads must be at least 1"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
+     "argument --visit-order: invalid choice: 'first'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "50", "--fps", "--visit-order", "rims"],
+     "--visit-order goes with Poisson-disk sets"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "50", "--height-field", "--visit-order",
+                "prominence"], "--visit-order goes with Poisson-disk sets"),
+    (lambda d: [las_cloud(d / "in.laz"), "-o", "o.copc.laz", "--visit-order", "rims"],
+     "--visit-order goes with Poisson-disk sets"),
+    (lambda d: [las_cloud(d / "in.laz"), "-o", "out", "--radius", "0.1", "--workers", "1", "--visit-order", "rims"],
+     "--visit-order rims runs on one machine"),
     (lambda d: [np.save(d / "tiny.npy", bumpy_sphere(3)) or d / "tiny.npy", "-o", "o.npy", "--rate", "50%"],
      "tiny.npy: holds 3 points: at least 21 are needed"),
 ]
