@@ -7,9 +7,11 @@
 // Poisson-disk sampling that visits the largest first puts its samples on
 // those rims, which random order may leave up to a radius from any sample
 // (roof edges in airborne scans, docs/airborne_classes.md), with the same
-// separation and coverage as any order. Cost O(n m) for m
-// points in the 27 cells of side R around a point, on all threads; the same
-// values on any thread count.
+// separation and coverage as any order. Cost O(n m log m) for m points in
+// the 27 cells of side R around a point, on all threads. The points within R
+// are summed in index order, so a point's value is the same on any thread
+// count and in any subset holding its R-ball in the same relative order (a
+// cluster's tile, poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -34,30 +36,38 @@ class BorderOrder {
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
     const double far2 = R * R;
-    ParallelFor(pos.size(), 256, [&](size_t r) {
-      const int i = grid.Point(r);
-      const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
-      size_t m = 0;
-      grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
-        for (int k = begin; k < end; ++k) {
-          const vcg::Point3d d = vcg::Point3d::Construct(pos[size_t(grid.Point(size_t(k)))]) - p;
-          if (d.SquaredNorm() > far2) continue;
+    ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+      std::vector<int> near;
+      for (size_t r = b; r < e; ++r) {
+        const int i = grid.Point(r);
+        const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
+        near.clear();
+        grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
+          for (int k = begin; k < end; ++k) {
+            const int j = grid.Point(size_t(k));
+            if ((vcg::Point3d::Construct(pos[size_t(j)]) - p).SquaredNorm() <= far2) near.push_back(j);
+          }
+        });
+        const size_t m = near.size();
+        if (m < 3) continue;  // no plane to lie at the rim of
+        std::sort(near.begin(), near.end());
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+        for (int j : near) {
+          const vcg::Point3d d = vcg::Point3d::Construct(pos[size_t(j)]) - p;
           const Eigen::Vector3d q(d[0], d[1], d[2]);
-          sum += q, outer += q * q.transpose(), ++m;
+          sum += q, outer += q * q.transpose();
         }
-      });
-      if (m < 3) return;  // no plane to lie at the rim of
-      const Eigen::Vector3d mean = sum / double(m);
-      const Eigen::Matrix3d cov = outer / double(m) - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-      const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
-      const Eigen::Vector3d along = mean - n * n.dot(mean);
-      // The spread of the points along the plane, per axis: the two larger eigenvalues.
-      const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
-      out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
+        const Eigen::Vector3d mean = sum / double(m);
+        const Eigen::Matrix3d cov = outer / double(m) - mean * mean.transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+        eig.computeDirect(cov, Eigen::ComputeEigenvectors);
+        const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
+        const Eigen::Vector3d along = mean - n * n.dot(mean);
+        // The spread of the points along the plane, per axis: the two larger eigenvalues.
+        const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
+        out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
+      }
     });
     return out;
   }

@@ -12,14 +12,18 @@
 // (PriorityOrder: a point's rank depends only on its id). A point is a sample
 // iff no earlier sample's disk covers it, and every weight is at least the
 // Euclidean length, so only points within r matter, and the halo holds them
-// with everything their distances depend on (checked: Check).
+// with everything their distances depend on (checked: Check). With the rims
+// first (VisitOrder::Border), a point's rank also depends on the points within
+// the order's scale of it, which the halo then holds as well.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 #include <vcg/space/box3.h>
+#include "border_order.h"
 #include "geodesic_domain.h"
 #include "poisson_disk.h"
 #include "priority_order.h"
@@ -42,6 +46,10 @@ class PoissonTile {
     /// Per input row: whether it may become a sample (nullptr: every row). Nested
     /// levels pass a finer level's samples: core and halo alike, as settled.
     const std::vector<char>* candidate = nullptr;
+    /// Random or Border (the rims first, by BorderOrder at `keyScale` less
+    /// `keyNoise` standard errors: as GeodesicPoissonLod's order at that scale).
+    VisitOrder order = VisitOrder::Random;
+    double keyScale = 0, keyNoise = 0;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -53,6 +61,7 @@ class PoissonTile {
     std::vector<int64_t> coverOffset;    ///< per input row + 1: rows of `coverers`
     std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
     std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
+    std::vector<float> key;              ///< with a key order: per input row, its key (Settle's order)
   };
 
   /// `d` built with keepReach on the tile's rows (core and halo) in increasing
@@ -60,6 +69,8 @@ class PoissonTile {
   /// samples and of the points near the seams.
   static Result Compute(const Domain& d, const std::vector<uint64_t>& id, const std::vector<char>& core,
                         const Param& p, Progress progress = Progress(nullptr)) {
+    if (p.order != VisitOrder::Random && p.order != VisitOrder::Border)
+      throw std::invalid_argument("a tile is visited in random order or rims first");
     Result r;
     const size_t n = d.size(), rows = id.size();
     r.status.assign(rows, Out);
@@ -75,7 +86,15 @@ class PoissonTile {
     // Points that can reach a core point within r; the others never matter.
     std::vector<uint64_t> pid(n);
     for (size_t i = 0; i < n; ++i) pid[i] = id[size_t(d.points.vertIndex[i])];
-    std::vector<int> order = PriorityOrder(pid, p.seed), rank(n);
+    std::vector<int> order, rank(n);
+    if (p.order == VisitOrder::Border) {
+      std::vector<float> key = BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise);
+      order = KeyFirstOrder(key, pid, p.seed);
+      r.key.assign(rows, 0);
+      for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];
+    } else {
+      order = PriorityOrder(pid, p.seed);
+    }
     for (size_t k = 0; k < n; ++k) rank[size_t(order[k])] = int(k);
     auto mayBe = [&](int i) { return !p.candidate || (*p.candidate)[size_t(d.points.vertIndex[i])] != 0; };
     order.erase(std::remove_if(order.begin(), order.end(),
@@ -154,11 +173,12 @@ class PoissonTile {
     double m1 = 0;
     for (size_t i = 0; i < n; ++i)
       if (toCore[i] <= p.radius) m1 = std::max(m1, double(d.reach[i]));
-    double need = p.radius + m1;
+    const double keyReach = p.order == VisitOrder::Border ? p.keyScale : 0;  // a rank's R-ball
+    double need = p.radius + std::max(m1, keyReach);
     bool exact = need < p.halo;  // the rows that matter were all read
     for (size_t i = 0; i < n; ++i) {
       if (!(toCore[i] <= p.radius + m1)) continue;
-      const double reach = double(d.reach[i]);
+      const double reach = std::max(double(d.reach[i]), toCore[i] <= p.radius ? keyReach : 0.0);
       need = std::max(need, toCore[i] + reach);
       exact = exact && reach < ToEdge(p, d.points.pos[i]);
     }

@@ -42,7 +42,8 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
                                const Flags& core, const vcg_ext::GeodesicDomain<double>::Param& domain,
                                double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
                                std::array<double, 6> cloudBox, std::optional<Flags> candidate,
-                               std::optional<int> threads, nb::object progress) {
+                               std::optional<int> threads, nb::object progress, vcg_ext::VisitOrder order,
+                               double keyScale, double keyNoise) {
   const size_t rows = points.shape(0);
   if (ids.shape(0) != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
     throw std::invalid_argument("ids, core and candidate must have one entry per point");
@@ -57,6 +58,9 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
     tp.core = Box(coreBox);
     tp.halo = halo;
     tp.cloud = Box(cloudBox);
+    tp.order = order;
+    tp.keyScale = keyScale;
+    tp.keyNoise = keyNoise;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
     std::vector<char> isCore(core.data(), core.data() + rows), may;
     if (candidate) {
@@ -73,6 +77,8 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
   out["cover_offset"] = ToNumpy(std::move(r.coverOffset), {r.certified ? rows + 1 : 0});
   out["coverers"] = ToNumpy(std::move(r.coverers), {covers});
   out["band"] = ToNumpy(std::vector<int64_t>(r.band.begin(), r.band.end()), {band});
+  const size_t keys = r.key.size();
+  out["key"] = ToNumpy(std::move(r.key), {keys});
   return out;
 }
 
@@ -97,7 +103,8 @@ inline void BindTiles(nb::module_& m) {
   m.def("priorities", &Priorities, "seed"_a, "ids"_a, "the Poisson visiting priority of each id (lower first)");
   m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
         "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(),
-        "progress"_a.none());
+        "progress"_a.none(), "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0,
+        "key_noise"_a = 0.0);
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
   using vcg_ext::RadiusSearch;
   nb::enum_<RadiusSearch::Role>(m, "SearchRole")

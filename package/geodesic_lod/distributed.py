@@ -66,6 +66,8 @@ class Job:
     within : (str, list of tiles.Box) or None
         Nested levels: the folder of the finer level's samples (one .npy of ids per tile) and its tiles'
         boxes; None: every point may become a sample.
+    order : tiles.Order
+        The visiting order: random, or the rims first at a scale.
     """
     srcs: list
     cloud: tiles.Box
@@ -76,6 +78,7 @@ class Job:
     halo: float
     cells: partition.Partition
     within: Optional[tuple] = None
+    order: tiles.Order = tiles.RANDOM
 
     def domain_param(self):
         d = _core.DomainParam()
@@ -93,7 +96,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     return tiles.decide_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo),
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
-                                 seed=job.seed, candidates=candidates, threads=job.threads)
+                                 seed=job.seed, candidates=candidates, threads=job.threads, order=job.order)
 
 
 def _ids_file(folder, k: int) -> pathlib.Path:
@@ -163,7 +166,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
               rate: Optional[float] = None, levels: Optional[Sequence] = None, tolerance: float = 1.0,
               max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
               adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = tile_points_.DEFAULT, client=None,
-              threads: Optional[int] = None, progress=None) -> dict:
+              threads: Optional[int] = None, progress=None, visit_order: str = arrays.DEFAULT_VISIT_ORDER) -> dict:
     from dask.distributed import KilledWorker
 
     paths = cloud_files.expand_inputs(inputs)
@@ -179,14 +182,27 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
+    rims = cluster_visit_order(visit_order)
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
-                                           max_runs=max_runs), seed, metric, adaptivity, domain, tile_points,
-                          client, threads, progress)
+                                           max_runs=max_runs, rims=rims), seed, metric, adaptivity, domain,
+                          tile_points, client, threads, progress)
     except KilledWorker as e:
         raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
+
+
+def cluster_visit_order(visit_order, name: str = "visit_order") -> bool:
+    """Whether a cluster run visits the rims first (else in random order); prominence runs on one machine."""
+    known = isinstance(visit_order, str) and visit_order in arrays.VISIT_ORDERS
+    if not known or visit_order not in ("random", "rims"):
+        if known:
+            raise InputError(f"{name} {visit_order!r} runs on one machine: a cluster visits in 'random' order or "
+                             "'rims' first")
+        raise InputError(f"{name} must be one of {', '.join(repr(k) for k in arrays.VISIT_ORDERS)}; got "
+                         f"{visit_order!r}")
+    return visit_order == "rims"
 
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
@@ -256,8 +272,8 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     best, spent = None, {"tiles": 0.0, "seams": 0.0}
     while not steps.done:
         r = steps.radius
-        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing)), boxes,
-                           ticks)
+        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing, job.order)),
+                          boxes, ticks)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
         if steps.report(run.count) == _core.SearchRole.Accepted:
             best = run
@@ -347,6 +363,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
+             "visit_order": "rims" if size["rims"] else "random",
              "adaptivity": adaptivity, "cells_per_axis": list(shape), "partition": cells.summary(),
              "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
@@ -369,14 +386,18 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
     job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
+    noise = _core.PoissonParam().border_noise
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
-            job = dataclasses.replace(job, radius=value, halo=tiles.first_halo(value, spacing))
+            job = dataclasses.replace(job, radius=value, order=tiles.Order(size["rims"], value, noise))
+            job = dataclasses.replace(job, halo=tiles.first_halo(value, spacing, job.order))
             run = poisson_run(client, job, boxes, ticks)
         else:
+            first = _core.RadiusSearch.first_radius(diagonal, value)
+            job = dataclasses.replace(job, order=tiles.Order(size["rims"], first, noise))
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool, _core.RadiusSearch.first_radius(diagonal, value))
+                                      pool, first)
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None

@@ -146,6 +146,8 @@ class Decision:
         The halo the decision was made with, a width in the input's units.
     read : int
         Points read for it (core and halo).
+    open_keys : (m,) ndarray of float32 or None
+        With the rims first, the open points' keys (their visiting order's); None in random order.
     """
     samples: np.ndarray
     band_ids: np.ndarray
@@ -155,25 +157,54 @@ class Decision:
     coverers: np.ndarray
     halo: float
     read: int
+    open_keys: Optional[np.ndarray] = None
 
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.samples, self.band_ids, self.band_status, self.open_ids, self.cover_offset,
-                                      self.coverers))
+                                      self.coverers) + (() if self.open_keys is None else (self.open_keys,)))
 
     def seams(self) -> "Decision":
         """The part settle needs (no samples): small, for sending to one place."""
         return Decision(np.empty(0, np.uint64), self.band_ids, self.band_status, self.open_ids, self.cover_offset,
-                        self.coverers, self.halo, self.read)
+                        self.coverers, self.halo, self.read, self.open_keys)
 
 
-def first_halo(radius: float, spacing: float) -> float:
-    """A halo likely to pass the check: the radius and a few neighbourhoods of the point spacing."""
-    return radius + 12 * spacing
+@dataclass(frozen=True)
+class Order:
+    """The visiting order of a run's tiles: random, or the rims first (``visit_order="rims"``) by the keys
+    of vcg_ext/border_order.h at `scale` (the run's radius, or its count search's first radius) less
+    `noise` standard errors, as poisson_lod orders one machine's points.
+
+    Attributes
+    ----------
+    rims : bool
+        The rims first (else random order).
+    scale : float
+        The keys' scale R, a length in the input's units.
+    noise : float
+        The standard errors discounted from each key (``PoissonParam.border_noise``).
+    """
+    rims: bool = False
+    scale: float = 0.0
+    noise: float = 0.0
+
+    def core_args(self) -> dict:
+        return dict(visit_order=_core.VisitOrder.Border if self.rims else _core.VisitOrder.Random,
+                    key_scale=float(self.scale), key_noise=float(self.noise))
+
+
+RANDOM = Order()
+
+
+def first_halo(radius: float, spacing: float, order: Order = RANDOM) -> float:
+    """A halo likely to pass the check: the radius and a few neighbourhoods of the point spacing (and the
+    order's scale, within which each rank's points lie)."""
+    return radius + 12 * spacing + (order.scale if order.rims else 0.0)
 
 
 def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, core: np.ndarray, *, radius: float,
            box: Box, cloud: Box, halo: float, domain, seed: int = 0, candidate: Optional[np.ndarray] = None,
-           threads: Optional[int] = None, progress=None) -> tuple:
+           threads: Optional[int] = None, progress=None, order: Order = RANDOM) -> tuple:
     """One tile, from the points read with `halo` (in increasing id order); `candidate`: per point, whether
     it may become a sample (None: all). Returns (Decision, None) or, when the halo is too narrow for the
     check, (None, a halo that will do)."""
@@ -181,7 +212,7 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
         candidate = np.ascontiguousarray(candidate, dtype=bool)
     r = _core.poisson_tile(points, normals, np.ascontiguousarray(ids, dtype=np.uint64),
                            np.ascontiguousarray(core, dtype=bool), domain, float(radius), int(seed), box.as_tuple(),
-                           float(halo), cloud.as_tuple(), candidate, threads, progress)
+                           float(halo), cloud.as_tuple(), candidate, threads, progress, **order.core_args())
     if not r["certified"]:
         return None, max(r["needed_halo"] * 1.01, 1.5 * halo)
     status, offset = r["status"], r["cover_offset"]
@@ -191,12 +222,13 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
     return Decision(samples=ids[status == IN].astype(np.uint64), band_ids=ids[r["band"]].astype(np.uint64),
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
-                    coverers=r["coverers"][picks], halo=halo, read=len(ids)), None
+                    coverers=r["coverers"][picks], halo=halo, read=len(ids),
+                    open_keys=r["key"][opened] if order.rims else None), None
 
 
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                     seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
-                    threads: Optional[int] = None) -> Optional[Decision]:
+                    threads: Optional[int] = None, order: Order = RANDOM) -> Optional[Decision]:
     """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
     the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
     may become samples. None when the tile's core holds no point."""
@@ -214,7 +246,7 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
             continue
         may = None if candidates is None else candidates(ids, halo)
         d, halo = decide(points, normals, ids, core, radius=radius, box=box.outer(cloud), cloud=cloud, halo=halo,
-                         domain=domain, seed=seed, candidate=may, threads=threads)
+                         domain=domain, seed=seed, candidate=may, threads=threads, order=order)
         if d is not None:
             return d
 
@@ -232,7 +264,7 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     open_ids = np.concatenate([d.open_ids for d in opens])
     counts = np.concatenate([np.diff(d.cover_offset) for d in opens])
     coverers = np.concatenate([d.coverers for d in opens])
-    rank = np.lexsort((open_ids, _core.priorities(seed, open_ids)))  # visiting order, ties by id
+    rank = np.lexsort((open_ids, _visiting_keys(open_ids, seed, opens)))  # visiting order, ties by id
     starts = np.concatenate([[0], np.cumsum(counts)])[:-1]
     pick = ranges(starts[rank], counts[rank])
     cover = np.searchsorted(known, coverers[pick])
@@ -242,6 +274,20 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     _core.settle(np.searchsorted(known, ordered).astype(np.int64),
                  np.concatenate([[0], np.cumsum(counts[rank])]).astype(np.int64), cover.astype(np.int64), status)
     return ordered[status[np.searchsorted(known, ordered)] == IN]
+
+
+def _visiting_keys(open_ids: np.ndarray, seed: int, opens: Sequence[Decision]) -> np.ndarray:
+    """What the open points are visited by, ascending: their priorities; with the rims first, the keys
+    vcg_ext's KeyFirstOrder sorts by (the larger key first, then the priority's high half)."""
+    priority = _core.priorities(seed, open_ids)
+    if opens[0].open_keys is None:
+        return priority
+    value = np.concatenate([d.open_keys for d in opens]).astype(np.float64)
+    steps = np.minimum(value * 2.0 ** 24, float(UINT32_MAX)).astype(np.uint64)
+    return ((np.uint64(UINT32_MAX) - steps) << np.uint64(32)) | (priority >> np.uint64(32))
+
+
+UINT32_MAX = 2 ** 32 - 1
 
 
 def ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:

@@ -98,6 +98,46 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
     assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)
 
 
+def two_roofs(n=24000, seed=4):
+    """An open patch of two flat roofs at different heights, side by side: rims along its outline and the step."""
+    rng = np.random.default_rng(seed)
+    xy = rng.random((n, 2)) * [20.0, 10.0]
+    return np.column_stack([xy, np.where(xy[:, 0] < 10.0, 0.0, 3.0)])
+
+
+@pytest.fixture(scope="module")
+def roofs(tmp_path_factory):
+    folder = write_parts(tmp_path_factory.mktemp("roofs"), two_roofs())
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(PARTS)])
+    return folder, np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
+
+
+@pytest.mark.parametrize("tile_points", [6000, 2500])
+def test_the_rims_first_give_the_single_machine_samples_by_radius_and_by_count(roofs, client, tmp_path, tile_points):
+    folder, points = roofs
+    whole = gl.poisson_lod(points, radius=RADIUS, seed=3, metric="euclidean", visit_order="rims").indices
+    assert sorted(whole) != sorted(gl.poisson_lod(points, radius=RADIUS, seed=3, metric="euclidean").indices)
+    index = dist.lod_files([str(folder)], tmp_path / "r", radius=RADIUS, seed=3, metric="euclidean",
+                           visit_order="rims", tile_points=tile_points, client=client, threads=1)
+    assert index["visit_order"] == "rims" and len(index["tiles"]) >= 4
+    assert sorted(output_records(tmp_path / "r")[1]["gps_time"].astype(np.int64)) == sorted(whole)
+    # A count: one machine's search, whose order's scale is the search's first radius.
+    whole = gl.poisson_lod(points, count=1500, tolerance=1.0, seed=3, metric="euclidean", visit_order="rims")
+    index = dist.lod_files([str(folder)], tmp_path / "c", count=1500, tolerance=1.0, seed=3, metric="euclidean",
+                           visit_order="rims", tile_points=tile_points, client=client, threads=1)
+    assert index["radius"] == whole.radius
+    assert sorted(output_records(tmp_path / "c")[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
+
+
+@pytest.mark.parametrize("order, problem", [("prominence", "'prominence' runs on one machine"),
+                                            ("border", "visit_order must be one of 'random', 'prominence', 'rims'")])
+def test_an_order_a_cluster_does_not_take_is_refused_before_anything_is_written(roofs, client, tmp_path, order,
+                                                                                 problem):
+    with pytest.raises(gl.InputError, match=problem):
+        dist.lod_files([str(roofs[0])], tmp_path / "lod", radius=RADIUS, visit_order=order, client=client)
+    assert not (tmp_path / "lod").exists()
+
+
 def level_ids(out, level):
     files = [out / t["file"] for t in level["tiles"]]
     assert all(pathlib.Path(t["file"]).parent.name == level["level"] for t in level["tiles"])

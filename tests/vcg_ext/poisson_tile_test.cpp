@@ -1,5 +1,6 @@
 // vcg_ext/poisson_tile.h: tiles that each read their core and a halo, decided
-// and then settled at the seams, give exactly the whole cloud's Poisson samples;
+// and then settled at the seams, give exactly the whole cloud's Poisson samples
+// (in random order, and with the rims first);
 // a halo too narrow is refused with a wider one to try; Settle's rule.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -87,9 +88,9 @@ TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, 
   return t;
 }
 
-}  // namespace
-
-TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
+// Two tiles, each widening its halo until certified, settled at the seam in
+// the visiting order, against the whole cloud's samples in that order.
+void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order) {
   const auto cloud = Cloud();
   Tile::Param p;
   p.radius = 0.09;
@@ -98,6 +99,9 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
   whole.domain = Graph(false);
   whole.radius = p.radius;
   whole.seed = p.seed;
+  whole.order = p.order = order;
+  p.keyScale = p.radius;  // a run at a radius orders by that scale
+  p.keyNoise = whole.borderNoise;
   const auto w = Whole::Compute(DomainOf(cloud, Graph(false)), whole);
   const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
   ASSERT_GT(expected.size(), 20u);
@@ -105,6 +109,7 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
   // Each tile decides its core, widening the halo until it is certified.
   std::vector<int8_t> status(cloud.size(), Tile::Out);
   std::vector<std::vector<uint64_t>> coverers(cloud.size());
+  std::vector<float> key(cloud.size(), 0);
   size_t open = 0;
   for (bool left : {true, false}) {
     double halo = p.radius;
@@ -119,27 +124,45 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
       if (!core) continue;
       status[t.id[row]] = t.result.status[row];
       open += t.result.status[row] == Tile::Open;
+      if (!t.result.key.empty()) key[t.id[row]] = t.result.key[row];
       for (int64_t c = t.result.coverOffset[row]; c < t.result.coverOffset[row + 1]; ++c)
         coverers[t.id[row]].push_back(t.result.coverers[size_t(c)]);
     }
   }
   EXPECT_GT(open, 0u) << "the seam must leave points open, or Settle is not tested";
 
-  // Settle the open points in visiting order.
-  std::vector<uint64_t> ids(cloud.size());
-  for (size_t i = 0; i < ids.size(); ++i) ids[i] = i;
-  std::vector<int64_t> order, offset{0}, cover;
-  for (int i : vcg_ext::PriorityOrder(ids, p.seed))
-    if (status[size_t(i)] == Tile::Open) {
-      order.push_back(i);
-      for (uint64_t c : coverers[size_t(i)]) cover.push_back(int64_t(c));
-      offset.push_back(int64_t(cover.size()));
-    }
-  Tile::Settle(order, offset, cover, status);
+  // Settle the open points in visiting order: by their keys from the tiles, else by priority.
+  std::vector<uint64_t> openIds;
+  std::vector<float> openKeys;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (status[i] == Tile::Open) openIds.push_back(i), openKeys.push_back(key[i]);
+  const std::vector<int> rank = order == vcg_ext::VisitOrder::Border
+                                    ? vcg_ext::KeyFirstOrder(openKeys, openIds, p.seed)
+                                    : vcg_ext::PriorityOrder(openIds, p.seed);
+  std::vector<int64_t> sorted, offset{0}, cover;
+  for (int k : rank) {
+    const uint64_t i = openIds[size_t(k)];
+    sorted.push_back(int64_t(i));
+    for (uint64_t c : coverers[i]) cover.push_back(int64_t(c));
+    offset.push_back(int64_t(cover.size()));
+  }
+  Tile::Settle(sorted, offset, cover, status);
   std::set<int> tiled;
   for (size_t i = 0; i < status.size(); ++i)
     if (status[i] == Tile::In) tiled.insert(int(i));
   EXPECT_EQ(tiled, expected);
+}
+
+}  // namespace
+
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
+  ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Random);
+}
+
+// The rims first: each rank depends on the points within the order's scale,
+// which the certified halo holds, and the seam is settled by the tiles' keys.
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirst) {
+  ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Border);
 }
 
 TEST(PoissonTile, AHaloTooNarrowIsRefusedWithAWiderOneToTry) {
