@@ -283,6 +283,14 @@ def _request(args) -> dict:
     return {"radius": args.radius}
 
 
+def _note_a_fraction(args, request: dict) -> None:
+    """--rate below 1 without a % sign is most likely a fraction meant as a share (0.1 for a tenth): says
+    what it asks for, and how to ask for it without the note."""
+    if "rate" in request and request["rate"] < 1 and not args.rate.strip().endswith("%"):
+        print(f"{PROG}: note: --rate {args.rate} is {request['rate']:g}% of the points (a tenth is --rate 10%); "
+              f"give --rate {request['rate']:g}% to mean it", file=sys.stderr)
+
+
 def _outputs(args, request: dict) -> list:
     """The files a single-machine run writes: -o, or one per level."""
     out = pathlib.Path(args.output)
@@ -397,6 +405,7 @@ def main(argv=None) -> int:
     try:
         start = time.perf_counter()
         request = _request(args)
+        _note_a_fraction(args, request)
         if _on_cluster(args):
             return _run_on_cluster(args, request)
         if "copc" in request:

@@ -94,6 +94,17 @@ def test_height_field_levels_are_prefixes_of_one_lod(tmp_path):
     assert laspy.read(str(tmp_path / "one.laz")).points.array.tobytes() == records[np.sort(lod[:150])].tobytes()
 
 
+@pytest.mark.parametrize("rate, noted", [("0.5", True), ("0.5%", False), ("5", False)])
+def test_a_rate_below_one_without_a_percent_sign_is_noted_and_taken_as_a_percentage(tmp_path, rate, noted):
+    src = ply_cloud(tmp_path / "in.ply", n=4000)
+    r = run(src, "-o", tmp_path / "lod.ply", "--rate", rate, "-q")
+    assert r.returncode == 0
+    assert ("note: --rate 0.5 is 0.5% of the points (a tenth is --rate 10%)" in r.stderr) == noted, r.stderr
+    assert r.stderr.count("\n") == int(noted)
+    count = plyfile.PlyData.read(str(tmp_path / "lod.ply"))["vertex"].count
+    assert count == int(gl._core.percent_of(float(rate.rstrip("%")), 4000))
+
+
 def test_npy_with_normals(tmp_path):
     p = bumpy_sphere(2000)
     np.save(tmp_path / "in.npy", np.hstack([p, p]))
