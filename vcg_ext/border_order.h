@@ -9,9 +9,9 @@
 // (roof edges in airborne scans, docs/airborne_classes.md), with the same
 // separation and coverage as any order. Cost O(n m log m) for m points in
 // the 27 cells of side R around a point, on all threads. The points within R
-// are summed in index order, so a point's value is the same on any thread
-// count and in any subset holding its R-ball in the same relative order (a
-// cluster's tile, poisson_tile.h).
+// are summed in the order of their ids, so a point's value is the same on any
+// thread count and in any subset holding its R-ball (a cluster's tile,
+// poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -31,7 +31,10 @@ class BorderOrder {
   /// their fitted plane, in units of R, less `noise` standard errors of that
   /// mean (at least 0): where the points scatter evenly around it, a point
   /// is not a rim, and random order decides among such points.
-  static std::vector<float> Compute(const std::vector<Coord>& pos, double R, double noise) {
+  /// `id`: the points' ids (input indices), the order the points within R
+  /// are summed in (nullptr: their indices).
+  static std::vector<float> Compute(const std::vector<Coord>& pos, double R, double noise,
+                                    const std::vector<int>* id = nullptr) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
@@ -50,7 +53,8 @@ class BorderOrder {
         });
         const size_t m = near.size();
         if (m < 3) continue;  // no plane to lie at the rim of
-        std::sort(near.begin(), near.end());
+        if (id) std::sort(near.begin(), near.end(), [&](int a, int b) { return (*id)[size_t(a)] < (*id)[size_t(b)]; });
+        else std::sort(near.begin(), near.end());
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
         for (int j : near) {

@@ -102,9 +102,18 @@ class CellGrid {
   /// `pos` (m^2 density): from the 8th-nearest distances within a strided
   /// subsample, which scale with the full set's density. O(n) and small.
   static double SurfaceCellSide(const std::vector<Coord>& pos, int perCell) {
-    const size_t n = pos.size(), m = std::min<size_t>(n, 1 << 16), j = std::min<size_t>(8, m - 1);
+    const size_t n = pos.size(), m = SubsampleSize(n);
     std::vector<Coord> sub(m);
-    for (size_t i = 0; i < m; ++i) sub[i] = pos[i * n / m];
+    for (size_t i = 0; i < m; ++i) sub[i] = pos[SubsampleIndex(i, n)];
+    return SurfaceCellSideOf(sub, n, perCell);
+  }
+  /// The subsample SurfaceCellSide reads of n points: its size m, and its
+  /// i-th point's index (a cluster reads the same points of its tiles).
+  static size_t SubsampleSize(size_t n) { return std::min<size_t>(n, 1 << 16); }
+  static size_t SubsampleIndex(size_t i, size_t n) { return i * n / SubsampleSize(n); }
+  /// SurfaceCellSide of n points from their subsample `sub` (SubsampleIndex's points, in order).
+  static double SurfaceCellSideOf(const std::vector<Coord>& sub, size_t n, int perCell) {
+    const size_t m = sub.size(), j = std::min<size_t>(8, m - 1);
     vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(sub.data(), int(m)));
     typename vcg::KdTree<Scalar>::PriorityQueue q;
     std::vector<double> d2;

@@ -12,14 +12,13 @@
 // (PriorityOrder: a point's rank depends only on its id). A point is a sample
 // iff no earlier sample's disk covers it, and every weight is at least the
 // Euclidean length, so only points within r matter, and the halo holds them
-// with everything their distances depend on (checked: Check). With the rims
-// first (VisitOrder::Border), a point's rank also depends on the points within
-// the order's scale of it, which the halo then holds as well.
+// with everything their distances depend on (checked: Check). In a key order
+// (VisitOrder::Border, Prominence) a point's rank also depends on the points
+// within the order's scale of it, which the halo then holds as well.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <stdexcept>
 #include <utility>
 #include <vector>
 #include <vcg/space/box3.h>
@@ -27,6 +26,7 @@
 #include "geodesic_domain.h"
 #include "poisson_disk.h"
 #include "priority_order.h"
+#include "prominence.h"
 
 namespace vcg_ext {
 
@@ -46,10 +46,13 @@ class PoissonTile {
     /// Per input row: whether it may become a sample (nullptr: every row). Nested
     /// levels pass a finer level's samples: core and halo alike, as settled.
     const std::vector<char>* candidate = nullptr;
-    /// Random or Border (the rims first, by BorderOrder at `keyScale` less
-    /// `keyNoise` standard errors: as GeodesicPoissonLod's order at that scale).
+    /// A key order (Border: BorderOrder; Prominence: Prominence, its smoothing
+    /// radius from the whole cloud's cell side, `keyCellSide`: SurfaceCellSide
+    /// of its points in id order, as Prominence::SmoothingRadius takes them)
+    /// at `keyScale` less `keyNoise` standard errors: as GeodesicPoissonLod's
+    /// order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
-    double keyScale = 0, keyNoise = 0;
+    double keyScale = 0, keyNoise = 0, keyCellSide = 0;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -69,8 +72,6 @@ class PoissonTile {
   /// samples and of the points near the seams.
   static Result Compute(const Domain& d, const std::vector<uint64_t>& id, const std::vector<char>& core,
                         const Param& p, Progress progress = Progress(nullptr)) {
-    if (p.order != VisitOrder::Random && p.order != VisitOrder::Border)
-      throw std::invalid_argument("a tile is visited in random order or rims first");
     Result r;
     const size_t n = d.size(), rows = id.size();
     r.status.assign(rows, Out);
@@ -87,8 +88,13 @@ class PoissonTile {
     std::vector<uint64_t> pid(n);
     for (size_t i = 0; i < n; ++i) pid[i] = id[size_t(d.points.vertIndex[i])];
     std::vector<int> order, rank(n);
-    if (p.order == VisitOrder::Border) {
-      std::vector<float> key = BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise);
+    if (p.order != VisitOrder::Random) {
+      std::vector<float> key =
+          p.order == VisitOrder::Border
+              ? BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise, &d.points.vertIndex)
+              : Prominence<Scalar>::Compute(d.points.pos, d.normal, p.keyScale,
+                                            Prominence<Scalar>::SmoothingRadiusOf(p.keyCellSide, p.keyScale),
+                                            p.keyNoise, &d.points.vertIndex);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];
@@ -173,7 +179,7 @@ class PoissonTile {
     double m1 = 0;
     for (size_t i = 0; i < n; ++i)
       if (toCore[i] <= p.radius) m1 = std::max(m1, double(d.reach[i]));
-    const double keyReach = p.order == VisitOrder::Border ? p.keyScale : 0;  // a rank's R-ball
+    const double keyReach = p.order != VisitOrder::Random ? p.keyScale : 0;  // a rank's R-ball
     double need = p.radius + std::max(m1, keyReach);
     bool exact = need < p.halo;  // the rows that matter were all read
     for (size_t i = 0; i < n; ++i) {

@@ -6,8 +6,10 @@
 // mean of the points within R. Poisson-disk sampling that visits the most prominent
 // points first keeps the peaks, ridges and valley floors a disk would
 // otherwise cut, with the same separation and coverage as any order. Cost
-// O(n m) for m points in the 27 cells of side R around a point, on all
-// threads; the same values on any thread count.
+// O(n m log m) for m points in the 27 cells of side R around a point, on all
+// threads. The points within R are summed in the order of their ids, so a
+// point's value is the same on any thread count and in any subset holding its
+// R-ball (a cluster's tile, poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -29,11 +31,26 @@ class Prominence {
   static constexpr double kSmoothingPoints = 10;
 
   /// The smoothing radius s at scale R for points spaced like `pos`. O(n) and small.
-  static double SmoothingRadius(const std::vector<Coord>& pos, double R) {
-    if (pos.size() < 2) return kSmoothing * R;
-    // A cell of side SurfaceCellSide(pos, 1) holds one point: a ball of radius
-    // that side times sqrt(m / pi) holds about m.
-    const double spacing = CellGrid<Scalar>::SurfaceCellSide(pos, 1) * std::sqrt(kSmoothingPoints / M_PI);
+  /// The points are taken in the order of their ids (input indices): the same
+  /// subsample in any numbering of them (a domain's, a cluster's).
+  static double SmoothingRadius(const std::vector<Coord>& pos, const std::vector<int>& id, double R) {
+    const size_t n = pos.size();
+    if (n < 2) return kSmoothing * R;
+    int top = 0;
+    for (int v : id) top = std::max(top, v);
+    std::vector<int> at(size_t(top) + 1, -1);  // point by id
+    for (size_t i = 0; i < n; ++i) at[size_t(id[i])] = int(i);
+    const size_t m = CellGrid<Scalar>::SubsampleSize(n);
+    std::vector<Coord> sub;
+    sub.reserve(m);
+    for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
+      if (at[v] >= 0 && rank++ == CellGrid<Scalar>::SubsampleIndex(sub.size(), n)) sub.push_back(pos[size_t(at[v])]);
+    return SmoothingRadiusOf(CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1), R);
+  }
+  /// The same from the points' SurfaceCellSide(pos, 1) (a cluster's, over all its tiles).
+  static double SmoothingRadiusOf(double cellSide, double R) {
+    // A cell of side cellSide holds one point: a ball of radius cellSide sqrt(m / pi) holds about m.
+    const double spacing = cellSide * std::sqrt(kSmoothingPoints / M_PI);
     return std::max(kSmoothing * R, std::min(spacing, R));
   }
 
@@ -41,36 +58,46 @@ class Prominence {
   /// units of R, less `noise` standard errors of the smoothed position along
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
   /// points, only a shape that stands out of that scatter comes first.
+  /// `id`: the points' ids (input indices), the order the points within R
+  /// are summed in (nullptr: their indices).
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
-                                    double R, double s, double noise) {
+                                    double R, double s, double noise, const std::vector<int>* id = nullptr) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
     const double near2 = s * s, far2 = R * R;
-    ParallelFor(pos.size(), 256, [&](size_t r) {
-      const int i = grid.Point(r);
-      const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-      const vcg::Point3d n = vcg::Point3d::Construct(normal[size_t(i)]);
-      vcg::Point3d sumNear(0, 0, 0), sumFar(0, 0, 0);
-      double sxx = 0;
-      size_t nNear = 0, nFar = 0;
-      grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
-        for (int k = begin; k < end; ++k) {
-          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(grid.Point(size_t(k)))]) - p;
-          const double d2 = q.SquaredNorm();
-          if (d2 > far2) continue;
+    ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+      std::vector<int> within;
+      for (size_t r = b; r < e; ++r) {
+        const int i = grid.Point(r);
+        const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
+        const vcg::Point3d n = vcg::Point3d::Construct(normal[size_t(i)]);
+        within.clear();
+        grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
+          for (int k = begin; k < end; ++k) {
+            const int j = grid.Point(size_t(k));
+            if ((vcg::Point3d::Construct(pos[size_t(j)]) - p).SquaredNorm() <= far2) within.push_back(j);
+          }
+        });
+        if (id) std::sort(within.begin(), within.end(), [&](int a, int b) { return (*id)[size_t(a)] < (*id)[size_t(b)]; });
+        else std::sort(within.begin(), within.end());
+        vcg::Point3d sumNear(0, 0, 0), sumFar(0, 0, 0);
+        double sxx = 0;
+        size_t nNear = 0, nFar = 0;
+        for (int j : within) {
+          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(j)]) - p;
           sumFar += q, ++nFar;
-          if (d2 <= near2) {
+          if (q.SquaredNorm() <= near2) {
             sumNear += q, ++nNear;
             const double x = q * n;
             sxx += x * x;
           }
         }
-      });
-      const vcg::Point3d mean = sumNear / double(nNear);
-      const double sigma = std::sqrt(std::max(0.0, sxx / double(nNear) - (mean * n) * (mean * n)));
-      const vcg::Point3d gap = mean - sumFar / double(nFar);  // both hold the point itself
-      out[size_t(i)] = float(std::max(0.0, std::abs(gap * n) - noise * sigma / std::sqrt(double(nNear))) / R);
+        const vcg::Point3d mean = sumNear / double(nNear);
+        const double sigma = std::sqrt(std::max(0.0, sxx / double(nNear) - (mean * n) * (mean * n)));
+        const vcg::Point3d gap = mean - sumFar / double(nFar);  // both hold the point itself
+        out[size_t(i)] = float(std::max(0.0, std::abs(gap * n) - noise * sigma / std::sqrt(double(nNear))) / R);
+      }
     });
     return out;
   }

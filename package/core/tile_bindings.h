@@ -43,7 +43,7 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
                                double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
                                std::array<double, 6> cloudBox, std::optional<Flags> candidate,
                                std::optional<int> threads, nb::object progress, vcg_ext::VisitOrder order,
-                               double keyScale, double keyNoise) {
+                               double keyScale, double keyNoise, double keyCellSide) {
   const size_t rows = points.shape(0);
   if (ids.shape(0) != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
     throw std::invalid_argument("ids, core and candidate must have one entry per point");
@@ -61,6 +61,7 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
     tp.order = order;
     tp.keyScale = keyScale;
     tp.keyNoise = keyNoise;
+    tp.keyCellSide = keyCellSide;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
     std::vector<char> isCore(core.data(), core.data() + rows), may;
     if (candidate) {
@@ -80,6 +81,23 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
   const size_t keys = r.key.size();
   out["key"] = ToNumpy(std::move(r.key), {keys});
   return out;
+}
+
+typedef vcg_ext::CellGrid<double> Cells;
+
+// The ids of the points SurfaceCellSide reads of n points, in order.
+inline nb::ndarray<nb::numpy, uint64_t> CellSideSubsample(uint64_t n) {
+  std::vector<uint64_t> ids(Cells::SubsampleSize(size_t(n)));
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = Cells::SubsampleIndex(i, size_t(n));
+  return ToNumpy(std::move(ids), {ids.size()});
+}
+
+// SurfaceCellSide(pos, 1) of n points from the points of CellSideSubsample(n), in order.
+inline double CellSideOf(const Array2& sub, uint64_t n) {
+  const size_t m = sub.shape(0);
+  if (n < 2 || m != Cells::SubsampleSize(size_t(n)))
+    throw std::invalid_argument("give the cell_side_subsample(n) points of at least 2");
+  return Cells::SurfaceCellSideOf(ReadPoints(sub, nullptr).pos, size_t(n), 1);
 }
 
 inline void Settle(const Int64s& open, const Int64s& coverOffset, const Int64s& cover, Statuses status) {
@@ -104,7 +122,11 @@ inline void BindTiles(nb::module_& m) {
   m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
         "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(),
         "progress"_a.none(), "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0,
-        "key_noise"_a = 0.0);
+        "key_noise"_a = 0.0, "key_cell_side"_a = 0.0);
+  m.def("cell_side_subsample", &CellSideSubsample, "n"_a,
+        "the ids of the points the prominence order's point spacing is measured on, of n points");
+  m.def("cell_side", &CellSideOf, "subsample"_a, "n"_a,
+        "the point spacing (a cell side holding one point) of n points, from their cell_side_subsample");
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
   using vcg_ext::RadiusSearch;
   nb::enum_<RadiusSearch::Role>(m, "SearchRole")

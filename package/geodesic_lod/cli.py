@@ -79,7 +79,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--visit-order", choices=list(arrays.VISIT_ORDERS), help="Poisson-disk: which point of a "
                    "neighbourhood a disk keeps: random (the paper's), prominence (points standing out of the "
                    "scan's scatter first) or rims (points at the rim of their surroundings, such as roof edges, "
-                   f"first; prominence on one machine only (default: {arrays.DEFAULT_VISIT_ORDER})")
+                   f"first (default: {arrays.DEFAULT_VISIT_ORDER})")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in (default: %(default)s)")
     p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
@@ -133,9 +133,6 @@ def _run_on_cluster(args, request: dict) -> int:
     if args.fps or args.height_field:
         raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
                          "one machine)")
-    if args.visit_order == "prominence":
-        raise ValueError("--visit-order prominence runs on one machine: a cluster visits in random order or the "
-                         "rims first")
     if "levels" in request:  # what can be checked before the cluster starts: levels of one kind get coarser
         for kind in (str, int):
             values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]

@@ -182,10 +182,10 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
-    rims = cluster_visit_order(visit_order)
+    visit_order = cluster_visit_order(visit_order)
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
-                                           max_runs=max_runs, rims=rims), seed, metric, adaptivity, domain,
+                                           max_runs=max_runs, visit_order=visit_order), seed, metric, adaptivity, domain,
                           tile_points, client, threads, progress)
     except KilledWorker as e:
         raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
@@ -193,16 +193,12 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
                           "or give workers more memory") from None
 
 
-def cluster_visit_order(visit_order, name: str = "visit_order") -> bool:
-    """Whether a cluster run visits the rims first (else in random order); prominence runs on one machine."""
-    known = isinstance(visit_order, str) and visit_order in arrays.VISIT_ORDERS
-    if not known or visit_order not in ("random", "rims"):
-        if known:
-            raise InputError(f"{name} {visit_order!r} runs on one machine: a cluster visits in 'random' order or "
-                             "'rims' first")
+def cluster_visit_order(visit_order, name: str = "visit_order") -> str:
+    """A visiting order's name, checked (a cluster takes every order one machine takes)."""
+    if not (isinstance(visit_order, str) and visit_order in arrays.VISIT_ORDERS):
         raise InputError(f"{name} must be one of {', '.join(repr(k) for k in arrays.VISIT_ORDERS)}; got "
                          f"{visit_order!r}")
-    return visit_order == "rims"
+    return visit_order
 
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
@@ -302,6 +298,36 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
     return core_diagonal.core_diagonal(run_pass, total, cloud.lo, cloud.hi)
 
 
+def _order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
+    """The visiting order of every level but its scale: with 'prominence', the whole cloud's point spacing,
+    measured on the points one machine measures it on (a pass over the cells)."""
+    param = _core.PoissonParam()
+    noise = param.border_noise if kind == "rims" else param.prominence_noise if kind == "prominence" else 0.0
+    cell_side = 0.0
+    if kind == "prominence":
+        ids = _core.cell_side_subsample(total)
+        keys = sorted(cells.cells)
+        parts = client.gather(client.map(_subsample_of_cell, [cells] * len(keys), keys, [ids] * len(keys),
+                                         pure=False))
+        got = np.concatenate([p[0] for p in parts])
+        xyz = np.concatenate([p[1] for p in parts])[np.argsort(got, kind="stable")]
+        if len(got) != len(ids):
+            raise RuntimeError(f"{len(ids) - len(got)} of the spacing's points are missing from the cells")
+        cell_side = _core.cell_side(np.ascontiguousarray(xyz, dtype=np.float64), total)
+    return tiles.Order(kind, 0.0, noise, cell_side)
+
+
+def _subsample_of_cell(cells: partition.Partition, cell: int, ids: np.ndarray) -> tuple:
+    """A Dask task: the ids and coordinates of a cell's points among `ids` (increasing)."""
+    got, xyz = [], []
+    for share, x in zip(cells.cell_ids(cell), cells.cell_xyz(cell)):
+        mine = partition.member(np.asarray(share), ids)
+        got.append(np.asarray(share)[mine])
+        xyz.append(np.asarray(x)[mine])
+    return (np.concatenate(got) if got else np.empty(0, np.uint64),
+            np.concatenate(xyz) if xyz else np.empty((0, 3)))
+
+
 def _worker_rss() -> int:
     import psutil
     return psutil.Process().memory_info().rss
@@ -363,7 +389,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "visit_order": "rims" if size["rims"] else "random",
+             "visit_order": size["visit_order"],
              "adaptivity": adaptivity, "cells_per_axis": list(shape), "partition": cells.summary(),
              "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
@@ -386,16 +412,16 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
     job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
-    noise = _core.PoissonParam().border_noise
+    order = _order(client, cells, size["visit_order"], total)
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
-            job = dataclasses.replace(job, radius=value, order=tiles.Order(size["rims"], value, noise))
+            job = dataclasses.replace(job, radius=value, order=dataclasses.replace(order, scale=value))
             job = dataclasses.replace(job, halo=tiles.first_halo(value, spacing, job.order))
             run = poisson_run(client, job, boxes, ticks)
         else:
             first = _core.RadiusSearch.first_radius(diagonal, value)
-            job = dataclasses.replace(job, order=tiles.Order(size["rims"], first, noise))
+            job = dataclasses.replace(job, order=dataclasses.replace(order, scale=first))
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
                                       pool, first)
             job = dataclasses.replace(job, radius=run.radius)

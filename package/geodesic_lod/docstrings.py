@@ -126,7 +126,8 @@ VISIT_ORDER = """visit_order : {'random', 'prominence', 'rims'}
         Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage.
         'random': the paper's seeded order (default). 'prominence': the points that stand out of their
         scan's scatter at the disks' scale first (docs/visit_order.json). 'rims': the points at the rim
-        of their surroundings first, such as a roof's edges (docs/airborne_classes.md); on a cluster too."""
+        of their surroundings first, such as a roof's edges (docs/airborne_classes.md). The same on a
+        cluster (``lod_files``)."""
 
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
@@ -333,8 +334,8 @@ TEXTS = {
         Threads per task (default: all the worker machine's cores).
     progress : callable, optional
         Called with (tasks done, tasks so far).
-    visit_order : {{'random', 'rims'}}
-        As in ``poisson_lod`` ('prominence' runs on one machine). Default 'random'.
+    visit_order : {{'random', 'prominence', 'rims'}}
+        As in ``poisson_lod``. Default 'random'.
 
     Returns
     -------

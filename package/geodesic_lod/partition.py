@@ -239,6 +239,10 @@ class Partition:
         """The coordinates of a cell's points, a piece's share at a time."""
         return self._load(cell, "xyz")
 
+    def cell_ids(self, cell: int) -> list:
+        """The ids of a cell's points, a piece's share at a time (as cell_xyz's)."""
+        return self._load(cell, "ids")
+
     def _rows_in(self, lo: np.ndarray, hi: np.ndarray):
         """(cell, piece number, rows of its share in the blocks that may hold points within [lo, hi])."""
         for c in self.grid.cells_in(lo, hi):

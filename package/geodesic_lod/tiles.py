@@ -147,7 +147,7 @@ class Decision:
     read : int
         Points read for it (core and halo).
     open_keys : (m,) ndarray of float32 or None
-        With the rims first, the open points' keys (their visiting order's); None in random order.
+        In a key order, the open points' keys (their visiting order's); None in random order.
     """
     samples: np.ndarray
     band_ids: np.ndarray
@@ -171,26 +171,37 @@ class Decision:
 
 @dataclass(frozen=True)
 class Order:
-    """The visiting order of a run's tiles: random, or the rims first (``visit_order="rims"``) by the keys
-    of vcg_ext/border_order.h at `scale` (the run's radius, or its count search's first radius) less
-    `noise` standard errors, as poisson_lod orders one machine's points.
+    """The visiting order of a run's tiles, as poisson_lod orders one machine's points: random, or a key
+    order (``visit_order`` 'rims' or 'prominence') at `scale` (the run's radius, or its count search's
+    first radius) less `noise` standard errors.
 
     Attributes
     ----------
-    rims : bool
-        The rims first (else random order).
+    kind : str
+        'random', 'rims' or 'prominence' (arrays.VISIT_ORDERS).
     scale : float
         The keys' scale R, a length in the input's units.
     noise : float
-        The standard errors discounted from each key (``PoissonParam.border_noise``).
+        The standard errors discounted from each key (``PoissonParam.border_noise`` or
+        ``prominence_noise``).
+    cell_side : float
+        With 'prominence': the whole cloud's point spacing (``_core.cell_side``), which sets the smoothing
+        radius.
+    keyed : bool
+        A key order (not random).
     """
-    rims: bool = False
+    kind: str = "random"
     scale: float = 0.0
     noise: float = 0.0
+    cell_side: float = 0.0
+
+    @property
+    def keyed(self) -> bool:
+        return self.kind != "random"
 
     def core_args(self) -> dict:
-        return dict(visit_order=_core.VisitOrder.Border if self.rims else _core.VisitOrder.Random,
-                    key_scale=float(self.scale), key_noise=float(self.noise))
+        return dict(visit_order=arrays.VISIT_ORDERS[self.kind], key_scale=float(self.scale),
+                    key_noise=float(self.noise), key_cell_side=float(self.cell_side))
 
 
 RANDOM = Order()
@@ -199,7 +210,7 @@ RANDOM = Order()
 def first_halo(radius: float, spacing: float, order: Order = RANDOM) -> float:
     """A halo likely to pass the check: the radius and a few neighbourhoods of the point spacing (and the
     order's scale, within which each rank's points lie)."""
-    return radius + 12 * spacing + (order.scale if order.rims else 0.0)
+    return radius + 12 * spacing + (order.scale if order.keyed else 0.0)
 
 
 def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, core: np.ndarray, *, radius: float,
@@ -223,7 +234,7 @@ def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, c
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
                     coverers=r["coverers"][picks], halo=halo, read=len(ids),
-                    open_keys=r["key"][opened] if order.rims else None), None
+                    open_keys=r["key"][opened] if order.keyed else None), None
 
 
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
@@ -277,8 +288,8 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
 
 
 def _visiting_keys(open_ids: np.ndarray, seed: int, opens: Sequence[Decision]) -> np.ndarray:
-    """What the open points are visited by, ascending: their priorities; with the rims first, the keys
-    vcg_ext's KeyFirstOrder sorts by (the larger key first, then the priority's high half)."""
+    """What the open points are visited by, ascending: their priorities; in a key order, the keys vcg_ext's
+    KeyFirstOrder sorts by (the larger key first, then the priority's high half)."""
     priority = _core.priorities(seed, open_ids)
     if opens[0].open_keys is None:
         return priority

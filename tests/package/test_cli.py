@@ -163,9 +163,6 @@ BAD = [
                 "prominence"], "--visit-order goes with Poisson-disk sets"),
     (lambda d: [las_cloud(d / "in.laz"), "-o", "o.copc.laz", "--visit-order", "rims"],
      "--visit-order goes with Poisson-disk sets"),
-    (lambda d: [las_cloud(d / "in.laz"), "-o", "out", "--radius", "0.1", "--workers", "1", "--visit-order",
-                "prominence"],
-     "--visit-order prominence runs on one machine"),
     (lambda d: [np.save(d / "tiny.npy", bumpy_sphere(3)) or d / "tiny.npy", "-o", "o.npy", "--rate", "50%"],
      "tiny.npy: holds 3 points: at least 21 are needed"),
 ]

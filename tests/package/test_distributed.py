@@ -112,28 +112,33 @@ def roofs(tmp_path_factory):
     return folder, np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
 
 
+# The rims first on two roofs; the prominent points first on the bumpy sphere (flat roofs have none).
+KEY_ORDERS = [("rims", "roofs", "euclidean"), ("prominence", "cloud", "curvature-density")]
+
+
+@pytest.mark.parametrize("order, model, metric", KEY_ORDERS, ids=[o[0] for o in KEY_ORDERS])
 @pytest.mark.parametrize("tile_points", [6000, 2500])
-def test_the_rims_first_give_the_single_machine_samples_by_radius_and_by_count(roofs, client, tmp_path, tile_points):
-    folder, points = roofs
-    whole = gl.poisson_lod(points, radius=RADIUS, seed=3, metric="euclidean", visit_order="rims").indices
-    assert sorted(whole) != sorted(gl.poisson_lod(points, radius=RADIUS, seed=3, metric="euclidean").indices)
-    index = dist.lod_files([str(folder)], tmp_path / "r", radius=RADIUS, seed=3, metric="euclidean",
-                           visit_order="rims", tile_points=tile_points, client=client, threads=1)
-    assert index["visit_order"] == "rims" and len(index["tiles"]) >= 4
+def test_a_key_order_gives_the_single_machine_samples_by_radius_and_by_count(request, client, tmp_path, order,
+                                                                               model, metric, tile_points):
+    folder, points = request.getfixturevalue(model)[:2]
+    common = dict(seed=3, metric=metric, visit_order=order)
+    whole = gl.poisson_lod(points, radius=RADIUS, **common).indices
+    assert sorted(whole) != sorted(gl.poisson_lod(points, radius=RADIUS, seed=3, metric=metric).indices)
+    index = dist.lod_files([str(folder)], tmp_path / "r", radius=RADIUS, **common, tile_points=tile_points,
+                           client=client, threads=1)
+    assert index["visit_order"] == order and len(index["tiles"]) >= 4
     assert sorted(output_records(tmp_path / "r")[1]["gps_time"].astype(np.int64)) == sorted(whole)
     # A count: one machine's search, whose order's scale is the search's first radius.
-    whole = gl.poisson_lod(points, count=1500, tolerance=1.0, seed=3, metric="euclidean", visit_order="rims")
-    index = dist.lod_files([str(folder)], tmp_path / "c", count=1500, tolerance=1.0, seed=3, metric="euclidean",
-                           visit_order="rims", tile_points=tile_points, client=client, threads=1)
+    whole = gl.poisson_lod(points, count=1500, tolerance=1.0, **common)
+    index = dist.lod_files([str(folder)], tmp_path / "c", count=1500, tolerance=1.0, **common,
+                           tile_points=tile_points, client=client, threads=1)
     assert index["radius"] == whole.radius
     assert sorted(output_records(tmp_path / "c")[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
 
 
-@pytest.mark.parametrize("order, problem", [("prominence", "'prominence' runs on one machine"),
-                                            ("border", "visit_order must be one of 'random', 'prominence', 'rims'")])
-def test_an_order_a_cluster_does_not_take_is_refused_before_anything_is_written(roofs, client, tmp_path, order,
-                                                                                 problem):
-    with pytest.raises(gl.InputError, match=problem):
+@pytest.mark.parametrize("order", ["border", None, 2])
+def test_an_unknown_order_is_refused_before_anything_is_written(roofs, client, tmp_path, order):
+    with pytest.raises(gl.InputError, match="visit_order must be one of 'random', 'prominence', 'rims'"):
         dist.lod_files([str(roofs[0])], tmp_path / "lod", radius=RADIUS, visit_order=order, client=client)
     assert not (tmp_path / "lod").exists()
 

@@ -1,6 +1,6 @@
 // vcg_ext/poisson_tile.h: tiles that each read their core and a halo, decided
 // and then settled at the seams, give exactly the whole cloud's Poisson samples
-// (in random order, and with the rims first);
+// (in random order, with the rims first and with the prominent points first);
 // a halo too narrow is refused with a wider one to try; Settle's rule.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -101,7 +101,8 @@ void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order) {
   whole.seed = p.seed;
   whole.order = p.order = order;
   p.keyScale = p.radius;  // a run at a radius orders by that scale
-  p.keyNoise = whole.borderNoise;
+  p.keyNoise = Whole::NoiseOf(order, whole);
+  p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);  // the whole cloud's, in id order
   const auto w = Whole::Compute(DomainOf(cloud, Graph(false)), whole);
   const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
   ASSERT_GT(expected.size(), 20u);
@@ -136,7 +137,7 @@ void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order) {
   std::vector<float> openKeys;
   for (size_t i = 0; i < cloud.size(); ++i)
     if (status[i] == Tile::Open) openIds.push_back(i), openKeys.push_back(key[i]);
-  const std::vector<int> rank = order == vcg_ext::VisitOrder::Border
+  const std::vector<int> rank = order != vcg_ext::VisitOrder::Random
                                     ? vcg_ext::KeyFirstOrder(openKeys, openIds, p.seed)
                                     : vcg_ext::PriorityOrder(openIds, p.seed);
   std::vector<int64_t> sorted, offset{0}, cover;
@@ -163,6 +164,12 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamples) {
 // which the certified halo holds, and the seam is settled by the tiles' keys.
 TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirst) {
   ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Border);
+}
+
+// The prominent points first: the same, the smoothing radius from the whole
+// cloud's point spacing, and each rank's normal exact in the halo.
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPointsFirst) {
+  ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Prominence);
 }
 
 TEST(PoissonTile, AHaloTooNarrowIsRefusedWithAWiderOneToTry) {
