@@ -44,17 +44,9 @@ class BorderOrder {
       for (size_t r = b; r < e; ++r) {
         const int i = grid.Point(r);
         const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-        near.clear();
-        grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
-          for (int k = begin; k < end; ++k) {
-            const int j = grid.Point(size_t(k));
-            if ((vcg::Point3d::Construct(pos[size_t(j)]) - p).SquaredNorm() <= far2) near.push_back(j);
-          }
-        });
+        grid.Ball(pos, i, far2, id, near);
         const size_t m = near.size();
         if (m < 3) continue;  // no plane to lie at the rim of
-        if (id) std::sort(near.begin(), near.end(), [&](int a, int b) { return (*id)[size_t(a)] < (*id)[size_t(b)]; });
-        else std::sort(near.begin(), near.end());
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
         for (int j : near) {

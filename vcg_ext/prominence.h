@@ -72,15 +72,7 @@ class Prominence {
         const int i = grid.Point(r);
         const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
         const vcg::Point3d n = vcg::Point3d::Construct(normal[size_t(i)]);
-        within.clear();
-        grid.ForBlock(grid.CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
-          for (int k = begin; k < end; ++k) {
-            const int j = grid.Point(size_t(k));
-            if ((vcg::Point3d::Construct(pos[size_t(j)]) - p).SquaredNorm() <= far2) within.push_back(j);
-          }
-        });
-        if (id) std::sort(within.begin(), within.end(), [&](int a, int b) { return (*id)[size_t(a)] < (*id)[size_t(b)]; });
-        else std::sort(within.begin(), within.end());
+        grid.Ball(pos, i, far2, id, within);
         vcg::Point3d sumNear(0, 0, 0), sumFar(0, 0, 0);
         double sxx = 0;
         size_t nNear = 0, nFar = 0;
