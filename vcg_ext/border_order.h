@@ -7,9 +7,9 @@
 // Poisson-disk sampling that visits the largest first puts its samples on
 // those rims, which random order may leave up to a radius from any sample
 // (roof edges in airborne scans, docs/airborne_classes.md), with the same
-// separation and coverage as any order. Cost O(n m log m) for m points in
-// the 27 cells of side R around a point, on all threads. The points within R
-// are summed in the order of their ids, so a point's value is the same on any
+// separation and coverage as any order. Cost O(n m) for m points in the 27
+// cells of side R around a point, on all threads. The sums over the points
+// within R are exact (ExactMoments), so a point's value is the same on any
 // thread count and in any subset holding its R-ball (a cluster's tile,
 // poisson_tile.h).
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include <Eigen/Eigenvalues>
 #include <vcg/space/point3.h>
 #include "cell_grid.h"
+#include "exact_moments.h"
 #include "parallel.h"
 
 namespace vcg_ext {
@@ -31,39 +32,26 @@ class BorderOrder {
   /// their fitted plane, in units of R, less `noise` standard errors of that
   /// mean (at least 0): where the points scatter evenly around it, a point
   /// is not a rim, and random order decides among such points.
-  /// `id`: the points' ids (input indices), the order the points within R
-  /// are summed in (nullptr: their indices).
-  static std::vector<float> Compute(const std::vector<Coord>& pos, double R, double noise,
-                                    const std::vector<int>* id = nullptr) {
+  static std::vector<float> Compute(const std::vector<Coord>& pos, double R, double noise) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
     const double far2 = R * R;
-    ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
-      std::vector<int> near;
-      for (size_t r = b; r < e; ++r) {
-        const int i = grid.Point(r);
-        const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-        grid.Ball(pos, i, far2, id, near);
-        const size_t m = near.size();
-        if (m < 3) continue;  // no plane to lie at the rim of
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
-        for (int j : near) {
-          const vcg::Point3d d = vcg::Point3d::Construct(pos[size_t(j)]) - p;
-          const Eigen::Vector3d q(d[0], d[1], d[2]);
-          sum += q, outer += q * q.transpose();
-        }
-        const Eigen::Vector3d mean = sum / double(m);
-        const Eigen::Matrix3d cov = outer / double(m) - mean * mean.transpose();
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-        eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-        const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
-        const Eigen::Vector3d along = mean - n * n.dot(mean);
-        // The spread of the points along the plane, per axis: the two larger eigenvalues.
-        const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
-        out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
-      }
+    ParallelFor(pos.size(), 256, [&](size_t r) {
+      const int i = grid.Point(r);
+      ExactMoments ball(R);
+      grid.ForBall(pos, i, far2, [&](int, const vcg::Point3d& q) { ball.Add(q); });
+      const size_t m = ball.Count();
+      if (m < 3) return;  // no plane to lie at the rim of
+      const Eigen::Vector3d mean = ball.Sum() / double(m);
+      const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(cov, Eigen::ComputeEigenvectors);
+      const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
+      const Eigen::Vector3d along = mean - n * n.dot(mean);
+      // The spread of the points along the plane, per axis: the two larger eigenvalues.
+      const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
+      out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
     });
     return out;
   }

@@ -98,21 +98,18 @@ class CellGrid {
         }
   }
 
-  /// Into `out`, the points of `pos` (the points the grid holds, in cells of
-  /// side at least sqrt(r2)) within sqrt(r2) of point i, in the order of their
-  /// ids (nullptr: their indices): a sum over them is then the same in any
-  /// numbering of the points, or any subset holding the ball.
-  void Ball(const std::vector<Coord>& pos, int i, double r2, const std::vector<int>* id, std::vector<int>& out) const {
+  /// f(j, q) for the points j of `pos` (the points the grid holds, in cells
+  /// of side at least sqrt(r2)) within sqrt(r2) of point i, q = pos[j] - pos[i].
+  template <class F>
+  void ForBall(const std::vector<Coord>& pos, int i, double r2, F&& f) const {
     const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-    out.clear();
     ForBlock(CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
       for (int k = begin; k < end; ++k) {
         const int j = Point(size_t(k));
-        if ((vcg::Point3d::Construct(pos[size_t(j)]) - p).SquaredNorm() <= r2) out.push_back(j);
+        const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(j)]) - p;
+        if (q.SquaredNorm() <= r2) f(j, q);
       }
     });
-    if (id) std::sort(out.begin(), out.end(), [&](int a, int b) { return (*id)[size_t(a)] < (*id)[size_t(b)]; });
-    else std::sort(out.begin(), out.end());
   }
 
   /// A cell side holding about `perCell` points of a surface sampled like

@@ -79,14 +79,14 @@ class GeodesicPoissonLod {
     if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
         visit == VisitOrder::Border
-            ? KeyFirstOrder(BorderOrder<Scalar>::Compute(d.points.pos, scale, noise, &d.points.vertIndex),
+            ? KeyFirstOrder(BorderOrder<Scalar>::Compute(d.points.pos, scale, noise),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
             ? KeyFirstOrder(
                   Prominence<Scalar>::Compute(d.points.pos, d.normal, scale,
                                               Prominence<Scalar>::SmoothingRadius(d.points.pos, d.points.vertIndex,
                                                                                   scale),
-                                              noise, &d.points.vertIndex),
+                                              noise),
                   d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);

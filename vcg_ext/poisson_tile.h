@@ -91,10 +91,10 @@ class PoissonTile {
     if (p.order != VisitOrder::Random) {
       std::vector<float> key =
           p.order == VisitOrder::Border
-              ? BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise, &d.points.vertIndex)
+              ? BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise)
               : Prominence<Scalar>::Compute(d.points.pos, d.normal, p.keyScale,
                                             Prominence<Scalar>::SmoothingRadiusOf(p.keyCellSide, p.keyScale),
-                                            p.keyNoise, &d.points.vertIndex);
+                                            p.keyNoise);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];

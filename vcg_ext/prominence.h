@@ -6,16 +6,18 @@
 // mean of the points within R. Poisson-disk sampling that visits the most prominent
 // points first keeps the peaks, ridges and valley floors a disk would
 // otherwise cut, with the same separation and coverage as any order. Cost
-// O(n m log m) for m points in the 27 cells of side R around a point, on all
-// threads. The points within R are summed in the order of their ids, so a
+// O(n m) for m points in the 27 cells of side R around a point, on all
+// threads. The sums over the points within R are exact (ExactMoments), so a
 // point's value is the same on any thread count and in any subset holding its
 // R-ball (a cluster's tile, poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
+#include <Eigen/Core>
 #include <vcg/space/point3.h>
 #include "cell_grid.h"
+#include "exact_moments.h"
 #include "parallel.h"
 
 namespace vcg_ext {
@@ -58,38 +60,26 @@ class Prominence {
   /// units of R, less `noise` standard errors of the smoothed position along
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
   /// points, only a shape that stands out of that scatter comes first.
-  /// `id`: the points' ids (input indices), the order the points within R
-  /// are summed in (nullptr: their indices).
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
-                                    double R, double s, double noise, const std::vector<int>* id = nullptr) {
+                                    double R, double s, double noise) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
     const double near2 = s * s, far2 = R * R;
-    ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
-      std::vector<int> within;
-      for (size_t r = b; r < e; ++r) {
-        const int i = grid.Point(r);
-        const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-        const vcg::Point3d n = vcg::Point3d::Construct(normal[size_t(i)]);
-        grid.Ball(pos, i, far2, id, within);
-        vcg::Point3d sumNear(0, 0, 0), sumFar(0, 0, 0);
-        double sxx = 0;
-        size_t nNear = 0, nFar = 0;
-        for (int j : within) {
-          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(j)]) - p;
-          sumFar += q, ++nFar;
-          if (q.SquaredNorm() <= near2) {
-            sumNear += q, ++nNear;
-            const double x = q * n;
-            sxx += x * x;
-          }
-        }
-        const vcg::Point3d mean = sumNear / double(nNear);
-        const double sigma = std::sqrt(std::max(0.0, sxx / double(nNear) - (mean * n) * (mean * n)));
-        const vcg::Point3d gap = mean - sumFar / double(nFar);  // both hold the point itself
-        out[size_t(i)] = float(std::max(0.0, std::abs(gap * n) - noise * sigma / std::sqrt(double(nNear))) / R);
-      }
+    ParallelFor(pos.size(), 256, [&](size_t r) {
+      const int i = grid.Point(r);
+      const Eigen::Vector3d n = Eigen::Vector3d(normal[size_t(i)][0], normal[size_t(i)][1], normal[size_t(i)][2]);
+      ExactMoments nearBall(R), farBall(R);
+      grid.ForBall(pos, i, far2, [&](int, const vcg::Point3d& q) {
+        farBall.Add(q);
+        if (q.SquaredNorm() <= near2) nearBall.Add(q);
+      });
+      const double nNear = double(nearBall.Count()), nFar = double(farBall.Count());
+      const Eigen::Vector3d mean = nearBall.Sum() / nNear;
+      const double sxx = n.dot(nearBall.Outer() * n);  // the sum of (q . n)^2 over the near points
+      const double sigma = std::sqrt(std::max(0.0, sxx / nNear - mean.dot(n) * mean.dot(n)));
+      const Eigen::Vector3d gap = mean - farBall.Sum() / nFar;  // both hold the point itself
+      out[size_t(i)] = float(std::max(0.0, std::abs(gap.dot(n)) - noise * sigma / std::sqrt(nNear)) / R);
     });
     return out;
   }
