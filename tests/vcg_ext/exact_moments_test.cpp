@@ -1,0 +1,43 @@
+// vcg_ext/exact_moments.h: the sums are the same, bit for bit, in any order
+// of the offsets, and within the fixed point's resolution of the exact sums.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <random>
+#include <vector>
+#include <vcg_ext/exact_moments.h>
+
+namespace exact_moments_test {
+
+TEST(ExactMoments, TheSumsAreTheSameInAnyOrderAndCloseToTheExactOnes) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<vcg::Point3d> q;
+  while (q.size() < 2000) {
+    const vcg::Point3d p(u(rng), u(rng), u(rng));
+    if (p.Norm() <= 1) q.push_back(p * 0.37);  // offsets within the unit 0.37
+  }
+  vcg_ext::ExactMoments first(0.37);
+  for (const auto& p : q) first.Add(p);
+  long double sum[3] = {0, 0, 0}, outer[3][3] = {};
+  for (const auto& p : q)
+    for (int a = 0; a < 3; ++a) {
+      sum[a] += p[a];
+      for (int b = 0; b < 3; ++b) outer[a][b] += (long double)p[a] * p[b];
+    }
+  for (int shuffle = 0; shuffle < 5; ++shuffle) {
+    std::shuffle(q.begin(), q.end(), rng);
+    vcg_ext::ExactMoments again(0.37);
+    for (const auto& p : q) again.Add(p);
+    EXPECT_EQ(again.Count(), first.Count());
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(again.Sum()(a), first.Sum()(a));  // bit for bit
+      for (int b = 0; b < 3; ++b) EXPECT_EQ(again.Outer()(a, b), first.Outer()(a, b));
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(first.Sum()(a), double(sum[a]), 2000 * 0.37 * 0x1p-40);
+    for (int b = 0; b < 3; ++b) EXPECT_NEAR(first.Outer()(a, b), double(outer[a][b]), 2000 * 0.37 * 0x1p-39);
+  }
+}
+
+}  // namespace exact_moments_test
