@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Sequence, Union
 
@@ -227,7 +228,7 @@ def level_label(item) -> str:
 
 
 def _choice(x, table: dict, name: str):
-    if x not in table:
+    if not isinstance(x, Hashable) or x not in table:
         raise InputError(f"{name} must be one of {', '.join(repr(k) for k in table)}; got {x!r}")
     return table[x]
 

@@ -67,7 +67,7 @@ class Job:
         Nested levels: the folder of the finer level's samples (one .npy of ids per tile) and its tiles'
         boxes; None: every point may become a sample.
     order : tiles.Order
-        The visiting order: random, or the rims first at a scale.
+        The visiting order: random, or a key order at a scale.
     """
     srcs: list
     cloud: tiles.Box
@@ -182,7 +182,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
-    visit_order = cluster_visit_order(visit_order)
+    arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # a cluster takes every order one machine takes
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs, visit_order=visit_order), seed, metric, adaptivity, domain,
@@ -191,14 +191,6 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
                           f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
                           "or give workers more memory") from None
-
-
-def cluster_visit_order(visit_order, name: str = "visit_order") -> str:
-    """A visiting order's name, checked (a cluster takes every order one machine takes)."""
-    if not (isinstance(visit_order, str) and visit_order in arrays.VISIT_ORDERS):
-        raise InputError(f"{name} must be one of {', '.join(repr(k) for k in arrays.VISIT_ORDERS)}; got "
-                         f"{visit_order!r}")
-    return visit_order
 
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:

@@ -81,7 +81,7 @@ def test_a_domain_gives_what_the_function_gives(roofs, order):
                                                      seed=2).indices)
 
 
-@pytest.mark.parametrize("bad", ["border", None, 1, "Random"])
+@pytest.mark.parametrize("bad", ["border", None, 1, "Random", ["rims"]])
 def test_an_unknown_order_is_refused_by_name(roofs, bad):
     with pytest.raises(ValueError, match="visit_order must be one of 'random', 'prominence', 'rims'"):
         gl.poisson_lod(roofs, count=10, visit_order=bad)
