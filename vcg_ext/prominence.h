@@ -69,7 +69,8 @@ class Prominence {
     ParallelFor(pos.size(), 256, [&](size_t r) {
       const int i = grid.Point(r);
       const Eigen::Vector3d n = Eigen::Vector3d(normal[size_t(i)][0], normal[size_t(i)][1], normal[size_t(i)][2]);
-      ExactMoments nearBall(R), farBall(R);
+      ExactMoments nearBall(R);
+      ExactSums farBall(R);
       grid.ForBall(pos, i, far2, [&](int, const vcg::Point3d& q) {
         farBall.Add(q);
         if (q.SquaredNorm() <= near2) nearBall.Add(q);

@@ -17,7 +17,10 @@ TEST(ExactMoments, TheSumsAreTheSameInAnyOrderAndCloseToTheExactOnes) {
     if (p.Norm() <= 1) q.push_back(p * 0.37);  // offsets within the unit 0.37
   }
   vcg_ext::ExactMoments first(0.37);
-  for (const auto& p : q) first.Add(p);
+  vcg_ext::ExactSums sumsOnly(0.37);
+  for (const auto& p : q) first.Add(p), sumsOnly.Add(p);
+  EXPECT_EQ(sumsOnly.Count(), first.Count());
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(sumsOnly.Sum()(a), first.Sum()(a));
   long double sum[3] = {0, 0, 0}, outer[3][3] = {};
   for (const auto& p : q)
     for (int a = 0; a < 3; ++a) {
