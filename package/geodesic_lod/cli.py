@@ -189,7 +189,8 @@ def _run_on_cluster(args, request: dict) -> int:
             from .copc_cluster import copc_file
             made = copc_file(args.input, args.output, seed=args.seed, metric=args.metric, adaptivity=args.adaptivity,
                              tile_points=args.tile_points, client=client, threads=args.threads,
-                             overwrite=args.overwrite, progress=progress)
+                             overwrite=args.overwrite, progress=progress,
+                             visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
         else:
             index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
                                           adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
@@ -258,8 +259,8 @@ def _request(args) -> dict:
         raise ValueError("--height-field takes --rate, --count or --levels" + (", not --fps" if args.fps else ""))
     if args.height_field and args.tolerance is not None:
         raise ValueError("--tolerance goes with Poisson-disk sets; --height-field counts are exact")
-    if args.visit_order is not None and (args.fps or args.height_field or point_files.is_copc(args.output)):
-        raise ValueError("--visit-order goes with Poisson-disk sets (not --fps, --height-field or a COPC output)")
+    if args.visit_order is not None and (args.fps or args.height_field):
+        raise ValueError("--visit-order goes with Poisson-disk sets (not --fps or --height-field)")
     if args.tolerance is not None and (args.fps or not counted):
         raise ValueError("--tolerance goes with --count, --rate or --levels (Poisson-disk)")
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
@@ -369,7 +370,8 @@ def _copc(args, progress) -> list:
     from .octree import write_copc
     lod = write_copc(args.input[0], args.output, metric=args.metric, adaptivity=args.adaptivity,
                      recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
-                     overwrite=args.overwrite, progress=progress)
+                     visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER, overwrite=args.overwrite,
+                     progress=progress)
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
             f"{lod.octree.spacing:.6g} at depth 0"]

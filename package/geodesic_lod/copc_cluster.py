@@ -27,8 +27,8 @@ from . import arrays, cloud_files, las_files, partition, point_files, tiles
 from . import tile_points as tile_points_
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
-from .distributed import (Job, Ticks, _ids_file, check_worker_memory, domain_fields, finer_samples, poisson_run,
-                          write_tile)
+from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_order, domain_fields, finer_samples,
+                          poisson_run, write_tile)
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
@@ -166,15 +166,18 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
 
 def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
               adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = tile_points_.DEFAULT, client=None,
-              threads: Optional[int] = None, overwrite: bool = False, progress=None) -> dict:
+              threads: Optional[int] = None, overwrite: bool = False, progress=None,
+              visit_order: str = arrays.DEFAULT_VISIT_ORDER) -> dict:
     """Writes the point files (LAS/LAZ, as one cloud) as one COPC file whose octree depths are nested
     Poisson-disk LODs, on the Dask cluster of `client`: the file write_copc writes on one machine from
-    the same points. Returns a summary: points, tiles, their depth, the Poisson radii and seconds."""
+    the same points (``visit_order`` as there). Returns a summary: points, tiles, their depth, the Poisson
+    radii and seconds."""
     paths = cloud_files.expand_inputs(inputs)
     if not point_files.is_copc(output):
         raise point_files.PointFileError(output, f"a COPC file's name ends in {point_files.COPC_SUFFIX}")
     point_files.check_outputs(paths, [output], overwrite=overwrite)
     seed = arrays.whole_number(seed, "seed", 0, 2 ** 64 - 1)
+    arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # the orders one machine takes
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
     check_worker_memory(client)
@@ -208,8 +211,10 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
+        order = cluster_order(client, cells, visit_order, total)
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
-            job = dataclasses.replace(job, radius=radii[d], halo=tiles.first_halo(radii[d], spacing))
+            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(order, scale=radii[d]))
+            job = dataclasses.replace(job, halo=tiles.first_halo(radii[d], spacing, job.order))
             run = poisson_run(client, job, boxes, ticks)
             folder = work / f"level_{d}"
             folder.mkdir()

@@ -290,7 +290,7 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
     return core_diagonal.core_diagonal(run_pass, total, cloud.lo, cloud.hi)
 
 
-def _order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
+def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
     """The visiting order of every level but its scale: with 'prominence', the whole cloud's point spacing,
     measured on the points one machine measures it on (a pass over the cells)."""
     param = _core.PoissonParam()
@@ -404,7 +404,7 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
     job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
-    order = _order(client, cells, size["visit_order"], total)
+    order = cluster_order(client, cells, size["visit_order"], total)
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":

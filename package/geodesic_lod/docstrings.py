@@ -127,7 +127,7 @@ VISIT_ORDER = """visit_order : {'random', 'prominence', 'rims'}
         'random': the paper's seeded order (default). 'prominence': the points that stand out of their
         scan's scatter at the disks' scale first (docs/visit_order.json). 'rims': the points at the rim
         of their surroundings first, such as a roof's edges (docs/airborne_classes.md). The same on a
-        cluster (``lod_files``)."""
+        cluster (``lod_files``, ``copc_file``)."""
 
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
@@ -467,6 +467,7 @@ TEXTS = {
     ----------
     {INPUTS}
     {METRIC}
+    {VISIT_ORDER}
     {RUN}
 
     Returns
@@ -499,7 +500,7 @@ TEXTS = {
         A LAS or LAZ file (COPC too).
     output : str or path
         The COPC file, named ``*.copc.laz``; never an input.
-    metric, adaptivity, recompute_normals, seed, threads, progress
+    metric, adaptivity, recompute_normals, visit_order, seed, threads, progress
         As in ``octree_lod``.
     overwrite : bool
         Replace ``output`` if it exists. Default False.

@@ -9,8 +9,8 @@ from typing import Optional
 
 import numpy as np
 
-from .arrays import (DEFAULT_GEODESICS, DEFAULT_METRIC, DOMAIN_DEFAULTS, DomainOptions, Progress, point_arrays,
-                     run_options)
+from .arrays import (DEFAULT_GEODESICS, DEFAULT_METRIC, DEFAULT_VISIT_ORDER, DOMAIN_DEFAULTS, VISIT_ORDERS,
+                     DomainOptions, Progress, _choice, point_arrays, run_options)
 from .copc_files import CELLS, MAX_DEPTH, Octree
 from .docstrings import documented
 from .domain import Domain
@@ -96,9 +96,11 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
                curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors,
                graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
-               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, seed: int = 0,
+               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals,
+               visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
                threads: Optional[int] = None, progress: Progress = None) -> OctreeLod:
     p, n = point_arrays(points, normals)
+    _choice(visit_order, VISIT_ORDERS, "visit_order")
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
@@ -113,7 +115,7 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
         dom = Domain(p, n, **dataclasses.asdict(options), threads=threads, progress=part(0.0, 0.4))
         finer = None
         for k, d in enumerate(reversed(range(depths))):  # finest first: each level among the finer one's samples
-            lod = dom.poisson_lod(radius=radii[d], seed=seed, within=finer, threads=threads,
+            lod = dom.poisson_lod(radius=radii[d], seed=seed, within=finer, visit_order=visit_order, threads=threads,
                                   progress=part(0.4 + 0.6 * k / depths, 0.4 + 0.6 * (k + 1) / depths))
             finer = np.sort(lod.indices)
             depth[finer] = d
@@ -124,7 +126,8 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
 
 @documented
 def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float = DOMAIN_DEFAULTS.adaptivity,
-               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, seed: int = 0,
+               recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals,
+               visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
                threads: Optional[int] = None, overwrite: bool = False, progress: Progress = None) -> OctreeLod:
     from . import point_files
     from .arrays import too_few_points
@@ -132,6 +135,7 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
     if not point_files.is_copc(output):
         raise PointFileError(output, f"a COPC file's name ends in {point_files.COPC_SUFFIX}")
     point_files.check_outputs([input], [output], overwrite=overwrite)
+    _choice(visit_order, VISIT_ORDERS, "visit_order")
     source = point_files.read(input)
     problem = too_few_points(len(source.points), max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors))
     if problem:
@@ -139,7 +143,8 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
     point_files.check_writable(source, [output])
     try:
         lod = octree_lod(source.points, source.normals, metric=metric, adaptivity=adaptivity,
-                         recompute_normals=recompute_normals, seed=seed, threads=threads, progress=progress)
+                         recompute_normals=recompute_normals, visit_order=visit_order, seed=seed, threads=threads,
+                         progress=progress)
     except PointFileError:
         raise
     except ValueError as e:  # the input's data or a value that depends on it

@@ -161,8 +161,6 @@ BAD = [
      "--visit-order goes with Poisson-disk sets"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "50", "--height-field", "--visit-order",
                 "prominence"], "--visit-order goes with Poisson-disk sets"),
-    (lambda d: [las_cloud(d / "in.laz"), "-o", "o.copc.laz", "--visit-order", "rims"],
-     "--visit-order goes with Poisson-disk sets"),
     (lambda d: [np.save(d / "tiny.npy", bumpy_sphere(3)) or d / "tiny.npy", "-o", "o.npy", "--rate", "50%"],
      "tiny.npy: holds 3 points: at least 21 are needed"),
 ]

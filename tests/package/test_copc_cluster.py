@@ -14,6 +14,8 @@ from point_file_inputs import wavy_strip
 from test_cli import names, run
 from test_distributed import write_parts
 
+KEY_ORDERS = ["prominence", "rims"]
+
 
 def nodes(path) -> dict:
     """Per node (depth, x, y, z), its records' bytes, sorted; copclib validates the file on the way."""
@@ -38,6 +40,22 @@ def strip(tmp_path_factory):
     las.write(str(d / "all.laz"))
     gl.write_copc(d / "all.laz", d / "one.copc.laz")
     return parts, nodes(d / "one.copc.laz")
+
+
+@pytest.fixture(scope="module")
+def strip_by_order(strip, tmp_path_factory):
+    """The strip's single-machine file in each key order: {order: nodes}."""
+    d = tmp_path_factory.mktemp("strip_orders")
+    parts, _ = strip
+    records = np.concatenate([laspy.read(str(f)).points.array for f in sorted(parts.glob("*.laz"))])
+    las = laspy.read(str(parts / "part0.laz"))
+    las.points = laspy.PackedPointRecord(records, las.point_format)
+    las.write(str(d / "all.laz"))
+    out = {}
+    for order in KEY_ORDERS:
+        gl.write_copc(d / "all.laz", d / f"{order}.copc.laz", visit_order=order)
+        out[order] = nodes(d / f"{order}.copc.laz")
+    return out
 
 
 @pytest.fixture(scope="module")
@@ -74,6 +92,27 @@ def test_any_tiling_gives_the_single_machine_nodes(strip, client, tmp_path, tile
     assert names(tmp_path) == ["lod.copc.laz"]
 
 
+@pytest.mark.parametrize("order", KEY_ORDERS)
+def test_a_key_order_gives_the_single_machine_nodes(strip, strip_by_order, client, tmp_path, order):
+    """The rims or the prominent points first: node by node the file one machine writes in that order,
+    which is not the random order's."""
+    parts, random_order = strip
+    assert strip_by_order[order] != random_order, "the order changed no node: the test would mean nothing"
+    made = copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=7000, client=client,
+                                  visit_order=order)
+    assert made["tiles"] > 1
+    assert nodes(tmp_path / "lod.copc.laz") == strip_by_order[order]
+
+
+def test_an_unknown_order_is_refused_before_anything_is_written(strip, client, tmp_path):
+    parts, _ = strip
+    with pytest.raises(ValueError, match="visit_order"):
+        copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", client=client, visit_order="first")
+    with pytest.raises(ValueError, match="visit_order"):
+        gl.write_copc(sorted(parts.glob("*.laz"))[0], tmp_path / "one.copc.laz", visit_order=["rims"])
+    assert names(tmp_path) == []
+
+
 def test_one_worker_gives_the_same_nodes(strip, tmp_path):
     parts, one = strip
     with dist.local_cluster(1) as cluster, Client(cluster) as c:
@@ -81,7 +120,7 @@ def test_one_worker_gives_the_same_nodes(strip, tmp_path):
     assert nodes(tmp_path / "lod.copc.laz") == one
 
 
-def test_the_command_on_a_local_cluster_keeps_the_users_files(strip, tmp_path):
+def test_the_command_on_a_local_cluster_keeps_the_users_files(strip, strip_by_order, tmp_path):
     parts, one = strip
     mine = tmp_path / "notes.txt"
     mine.write_text("the user's own")
@@ -95,3 +134,7 @@ def test_the_command_on_a_local_cluster_keeps_the_users_files(strip, tmp_path):
     r = run(parts, "-o", out, "--workers", "1", "--overwrite", "-q")
     assert r.returncode == 0, r.stderr
     assert nodes(out) == one
+    r = run(parts, "-o", out, "--workers", "2", "--tile-points", "5000", "--visit-order", "prominence",
+            "--overwrite", "-q")
+    assert r.returncode == 0, r.stderr
+    assert nodes(out) == strip_by_order["prominence"]

@@ -1,6 +1,6 @@
 """geodesic_lod.octree_lod: every point gets one depth, the points of depths 0 to d are the nested
-Poisson-disk LOD of radius spacing / 2^d (the same as Domain.poisson_lod's levels), separated and
-covering at that radius, on any number of threads."""
+Poisson-disk LOD of radius spacing / 2^d (the same as Domain.poisson_lod's levels, in any visiting order),
+separated and covering at that radius, on any number of threads."""
 import numpy as np
 import pytest
 
@@ -38,6 +38,18 @@ def test_the_depths_are_nested_lods_of_the_domain(strip, lod):
         finer = level
     sizes = [len(lod.cut(d)) for d in range(len(lod.radii) + 1)]
     assert all(a < b for a, b in zip(sizes, sizes[1:])) and sizes[-1] == len(strip)
+
+
+@pytest.mark.parametrize("order", ["prominence", "rims"])
+def test_a_key_order_gives_the_domains_nested_lods_in_that_order(strip, lod, order):
+    keyed = gl.octree_lod(strip, visit_order=order)
+    assert keyed.radii == lod.radii and not np.array_equal(keyed.depth, lod.depth)
+    dom = gl.Domain(strip)
+    finer = None
+    for d in reversed(range(len(keyed.radii))):
+        level = np.sort(dom.poisson_lod(radius=keyed.radii[d], within=finer, visit_order=order).indices)
+        assert np.array_equal(keyed.cut(d), level), f"depth {d}"
+        finer = level
 
 
 def test_each_cut_is_separated_and_covers_in_the_euclidean_metric(strip):
