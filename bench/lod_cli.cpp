@@ -121,13 +121,14 @@ bool Callback(const int, const char* what) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]\n"
-                         "       [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt]\n", argv[0]);
+                         "       [--visit-order random|prominence|rims] [--recompute-normals] [--seed S] [--threads T]\n"
+                         "       [--samples OUT.txt]\n", argv[0]);
     return 2;
   }
   double radius = 0, radiusPct = 0.5;
   size_t fps = 0, count = 0;
   uint64_t seed = 0;
-  std::string metric, samplesOut;  // no --metric: the product default
+  std::string metric, samplesOut, order;  // no --metric or --visit-order: the product default
   bool recompute = false;
   for (int a = 2; a < argc; ++a) {
     const std::string o = argv[a];
@@ -137,6 +138,7 @@ int main(int argc, char** argv) {
     else if (o == "--fps") fps = std::strtoull(next().c_str(), nullptr, 10);
     else if (o == "--count") count = std::strtoull(next().c_str(), nullptr, 10);
     else if (o == "--metric") metric = next();
+    else if (o == "--visit-order") order = next();
     else if (o == "--recompute-normals") recompute = true;
     else if (o == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (o == "--samples") samplesOut = next();
@@ -149,6 +151,10 @@ int main(int argc, char** argv) {
       {"eq3", vcg_ext::Metric::WeightedEq3}, {"density", vcg_ext::Metric::CurvatureDensity},
       {"geodesic", vcg_ext::Metric::Geodesic}, {"euclidean", vcg_ext::Metric::Euclidean}};
   if (!metric.empty() && !metrics.count(metric)) { std::fprintf(stderr, "unknown metric %s\n", metric.c_str()); return 2; }
+  const std::map<std::string, vcg_ext::VisitOrder> orders = {
+      {"random", vcg_ext::VisitOrder::Random}, {"prominence", vcg_ext::VisitOrder::Prominence},
+      {"rims", vcg_ext::VisitOrder::Border}};
+  if (!order.empty() && !orders.count(order)) { std::fprintf(stderr, "unknown visiting order %s\n", order.c_str()); return 2; }
 
   const auto t0 = Clock::now();
   CMesh m;
@@ -178,6 +184,7 @@ int main(int argc, char** argv) {
       p.radius = radius;
       p.sampleNum = count;
       p.seed = seed;
+      if (!order.empty()) p.order = orders.at(order);
       const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<CMesh::ScalarType>>(m, p, Callback);
       samples = r.vertIndex;
       if (count) radius = r.radius;

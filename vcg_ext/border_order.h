@@ -36,11 +36,12 @@ class BorderOrder {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
+    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
     const double far2 = R * R;
-    ParallelFor(pos.size(), 256, [&](size_t r) {
+    grid.ForEachBall(sorted, [&](size_t r, auto&& within) {
       const int i = grid.Point(r);
       ExactMoments ball(R);
-      grid.ForBall(pos, i, far2, [&](int, const vcg::Point3d& q) { ball.Add(q); });
+      within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
       const size_t m = ball.Count();
       if (m < 3) return;  // no plane to lie at the rim of
       const Eigen::Vector3d mean = ball.Sum() / double(m);

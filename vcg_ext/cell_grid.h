@@ -68,7 +68,8 @@ class CellGrid {
 
   /// The cell holding p (coordinates from 0; a point beyond 2^62 cells gets a
   /// cell that does not hold it, so Margin is negative and nothing is certified).
-  Cell CellOf(const Coord& p) const {
+  template <class P>
+  Cell CellOf(const P& p) const {
     Cell c;
     for (int a = 0; a < 3; ++a) c[a] = int64_t(std::min(std::floor((double(p[a]) - origin_[a]) / h_), 0x1p62));
     return c;
@@ -98,16 +99,33 @@ class CellGrid {
         }
   }
 
-  /// f(j, q) for the points j of `pos` (the points the grid holds, in cells
-  /// of side at least sqrt(r2)) within sqrt(r2) of point i, q = pos[j] - pos[i].
+  /// The points of `pos` (the points the grid holds) in cell order, what
+  /// ForEachBall reads: a ball's cells are then contiguous runs. O(n).
+  std::vector<vcg::Point3d> InCellOrder(const std::vector<Coord>& pos) const {
+    std::vector<vcg::Point3d> sorted(pts_.size());
+    ParallelFor(pts_.size(), 4096, [&](size_t r) { sorted[r] = vcg::Point3d::Construct(pos[size_t(pts_[r])]); });
+    return sorted;
+  }
+  /// For every point, on all threads: f(r, ball) for the r-th point in cell
+  /// order, where ball(r2, g) calls g(q) for the points within sqrt(r2) (at
+  /// most the cell side) of it, q their offset from it. A cell's 27 neighbour
+  /// ranges are looked up once for all its points (a lookup per point was
+  /// most of the cost on small cells). `sorted`: InCellOrder(pos).
   template <class F>
-  void ForBall(const std::vector<Coord>& pos, int i, double r2, F&& f) const {
-    const vcg::Point3d p = vcg::Point3d::Construct(pos[size_t(i)]);
-    ForBlock(CellOf(pos[size_t(i)]), 1, [&](int begin, int end) {
-      for (int k = begin; k < end; ++k) {
-        const int j = Point(size_t(k));
-        const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(j)]) - p;
-        if (q.SquaredNorm() <= r2) f(j, q);
+  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f) const {
+    ParallelFor(key_.size(), 16, [&](size_t c) {
+      std::array<std::pair<int, int>, 27> ranges;
+      int m = 0;
+      ForBlock(CellOf(sorted[size_t(start_[c])]), 1, [&](int begin, int end) { ranges[size_t(m++)] = {begin, end}; });
+      for (int r = start_[c]; r < start_[c + 1]; ++r) {
+        const vcg::Point3d p = sorted[size_t(r)];
+        f(size_t(r), [&](double r2, auto&& g) {
+          for (int k = 0; k < m; ++k)
+            for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
+              const vcg::Point3d q = sorted[size_t(t)] - p;
+              if (q.SquaredNorm() <= r2) g(q);
+            }
+        });
       }
     });
   }

@@ -65,13 +65,14 @@ class Prominence {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
+    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
     const double near2 = s * s, far2 = R * R;
-    ParallelFor(pos.size(), 256, [&](size_t r) {
+    grid.ForEachBall(sorted, [&](size_t r, auto&& ball) {
       const int i = grid.Point(r);
       const Eigen::Vector3d n = Eigen::Vector3d(normal[size_t(i)][0], normal[size_t(i)][1], normal[size_t(i)][2]);
       ExactMoments nearBall(R);
       ExactSums farBall(R);
-      grid.ForBall(pos, i, far2, [&](int, const vcg::Point3d& q) {
+      ball(far2, [&](const vcg::Point3d& q) {
         farBall.Add(q);
         if (q.SquaredNorm() <= near2) nearBall.Add(q);
       });

@@ -13,16 +13,17 @@
 
 namespace poisson_tile_test {
 
-namespace {
-
-typedef vcg_ext::PoissonTile<double> Tile;
-typedef vcg_ext::GeodesicDomain<double> Domain;
-
-// The whole-cloud sampler takes its scalar from a mesh type: one of doubles, as the tiles'.
+// The whole-cloud sampler takes its scalar from a mesh type: one of doubles, as the tiles'. Outside
+// the anonymous namespace: vcglib's component chain would otherwise derive from its types.
 class DVertex;
 struct DTypes : vcg::UsedTypes<vcg::Use<DVertex>::AsVertexType> {};
 class DVertex : public vcg::Vertex<DTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
 class DMesh : public vcg::tri::TriMesh<std::vector<DVertex>> {};
+
+namespace {
+
+typedef vcg_ext::PoissonTile<double> Tile;
+typedef vcg_ext::GeodesicDomain<double> Domain;
 typedef vcg_ext::GeodesicPoissonLod<DMesh::ScalarType> Whole;
 
 /// A bumpy 40 x 40 height field on [0,1]^2, jittered so no two distances tie.
