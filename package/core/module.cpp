@@ -250,6 +250,9 @@ NB_MODULE(_core, m) {
       .def_rw("order", &Poisson::Param::order)
       .def_rw("prominence_noise", &Poisson::Param::prominenceNoise)
       .def_rw("border_noise", &Poisson::Param::borderNoise)
+      .def(
+          "noise_of", [](const Poisson::Param& p, vcg_ext::VisitOrder order) { return Poisson::NoiseOf(order, p); },
+          "order"_a, "the standard errors a key order's keys are discounted by")
       .def_prop_rw(
           "within", [](const Poisson::Param& p) { return p.within; },
           [](Poisson::Param& p, const nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>& v) {

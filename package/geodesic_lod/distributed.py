@@ -293,8 +293,7 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
 def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
     """The visiting order of every level but its scale: with 'prominence', the whole cloud's point spacing,
     measured on the points one machine measures it on (a pass over the cells)."""
-    param = _core.PoissonParam()
-    noise = param.border_noise if kind == "rims" else param.prominence_noise if kind == "prominence" else 0.0
+    noise = _core.PoissonParam().noise_of(arrays.VISIT_ORDERS[kind]) if kind != "random" else 0.0
     cell_side = 0.0
     if kind == "prominence":
         ids = _core.cell_side_subsample(total)
