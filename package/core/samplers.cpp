@@ -37,13 +37,11 @@ Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, co
   return Domain::Build(std::move(ps), std::move(tris), p, progress);
 }
 
-Tile::Result SampleTile(vcg_ext::PointSet<double> ps, const Domain::Param& domain, const std::vector<uint64_t>& id,
-                        const std::vector<char>& core, const Tile::Param& p, vcg_ext::Progress progress) {
+Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress) {
   Domain::Param dp = domain;
   dp.keepReach = true;
   dp.mode = vcg_ext::GeodesicMode::PointGraph;
-  const Domain d = Domain::Build(std::move(ps), {}, dp, progress.Sub(0, 70));
-  return Tile::Compute(d, id, core, p, progress.Sub(70, 100));
+  return Domain::Build(std::move(ps), {}, dp, progress);
 }
 
 vcg_ext::HeightFieldLod::Result HeightField(const std::vector<double>& xyz, const vcg_ext::HeightFieldLod::Param& p,

@@ -39,9 +39,9 @@ Pyramid::Result LodOn(const Domain& d, const Pyramid::Param& p, vcg_ext::Progres
 Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, const Domain::Param& p,
                    vcg_ext::Progress progress);
 
-/// One tile's Poisson decisions: its point graph's domain (70% of the progress), then the tile.
-Tile::Result SampleTile(vcg_ext::PointSet<double> ps, const Domain::Param& domain, const std::vector<uint64_t>& id,
-                        const std::vector<char>& core, const Tile::Param& p, vcg_ext::Progress progress);
+/// A tile's domain (its points, core and halo): the point graph's, with each point's kNN reach, which
+/// Tile::Compute checks the halo with. One domain serves every run on the same points.
+Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress);
 
 vcg_ext::HeightFieldLod::Result HeightField(const std::vector<double>& xyz, const vcg_ext::HeightFieldLod::Param& p,
                                             vcg_ext::Progress progress);

@@ -38,15 +38,24 @@ inline nb::ndarray<nb::numpy, uint64_t> Priorities(uint64_t seed, const Ids& ids
   return ToNumpy(std::move(p), {ids.shape(0)});
 }
 
-inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> normals, const Ids& ids,
-                               const Flags& core, const vcg_ext::GeodesicDomain<double>::Param& domain,
-                               double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
-                               std::array<double, 6> cloudBox, std::optional<Flags> candidate,
-                               std::optional<int> threads, nb::object progress, vcg_ext::VisitOrder order,
-                               double keyScale, double keyNoise, double keyCellSide) {
-  const size_t rows = points.shape(0);
-  if (ids.shape(0) != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
-    throw std::invalid_argument("ids, core and candidate must have one entry per point");
+inline Domain TileDomainOf(const Array2& points, std::optional<Array2> normals,
+                           const vcg_ext::GeodesicDomain<double>::Param& domain, std::optional<int> threads,
+                           nb::object progress) {
+  Threads team(threads);
+  PythonProgress pp(std::move(progress));
+  return pp.Run([&](vcg_ext::Progress pr) {
+    return TileDomain(ReadPoints(points, normals ? &*normals : nullptr), domain, pr);
+  });
+}
+
+inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
+                               std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
+                               std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
+                               vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide) {
+  const size_t rows = ids.shape(0);
+  if (d.vertexCount != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
+    throw std::invalid_argument("ids, core and candidate must have one entry per point of the tile's domain");
+  if (d.reach.size() != d.size()) throw std::invalid_argument("the domain must be a tile's (tile_domain)");
   for (size_t i = 1; i < rows; ++i)
     if (!(ids(i - 1) < ids(i))) throw std::invalid_argument("a tile's points must come in increasing id order");
   Threads team(threads);
@@ -68,7 +77,7 @@ inline nb::dict PoissonTileRun(const Array2& points, std::optional<Array2> norma
       may.assign(candidate->data(), candidate->data() + rows);
       tp.candidate = &may;
     }
-    return SampleTile(ReadPoints(points, normals ? &*normals : nullptr), domain, id, isCore, tp, pr);
+    return Tile::Compute(d, id, isCore, tp, pr);
   });
   nb::dict out;
   out["certified"] = r.certified;
@@ -119,10 +128,12 @@ inline void Settle(const Int64s& open, const Int64s& coverOffset, const Int64s& 
 
 inline void BindTiles(nb::module_& m) {
   m.def("priorities", &Priorities, "seed"_a, "ids"_a, "the Poisson visiting priority of each id (lower first)");
-  m.def("poisson_tile", &PoissonTileRun, "points"_a, "normals"_a.none(), "ids"_a, "core"_a, "domain"_a,
-        "radius"_a, "seed"_a, "core_box"_a, "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(),
-        "progress"_a.none(), "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0,
-        "key_noise"_a = 0.0, "key_cell_side"_a = 0.0);
+  m.def("tile_domain", &TileDomainOf, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
+        "progress"_a.none(), "a tile's domain (its points in increasing id order), for poisson_tile");
+  m.def("poisson_tile", &PoissonTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a,
+        "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
+        "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
+        "key_cell_side"_a = 0.0);
   m.def("cell_side_subsample", &CellSideSubsample, "n"_a,
         "the ids of the points the prominence order's point spacing is measured on, of n points");
   m.def("cell_side", &CellSideOf, "subsample"_a, "n"_a,

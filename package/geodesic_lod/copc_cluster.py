@@ -28,7 +28,7 @@ from . import tile_points as tile_points_
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
 from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_order, domain_fields, finer_samples,
-                          poisson_run, write_tile)
+                          forget_reads, poisson_run, write_tile)
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
@@ -212,10 +212,13 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
         order = cluster_order(client, cells, visit_order, total)
+        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
+        halo = tiles.first_halo(radii[0], spacing, dataclasses.replace(order, scale=radii[0]))
+        where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
-            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(order, scale=radii[d]))
-            job = dataclasses.replace(job, halo=tiles.first_halo(radii[d], spacing, job.order))
-            run = poisson_run(client, job, boxes, ticks)
+            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(order, scale=radii[d]),
+                                      halo=halo)
+            run = poisson_run(client, job, boxes, ticks, where)
             folder = work / f"level_{d}"
             folder.mkdir()
             owned = [np.empty(0, np.uint64) if p is None else run.settled[np.isin(run.settled, p.open_ids)]
@@ -244,6 +247,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         point_files.write_files([(out, lambda f: assemble(f, first, fmt, merge_stats(
             [p["stats"] for p in parts]), octree, pieces))])
     finally:
+        client.run(forget_reads, on_error="return")
         shutil.rmtree(work, ignore_errors=True)
     return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii,
             "spacing": octree.spacing, "seconds": round(time.perf_counter() - start, 3)}

@@ -87,8 +87,35 @@ class Job:
         return d
 
 
+READS_SHARE = 0.3  # of a worker's memory limit: the tiles' reads it keeps for the job's next runs
+SEARCH_REACH = 1.5  # a count search's radii seldom pass this many times its first radius
+_reads: Optional[tiles.TileReads] = None  # this worker process's
+
+
+def _tile_reads() -> tiles.TileReads:
+    global _reads
+    if _reads is None:
+        from dask.distributed import get_worker
+        import psutil
+        try:
+            limit = get_worker().memory_manager.memory_limit
+        except ValueError:  # not on a worker: a task run in this process
+            limit = None
+        limit = limit or psutil.virtual_memory().total
+        _reads = tiles.TileReads(int(READS_SHARE * limit))
+    return _reads
+
+
+def forget_reads() -> None:
+    """Drops the tiles' reads this process keeps (run on every worker when a job ends)."""
+    if _reads is not None:
+        _reads.clear()
+
+
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
-    """A Dask task: one tile's decision, reading a wider halo until the check passes."""
+    """A Dask task: one tile's decision, reading a wider halo until the check passes. What the tile read
+    (its points and their domain) is kept on the worker for the job's next run on it, a level or a step
+    of a count search: the same points give the same domain."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
     candidates = None
     if job.within is not None:
@@ -96,7 +123,9 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     return tiles.decide_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo),
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
-                                 seed=job.seed, candidates=candidates, threads=job.threads, order=job.order)
+                                 seed=job.seed, candidates=candidates, threads=job.threads, order=job.order,
+                                 reads=_tile_reads(), job=(job.cells.folder, tuple(sorted(job.domain.items()))),
+                                 tile=box.as_tuple())
 
 
 def _ids_file(folder, k: int) -> pathlib.Path:
@@ -237,14 +266,20 @@ def sample_count(d: Optional[tiles.Decision]) -> int:
     return 0 if d is None else len(d.samples)
 
 
-def poisson_run(client, job: Job, boxes, ticks: Ticks) -> _Run:
+def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
+    """One Poisson run over every tile; `where`: per tile, the worker that last decided it (and keeps its
+    read), where its task goes again if that worker is free, updated."""
     from dask.distributed import as_completed
     ticks.expect(len(boxes))
     start = time.perf_counter()
-    decisions = client.map(decide_tile, [job] * len(boxes), boxes, pure=False)
+    decisions = [client.submit(decide_tile, job, b, pure=False, **({"workers": where[k], "allow_other_workers": True}
+                                                                   if k in where else {}))
+                 for k, b in enumerate(boxes)]
     for _ in as_completed(decisions):
         ticks()
     decided = time.perf_counter()
+    held = client.who_has(decisions)
+    where.update({k: list(held[f.key])[:1] for k, f in enumerate(decisions) if held.get(f.key)})
     parts = client.gather(client.map(seams, decisions, pure=False))
     settled = tiles.settle([p for p in parts if p is not None], job.seed)
     count = sum(client.gather(client.map(sample_count, decisions, pure=False))) + len(settled)
@@ -253,15 +288,16 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks) -> _Run:
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
-                  spacing: float, pool: int, first_radius: float) -> tuple:
+                  spacing: float, pool: int, first_radius: float, reach: float, where: dict) -> tuple:
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
-    run over all tiles, among `pool` points that may be samples: (the accepted or nearest run, runs made)."""
+    run over all tiles, among `pool` points that may be samples, reading the halo of a radius of at least
+    `reach`: (the accepted or nearest run, runs made)."""
     steps = _core.RadiusSearch(target, tolerance / 100, pool, first_radius, max_runs)
     best, spent = None, {"tiles": 0.0, "seams": 0.0}
     while not steps.done:
         r = steps.radius
-        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=tiles.first_halo(r, spacing, job.order)),
-                          boxes, ticks)
+        halo = tiles.first_halo(max(r, reach), spacing, job.order)
+        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=halo), boxes, ticks, where)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
         if steps.report(run.count) == _core.SearchRole.Accepted:
             best = run
@@ -378,6 +414,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     except BaseException:
         out.abort()
         raise
+    finally:
+        client.run(forget_reads, on_error="return")
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
              "visit_order": size["visit_order"],
@@ -404,17 +442,22 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     order = cluster_order(client, cells, size["visit_order"], total)
+    # Every run reads the halo the coarsest level likely needs, so that a tile's read (its points and their
+    # domain, kept on its worker) serves every level and every step of the count searches.
+    reach = max(value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)
+                for kind, value in targets)
+    where = {}
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
             job = dataclasses.replace(job, radius=value, order=dataclasses.replace(order, scale=value))
-            job = dataclasses.replace(job, halo=tiles.first_halo(value, spacing, job.order))
-            run = poisson_run(client, job, boxes, ticks)
+            job = dataclasses.replace(job, halo=tiles.first_halo(max(value, reach), spacing, job.order))
+            run = poisson_run(client, job, boxes, ticks, where)
         else:
             first = _core.RadiusSearch.first_radius(diagonal, value)
             job = dataclasses.replace(job, order=dataclasses.replace(order, scale=first))
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool, first)
+                                      pool, first, reach, where)
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None

@@ -213,51 +213,111 @@ def first_halo(radius: float, spacing: float, order: Order = RANDOM) -> float:
     return radius + 12 * spacing + (order.scale if order.keyed else 0.0)
 
 
-def decide(points: np.ndarray, normals: Optional[np.ndarray], ids: np.ndarray, core: np.ndarray, *, radius: float,
-           box: Box, cloud: Box, halo: float, domain, seed: int = 0, candidate: Optional[np.ndarray] = None,
-           threads: Optional[int] = None, progress=None, order: Order = RANDOM) -> tuple:
-    """One tile, from the points read with `halo` (in increasing id order); `candidate`: per point, whether
-    it may become a sample (None: all). Returns (Decision, None) or, when the halo is too narrow for the
-    check, (None, a halo that will do)."""
+@dataclass
+class TileRead:
+    """What a tile read, kept for every run on the same points: its points within `halo` of its box (in
+    increasing id order), which of them are its core, and their domain (``_core.tile_domain``).
+
+    Attributes
+    ----------
+    halo : float
+        The width read around the box, in the input's units.
+    ids : (n,) ndarray of uint64
+        The points' ids.
+    core : (n,) ndarray of bool
+        The tile's own points.
+    domain : _core.Domain
+        Their point graph's domain.
+    """
+    halo: float
+    ids: np.ndarray
+    core: np.ndarray
+    domain: object
+
+    def nbytes(self) -> int:
+        return self.ids.nbytes + self.core.nbytes + self.domain.nbytes
+
+
+class TileReads:
+    """One job's tiles' reads, kept in one process for the job's next runs on the same points (its levels,
+    its count searches' steps), up to `budget` bytes: a read that does not fit is not kept (each run visits
+    every tile, so dropping the oldest would keep none for the next run). A run needing a wider halo than
+    a tile's read reads again; another job's reads are dropped."""
+
+    def __init__(self, budget: int):
+        self.budget, self.job, self.reads = budget, None, {}
+        self.hits = self.misses = 0
+
+    def get(self, job, tile, halo: float) -> Optional[TileRead]:
+        t = self.reads.get(tile) if job == self.job else None
+        t = t if t is not None and t.halo >= halo else None
+        self.hits, self.misses = self.hits + (t is not None), self.misses + (t is None)
+        return t
+
+    def put(self, job, tile, t: TileRead) -> None:
+        if job != self.job:
+            self.clear()
+            self.job = job
+        self.reads.pop(tile, None)
+        if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget:
+            self.reads[tile] = t
+
+    def clear(self) -> None:
+        self.job, self.reads = None, {}
+
+
+def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
+           candidate: Optional[np.ndarray] = None, threads: Optional[int] = None, progress=None,
+           order: Order = RANDOM) -> tuple:
+    """One tile's run on what it read; `candidate`: per point, whether it may become a sample (None: all).
+    Returns (Decision, None) or, when the halo is too narrow for the check, (None, a halo that will do)."""
     if candidate is not None:
         candidate = np.ascontiguousarray(candidate, dtype=bool)
-    r = _core.poisson_tile(points, normals, np.ascontiguousarray(ids, dtype=np.uint64),
-                           np.ascontiguousarray(core, dtype=bool), domain, float(radius), int(seed), box.as_tuple(),
-                           float(halo), cloud.as_tuple(), candidate, threads, progress, **order.core_args())
+    r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), float(t.halo),
+                           cloud.as_tuple(), candidate, threads, progress, **order.core_args())
     if not r["certified"]:
-        return None, max(r["needed_halo"] * 1.01, 1.5 * halo)
+        return None, max(r["needed_halo"] * 1.01, 1.5 * t.halo)
     status, offset = r["status"], r["cover_offset"]
+    ids = t.ids
     opened = np.flatnonzero(status == OPEN)
     counts = offset[opened + 1] - offset[opened]
     picks = ranges(offset[opened], counts)
     return Decision(samples=ids[status == IN].astype(np.uint64), band_ids=ids[r["band"]].astype(np.uint64),
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
-                    coverers=r["coverers"][picks], halo=halo, read=len(ids),
+                    coverers=r["coverers"][picks], halo=t.halo, read=len(ids),
                     open_keys=r["key"][opened] if order.keyed else None), None
 
 
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                     seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
-                    threads: Optional[int] = None, order: Order = RANDOM) -> Optional[Decision]:
+                    threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
+                    job=None, tile=None) -> Optional[Decision]:
     """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
     the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
-    may become samples. None when the tile's core holds no point."""
+    may become samples. With `reads`, the read of at least that halo kept for (`job`, `tile`) is used
+    instead of reading, and a new one kept. None when the tile's core holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
     while True:
-        points, normals, ids = read(halo)
-        core = box.core_mask(points, cloud)
-        if not core.any():
-            return None
-        problem = arrays.too_few_points(len(points), neighbours)
-        if problem:  # a stray point far from the rest: read as far as its neighbours
-            if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
-                raise InputError(f"the cloud {problem}")
-            halo *= 4
-            continue
-        may = None if candidates is None else candidates(ids, halo)
-        d, halo = decide(points, normals, ids, core, radius=radius, box=box.outer(cloud), cloud=cloud, halo=halo,
-                         domain=domain, seed=seed, candidate=may, threads=threads, order=order)
+        t = None if reads is None else reads.get(job, tile, halo)
+        if t is None:
+            points, normals, ids = read(halo)
+            core = box.core_mask(points, cloud)
+            if not core.any():
+                return None
+            problem = arrays.too_few_points(len(points), neighbours)
+            if problem:  # a stray point far from the rest: read as far as its neighbours
+                if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
+                    raise InputError(f"the cloud {problem}")
+                halo *= 4
+                continue
+            t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
+                         _core.tile_domain(points, normals, domain, threads, None))
+            if reads is not None:
+                reads.put(job, tile, t)
+        may = None if candidates is None else candidates(t.ids, t.halo)
+        d, halo = decide(t, radius=radius, box=box.outer(cloud), cloud=cloud, seed=seed, candidate=may,
+                         threads=threads, order=order)
         if d is not None:
             return d
 

@@ -298,10 +298,10 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
         def __getattr__(self, name):
             return getattr(client, name)
 
-        def map(self, fn, *args, **kw):
+        def submit(self, fn, *args, **kw):
             if fn is dist.decide_tile:
                 raise KilledWorker("decide_tile-0", "tcp://127.0.0.1:1", 3)
-            return client.map(fn, *args, **kw)
+            return client.submit(fn, *args, **kw)
     with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 6000 points"):
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=Dying())
 

@@ -45,6 +45,40 @@ def test_a_halo_too_narrow_is_widened_and_changes_nothing():
     assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.07).indices)
 
 
+def test_a_tiles_read_serves_the_next_runs_on_its_points():
+    """Nested levels with the coarser level's halo: the second level reads nothing and builds no domain, and
+    both are the whole cloud's."""
+    p = bumpy_sphere(8000)
+    wide = 2 * tiles.first_halo(0.12, tiles.spacing_of(tiles.Box(p.min(axis=0), p.max(axis=0)), len(p)))
+    reads = tiles.TileReads(1 << 30)
+    fine = poisson_lod_tiled(p, radius=0.06, halo=wide, reads=reads)
+    kept = dict(reads.reads)
+    assert len(kept) == 4
+    coarse = poisson_lod_tiled(p, radius=0.12, halo=wide, within=fine, reads=reads)
+    assert reads.reads.keys() == kept.keys() and all(reads.reads[k] is kept[k] for k in kept)
+    dom = gl.Domain(p)
+    assert np.array_equal(fine, dom.poisson_lod(radius=0.06).indices)
+    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine).indices)
+
+
+def test_tile_reads_keep_what_fits_the_budget_for_their_job_only_and_a_wider_halo_reads_again():
+    class Read(tiles.TileRead):
+        def nbytes(self):
+            return 100
+    reads = tiles.TileReads(250)
+    a, b, c, d = (Read(1.0, None, None, None) for _ in range(4))
+    reads.put("job", "a", a), reads.put("job", "b", b), reads.put("job", "c", c)
+    assert reads.get("job", "a", 0.5) is a and reads.get("job", "b", 1.0) is b
+    assert reads.get("job", "c", 0.5) is None  # past the budget: not kept
+    assert reads.get("job", "a", 1.5) is None  # read with too narrow a halo: read again
+    assert reads.get("other job", "a", 0.5) is None
+    reads.put("other job", "a", d)  # another job's reads go
+    assert reads.get("other job", "a", 0.5) is d and reads.get("job", "b", 0.5) is None
+    assert (reads.hits, reads.misses) == (3, 4)
+    reads.clear()
+    assert reads.get("other job", "a", 0.5) is None
+
+
 def test_given_normals_and_the_pymeshlab_filter_agree():
     p = bumpy_sphere(6000)
     normals = p / np.linalg.norm(p, axis=1)[:, None]
