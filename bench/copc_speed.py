@@ -36,11 +36,13 @@ def timed(args) -> tuple:
 
 
 def depth_counts(copc) -> list:
-    """The points of depths 0 to d, per Poisson depth d (the deepest, every point, left out)."""
+    """The points of depths 0 to d, per Poisson depth d (the deepest, every point, left out), from every
+    page of the hierarchy (past 8,192 nodes the root page holds only the shallow ones)."""
+    from laspy.copc import load_octree_for_query
     with laspy.CopcReader.open(str(copc)) as r:
         per = {}
-        for key, entry in r.root_page.entries.items():
-            per[key.level] = per.get(key.level, 0) + max(entry.point_count, 0)
+        for node in load_octree_for_query(r.source, r.copc_info, r.root_page):
+            per[node.key.level] = per.get(node.key.level, 0) + node.point_count
     cuts = np.cumsum([per[d] for d in sorted(per)])
     return [int(c) for c in cuts[:-1]]
 
