@@ -197,6 +197,11 @@ def _run_on_cluster(args, request: dict) -> int:
                                           threads=args.threads, progress=progress,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
                                           visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
+    except KeyboardInterrupt:  # the client's pending waits end as it closes: no log of each
+        import logging
+        for name in ("asyncio", "distributed"):
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+        raise
     finally:
         if bar is not None:
             bar.close()

@@ -230,6 +230,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         job = dataclasses.replace(job, within=None)
         part_paths = [str(work / f"part_{k:05d}.laz-chunks") for k in range(n)]
         parts = client.gather(client.map(_write_part, [job] * n, boxes, [levels] * n, part_paths, pure=False))
+        client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
         shallow = [np.concatenate([p["shallow"][i] for p in parts]) for i in range(4)]
         by_id = np.argsort(shallow[3], kind="stable")  # a node keeps its records in id order
         order, s_keys, s_counts = nodes_of(octree, shallow[1][by_id], shallow[2][by_id])
@@ -247,7 +248,6 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         point_files.write_files([(out, lambda f: assemble(f, first, fmt, merge_stats(
             [p["stats"] for p in parts]), octree, pieces))])
     finally:
-        client.run(forget_reads, on_error="return")
         shutil.rmtree(work, ignore_errors=True)
     return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii,
             "spacing": octree.spacing, "seconds": round(time.perf_counter() - start, 3)}

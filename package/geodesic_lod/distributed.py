@@ -183,11 +183,20 @@ def domain_fields(metric: str, adaptivity: float) -> dict:
 
 def local_cluster(workers: int, memory_limit="auto"):
     """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
-    127.0.0.1 only (its dashboard too)."""
+    127.0.0.1 only (its dashboard too). Its processes ignore Ctrl-C: a terminal signals them with the
+    caller, which stops the job and closes the cluster."""
+    import signal
+    import threading
     from dask.distributed import LocalCluster
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
-                        host="127.0.0.1", dashboard_address="127.0.0.1:0",
-                        silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None  # inherited by the processes
+    try:
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
+                            host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                            silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
 
 
 @documented
@@ -411,11 +420,10 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         boxes = tiles.balanced(cloud, [cells.grid.edges(a) for a in range(3)], cells.histogram(), tile_points)
         made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing,
                        total, run_dir, ticks)
+        client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
     except BaseException:
         out.abort()
         raise
-    finally:
-        client.run(forget_reads, on_error="return")
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
              "visit_order": size["visit_order"],
