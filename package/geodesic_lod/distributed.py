@@ -107,7 +107,8 @@ def _tile_reads() -> tiles.TileReads:
 
 
 def forget_reads() -> None:
-    """Drops the tiles' reads this process keeps (run on every worker when a job ends)."""
+    """Drops the tiles' reads this process keeps (run on every worker when a job ends well; a stopped
+    job's go when the next job keeps its first read)."""
     if _reads is not None:
         _reads.clear()
 

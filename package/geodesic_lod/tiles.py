@@ -11,6 +11,7 @@ and compare with ``poisson_lod``.
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 from typing import Callable, Optional, Sequence
 
@@ -247,23 +248,26 @@ class TileReads:
     def __init__(self, budget: int):
         self.budget, self.job, self.reads = budget, None, {}
         self.hits = self.misses = 0
+        self.lock = threading.Lock()  # a worker may run several tasks at once
 
     def get(self, job, tile, halo: float) -> Optional[TileRead]:
-        t = self.reads.get(tile) if job == self.job else None
-        t = t if t is not None and t.halo >= halo else None
-        self.hits, self.misses = self.hits + (t is not None), self.misses + (t is None)
-        return t
+        with self.lock:
+            t = self.reads.get(tile) if job == self.job else None
+            t = t if t is not None and t.halo >= halo else None
+            self.hits, self.misses = self.hits + (t is not None), self.misses + (t is None)
+            return t
 
     def put(self, job, tile, t: TileRead) -> None:
-        if job != self.job:
-            self.clear()
-            self.job = job
-        self.reads.pop(tile, None)
-        if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget:
-            self.reads[tile] = t
+        with self.lock:
+            if job != self.job:
+                self.job, self.reads = job, {}
+            self.reads.pop(tile, None)
+            if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget:
+                self.reads[tile] = t
 
     def clear(self) -> None:
-        self.job, self.reads = None, {}
+        with self.lock:
+            self.job, self.reads = None, {}
 
 
 def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
