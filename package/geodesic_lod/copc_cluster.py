@@ -211,12 +211,12 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
-        order = cluster_order(client, cells, visit_order, total)
+        visit = cluster_order(client, cells, visit_order, total)
         # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
-        halo = tiles.first_halo(radii[0], spacing, dataclasses.replace(order, scale=radii[0]))
+        halo = tiles.first_halo(radii[0], spacing, dataclasses.replace(visit, scale=radii[0]))
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
-            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(order, scale=radii[d]),
+            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),
                                       halo=halo)
             run = poisson_run(client, job, boxes, ticks, where)
             folder = work / f"level_{d}"
