@@ -95,14 +95,18 @@ _reads: Optional[tiles.TileReads] = None  # this worker process's
 def _tile_reads() -> tiles.TileReads:
     global _reads
     if _reads is None:
-        from dask.distributed import get_worker
+        import dask
         import psutil
+        from dask.distributed import get_worker
         try:
             limit = get_worker().memory_manager.memory_limit
         except ValueError:  # not on a worker: a task run in this process
             limit = None
-        limit = limit or psutil.virtual_memory().total
-        _reads = tiles.TileReads(int(READS_SHARE * limit))
+        if limit:  # below Dask's target, far from the pause that would stop the worker taking tasks
+            target = dask.config.get("distributed.worker.memory.target", 0.6) or 0.6
+            _reads = tiles.TileReads(int(READS_SHARE * limit), lambda: target * limit - _worker_rss())
+        else:
+            _reads = tiles.TileReads(int(READS_SHARE * psutil.virtual_memory().total))
     return _reads
 
 

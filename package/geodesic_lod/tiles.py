@@ -241,12 +241,13 @@ class TileRead:
 
 class TileReads:
     """One job's tiles' reads, kept in one process for the job's next runs on the same points (its levels,
-    its count searches' steps), up to `budget` bytes: a read that does not fit is not kept (each run visits
-    every tile, so dropping the oldest would keep none for the next run). A run needing a wider halo than
-    a tile's read reads again; another job's reads are dropped."""
+    its count searches' steps), up to `budget` bytes and while room() (the process's memory left, the read
+    in it) is not negative: a read that does not fit is not kept (each run visits every tile, so dropping
+    the oldest would keep none for the next run). A run needing a wider halo than a tile's read reads
+    again; another job's reads are dropped."""
 
-    def __init__(self, budget: int):
-        self.budget, self.job, self.reads = budget, None, {}
+    def __init__(self, budget: int, room: Callable[[], float] = lambda: math.inf):
+        self.budget, self.room, self.job, self.reads = budget, room, None, {}
         self.hits = self.misses = 0
         self.lock = threading.Lock()  # a worker may run several tasks at once
 
@@ -262,7 +263,7 @@ class TileReads:
             if job != self.job:
                 self.job, self.reads = job, {}
             self.reads.pop(tile, None)
-            if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget:
+            if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget and self.room() >= 0:
                 self.reads[tile] = t
 
     def clear(self) -> None:

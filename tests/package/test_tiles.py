@@ -77,6 +77,9 @@ def test_tile_reads_keep_what_fits_the_budget_for_their_job_only_and_a_wider_hal
     assert (reads.hits, reads.misses) == (3, 4)
     reads.clear()
     assert reads.get("other job", "a", 0.5) is None
+    full = tiles.TileReads(250, room=lambda: -1)  # the process past its share of memory: nothing kept
+    full.put("job", "a", a)
+    assert full.get("job", "a", 0.5) is None
 
 
 def test_given_normals_and_the_pymeshlab_filter_agree():
