@@ -190,13 +190,13 @@ def _run_on_cluster(args, request: dict) -> int:
             made = copc_file(args.input, args.output, seed=args.seed, metric=args.metric, adaptivity=args.adaptivity,
                              tile_points=args.tile_points, client=client, threads=args.threads,
                              overwrite=args.overwrite, progress=progress,
-                             visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
+                             visit_order=args.visit_order)
         else:
             index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
                                           adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
                                           threads=args.threads, progress=progress,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
-                                          visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
+                                          visit_order=args.visit_order)
     except KeyboardInterrupt:  # the client's pending waits end as it closes: no log of each
         import logging
         for name in ("asyncio", "distributed"):
@@ -307,7 +307,7 @@ def _run(args, request: dict, source: point_files.PointFile, progress):
     common = dict(faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
-    order = dict(visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER)
+    order = dict(visit_order=args.visit_order)
     n = source.points.shape[0]
     if args.height_field:
         return _height_field_levels(request, source, progress)
@@ -336,7 +336,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
     levels, finer = [], None
     for k, count in enumerate(counts):
         lod = dom.poisson_lod(count=count, tolerance=args.tolerance or 0.0, seed=args.seed, within=finer,
-                              visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER,
+                              visit_order=args.visit_order,
                               threads=args.threads, progress=part(0.4 + 0.6 * k / len(counts),
                                                                  0.4 + 0.6 * (k + 1) / len(counts)))
         finer = np.sort(lod.indices)
@@ -375,7 +375,7 @@ def _copc(args, progress) -> list:
     from .octree import write_copc
     lod = write_copc(args.input[0], args.output, metric=args.metric, adaptivity=args.adaptivity,
                      recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
-                     visit_order=args.visit_order or arrays.DEFAULT_VISIT_ORDER, overwrite=args.overwrite,
+                     visit_order=args.visit_order, overwrite=args.overwrite,
                      progress=progress)
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
@@ -409,6 +409,7 @@ def main(argv=None) -> int:
     try:
         start = time.perf_counter()
         request = _request(args)
+        args.visit_order = args.visit_order or arrays.DEFAULT_VISIT_ORDER  # given or not: checked above
         _note_a_fraction(args, request)
         if _on_cluster(args):
             return _run_on_cluster(args, request)
