@@ -48,6 +48,83 @@ inline Domain TileDomainOf(const Array2& points, std::optional<Array2> normals,
   });
 }
 
+// A tile's domain as plain arrays and back: a worker writes the tiles' reads it cannot keep in memory
+// to the job's work folder (tiles.TileReads). Every array and number a point-graph domain holds.
+inline nb::dict TileDomainArrays(const Domain& d) {
+  if (d.meshGeodesics || d.hasFaces || d.reach.size() != d.size() || d.normal.size() != d.size())
+    throw std::invalid_argument("the domain must be a tile's (tile_domain)");
+  const size_t n = d.size();
+  std::vector<double> pos(3 * n);
+  std::vector<float> normal(3 * n);
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) pos[3 * i + c] = d.points.pos[i][c], normal[3 * i + c] = d.normal[i][c];
+  const auto& g = d.graph;
+  nb::dict out;
+  out["pos"] = ToNumpy(std::move(pos), {n, 3});
+  out["normal"] = ToNumpy(std::move(normal), {n, 3});
+  out["vert_index"] = ToNumpy(std::vector<int>(d.points.vertIndex), {n});
+  out["curvature"] = ToNumpy(std::vector<float>(d.curvature), {d.curvature.size()});
+  out["reach"] = ToNumpy(std::vector<double>(d.reach), {n});
+  out["offset"] = ToNumpy(std::vector<int>(g.offset), {g.offset.size()});
+  out["adj"] = ToNumpy(std::vector<int>(g.adj.begin(), g.adj.end()), {g.adj.size()});
+  out["weight"] = ToNumpy(std::vector<float>(g.w), {g.w.size()});
+  out["metric"] = int(d.metric);
+  out["curvature_exponent"] = d.curvatureExponent;
+  out["adaptivity"] = d.adaptivity;
+  out["estimated_normals"] = d.estimatedNormals;
+  out["components"] = d.components;
+  out["vertex_count"] = d.vertexCount;
+  return out;
+}
+
+template <class T>
+using InFlat = nb::ndarray<const T, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+template <class T>
+using InRows3 = nb::ndarray<const T, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
+
+template <class T, class A>
+std::vector<T> Copied(const A& a) {
+  return std::vector<T>(a.data(), a.data() + a.size());
+}
+
+inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<float>& normal,
+                                   const InFlat<int>& vertIndex, const InFlat<float>& curvature,
+                                   const InFlat<double>& reach, const InFlat<int>& offset, const InFlat<int>& adj,
+                                   const InFlat<float>& weight, int metric, double curvatureExponent,
+                                   double adaptivity, size_t estimatedNormals, int components, size_t vertexCount) {
+  const size_t n = pos.shape(0);
+  const bool graph = offset.size() > 0;
+  bool fits = metric >= int(vcg_ext::Metric::WeightedEq3) && metric <= int(vcg_ext::Metric::Euclidean) &&
+              normal.shape(0) == n && vertIndex.size() == n && reach.size() == n &&
+              (curvature.size() == n || curvature.size() == 0) && (weight.size() == 0 || weight.size() == adj.size()) &&
+              (!graph || (offset.size() == n + 1 && offset(0) == 0 && size_t(offset(n)) == adj.size()));
+  for (size_t i = 0; fits && i < n; ++i) fits = vertIndex(i) >= 0 && size_t(vertIndex(i)) < vertexCount;
+  for (size_t i = 0; fits && graph && i < n; ++i) fits = offset(i) <= offset(i + 1);
+  for (size_t e = 0; fits && e < adj.size(); ++e) fits = adj(e) >= 0 && size_t(adj(e)) < n;
+  if (!fits) throw std::invalid_argument("the arrays are not one tile domain's (tile_domain_arrays)");
+  Domain d;
+  d.points.pos.resize(n);
+  d.normal.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    d.points.pos[i] = vcg::Point3d(pos(i, 0), pos(i, 1), pos(i, 2));
+    d.normal[i] = vcg::Point3f(normal(i, 0), normal(i, 1), normal(i, 2));
+  }
+  d.points.vertIndex = Copied<int>(vertIndex);
+  d.points.vertexCount = d.vertexCount = vertexCount;
+  d.curvature = Copied<float>(curvature);
+  d.reach = Copied<double>(reach);
+  d.graph.offset = Copied<int>(offset);
+  d.graph.adj.resize(adj.size());
+  std::copy(adj.data(), adj.data() + adj.size(), d.graph.adj.begin());
+  d.graph.w = Copied<float>(weight);
+  d.metric = vcg_ext::Metric(metric);
+  d.curvatureExponent = curvatureExponent;
+  d.adaptivity = adaptivity;
+  d.estimatedNormals = estimatedNormals;
+  d.components = components;
+  return d;
+}
+
 inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
                                std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
                                std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
@@ -130,6 +207,10 @@ inline void BindTiles(nb::module_& m) {
   m.def("priorities", &Priorities, "seed"_a, "ids"_a, "the Poisson visiting priority of each id (lower first)");
   m.def("tile_domain", &TileDomainOf, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
         "progress"_a.none(), "a tile's domain (its points in increasing id order), for poisson_tile");
+  m.def("tile_domain_arrays", &TileDomainArrays, "domain"_a, "a tile's domain as arrays and numbers");
+  m.def("tile_domain_from_arrays", &TileDomainFromArrays, "pos"_a, "normal"_a, "vert_index"_a, "curvature"_a,
+        "reach"_a, "offset"_a, "adj"_a, "weight"_a, "metric"_a, "curvature_exponent"_a, "adaptivity"_a,
+        "estimated_normals"_a, "components"_a, "vertex_count"_a, "the tile domain tile_domain_arrays gave");
   m.def("poisson_tile", &PoissonTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a,
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,

@@ -10,7 +10,11 @@ and compare with ``poisson_lod``.
 """
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import pathlib
+import shutil
 import threading
 from dataclasses import dataclass
 from typing import Callable, Optional, Sequence
@@ -239,36 +243,86 @@ class TileRead:
         return self.ids.nbytes + self.core.nbytes + self.domain.nbytes
 
 
+SPILL_FREE_SHARE = 0.1  # a read is written to disk only while the disk keeps this share of its size free
+
+
 class TileReads:
-    """One job's tiles' reads, kept in one process for the job's next runs on the same points (its levels,
-    its count searches' steps), up to `budget` bytes and while room() (the process's memory left, the read
-    in it) is not negative: a read that does not fit is not kept (each run visits every tile, so dropping
-    the oldest would keep none for the next run). A run needing a wider halo than a tile's read reads
-    again; another job's reads are dropped."""
+    """One job's tiles' reads, kept for the job's next runs on the same points (its levels, its count
+    searches' steps, a COPC file's depths). In this process up to `budget` bytes and while room() (the
+    process's memory left, the read in it) is not negative: a read that does not fit is not kept there
+    (each run visits every tile, so dropping the oldest would keep none for the next run), but written to
+    the job's work `folder` where one is given (shared by the workers; removed with it) while the disk
+    keeps a tenth of its size free, and loaded from there by the next run on that tile. A run needing a
+    wider halo than a tile's read reads again; another job's reads in memory are dropped."""
 
     def __init__(self, budget: int, room: Callable[[], float] = lambda: math.inf):
         self.budget, self.room, self.job, self.reads = budget, room, None, {}
-        self.hits = self.misses = 0
+        self.hits = self.loads = self.misses = 0
         self.lock = threading.Lock()  # a worker may run several tasks at once
 
-    def get(self, job, tile, halo: float) -> Optional[TileRead]:
+    def get(self, job, tile, halo: float, folder=None) -> Optional[TileRead]:
         with self.lock:
             t = self.reads.get(tile) if job == self.job else None
-            t = t if t is not None and t.halo >= halo else None
-            self.hits, self.misses = self.hits + (t is not None), self.misses + (t is None)
-            return t
+        loaded = t is None and folder is not None
+        if loaded:
+            t = _load_read(_read_path(folder, job, tile))
+        t = t if t is not None and t.halo >= halo else None
+        with self.lock:
+            self.hits += t is not None and not loaded
+            self.loads += t is not None and loaded
+            self.misses += t is None
+        return t
 
-    def put(self, job, tile, t: TileRead) -> None:
+    def put(self, job, tile, t: TileRead, folder=None) -> None:
         with self.lock:
             if job != self.job:
                 self.job, self.reads = job, {}
             self.reads.pop(tile, None)
             if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget and self.room() >= 0:
                 self.reads[tile] = t
+                return
+        if folder is not None:
+            _write_read(t, _read_path(folder, job, tile))
 
     def clear(self) -> None:
         with self.lock:
             self.job, self.reads = None, {}
+
+
+def _read_path(folder, job, tile) -> pathlib.Path:
+    return pathlib.Path(folder) / "reads" / f"read_{hashlib.sha1(repr((job, tile)).encode()).hexdigest()}.npy"
+
+
+def _write_read(t: TileRead, path: pathlib.Path) -> None:
+    """The read as one file of arrays one after another (np.save's format), under a temporary name renamed
+    when complete; not written where the disk would keep less than SPILL_FREE_SHARE of its size free, nor
+    where writing fails (the next run on the tile reads again)."""
+    parts = {"halo": np.float64(t.halo), "ids": t.ids, "core": t.core, **_core.tile_domain_arrays(t.domain)}
+    size = sum(np.asarray(v).nbytes for v in parts.values())
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}")
+    try:
+        path.parent.mkdir(exist_ok=True)
+        disk = shutil.disk_usage(path.parent)
+        if disk.free - size < SPILL_FREE_SHARE * disk.total:
+            return
+        with open(tmp, "wb") as f:
+            np.save(f, np.array(list(parts)))
+            for v in parts.values():
+                np.save(f, np.asarray(v), allow_pickle=False)
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)
+
+
+def _load_read(path: pathlib.Path) -> Optional[TileRead]:
+    try:
+        with open(path, "rb") as f:
+            parts = {str(k): np.load(f, allow_pickle=False) for k in np.load(f, allow_pickle=False)}
+    except FileNotFoundError:
+        return None
+    halo, ids, core = float(parts.pop("halo")), parts.pop("ids"), parts.pop("core")
+    domain = _core.tile_domain_from_arrays(**{k: v.item() if v.ndim == 0 else v for k, v in parts.items()})
+    return TileRead(halo, ids, core, domain)
 
 
 def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
@@ -297,14 +351,15 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                     seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
                     threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
-                    job=None, tile=None) -> Optional[Decision]:
+                    job=None, tile=None, folder=None) -> Optional[Decision]:
     """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
     the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
     may become samples. With `reads`, the read of at least that halo kept for (`job`, `tile`) is used
-    instead of reading, and a new one kept. None when the tile's core holds no point."""
+    instead of reading, and a new one kept (in memory, or in the job's work `folder`). None when the
+    tile's core holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
     while True:
-        t = None if reads is None else reads.get(job, tile, halo)
+        t = None if reads is None else reads.get(job, tile, halo, folder)
         if t is None:
             points, normals, ids = read(halo)
             core = box.core_mask(points, cloud)
@@ -319,7 +374,7 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
             t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
                          _core.tile_domain(points, normals, domain, threads, None))
             if reads is not None:
-                reads.put(job, tile, t)
+                reads.put(job, tile, t, folder)
         may = None if candidates is None else candidates(t.ids, t.halo)
         d, halo = decide(t, radius=radius, box=box.outer(cloud), cloud=cloud, seed=seed, candidate=may,
                          threads=threads, order=order)

@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 
+import dask
 import laspy
 import numpy as np
 import pytest
@@ -307,14 +308,15 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
 
 
 def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(tmp_path):
-    """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up."""
-    folder = write_parts(tmp_path / "big", bumpy_sphere(600_000) * 10, parts=2)
+    """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up.
+    The tile is large enough that even loading its read (written before a kill) passes the limit."""
+    folder = write_parts(tmp_path / "big", bumpy_sphere(1_500_000) * 10, parts=2)
     with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
-        with pytest.raises(gl.ClusterJobError, match="too small for tiles of 1000000 points; lower tile_points"):
-            dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=1_000_000, client=c, threads=1)
+        with pytest.raises(gl.ClusterJobError, match="too small for tiles of 2000000 points; lower tile_points"):
+            dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=2_000_000, client=c, threads=1)
         assert not (tmp_path / "lod").exists()
-        index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=50_000, client=c, threads=1)
-    assert index["samples"] > 0 and len(index["tiles"]) >= 12
+        index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=100_000, client=c, threads=1)
+    assert index["samples"] > 0 and len(index["tiles"]) >= 15
 
 
 @pytest.mark.parametrize("args, problem", [
@@ -360,3 +362,23 @@ def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_p
         with pytest.raises(gl.ClusterJobError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
             dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
     assert not (tmp_path / "lod").exists()
+
+
+def test_workers_without_memory_for_the_reads_load_them_from_the_work_folder(cloud, tmp_path):
+    """Workers below no memory target keep no read in memory: each level's runs load the tiles' reads the
+    first wrote into the job's work folder; the levels are still one machine's, and the folder is gone."""
+    folder, points, records = cloud
+    with dask.config.set({"distributed.worker.memory.target": 0.001}), dist.local_cluster(2) as cluster, \
+            Client(cluster) as c:  # the workers' processes start with this process's config
+        index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["20%", "5%"], tolerance=2.0,
+                               tile_points=6000, client=c, threads=1)
+        kept = c.run(lambda: (len(dist._reads.reads), dist._reads.loads))
+    assert all(n == 0 for n, _ in kept.values()) and sum(loads for _, loads in kept.values()) > 0
+    levels = index["levels"]
+    written = [t["file"] for lv in levels for t in lv["tiles"]]
+    assert files_under(tmp_path / "lod") == sorted([dist.INDEX] + written)  # the work folder's reads gone
+    finer = None
+    for lv in levels:
+        ids = level_ids(tmp_path / "lod", lv)["gps_time"].astype(np.int64)
+        assert sorted(ids) == sorted(gl.poisson_lod(points, radius=lv["radius"], within=finer).indices)
+        finer = ids

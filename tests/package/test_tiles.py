@@ -8,7 +8,7 @@ import pytest
 import geodesic_lod as gl
 import geodesic_lod.pymeshlab  # noqa: F401  (binds the filters)
 from conftest import bumpy_sphere
-from geodesic_lod import partition, tiles
+from geodesic_lod import _core, partition, tiles
 from tiled_lod import poisson_lod_tiled
 
 
@@ -59,6 +59,51 @@ def test_a_tiles_read_serves_the_next_runs_on_its_points():
     dom = gl.Domain(p)
     assert np.array_equal(fine, dom.poisson_lod(radius=0.06).indices)
     assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine).indices)
+
+
+def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
+    p = bumpy_sphere(3000)
+    param = gl.arrays.DomainOptions(geodesics="point-graph").param(len(p))
+    dom = _core.tile_domain(p, None, param, None, None)
+    arrays = _core.tile_domain_arrays(dom)
+    again = _core.tile_domain_from_arrays(**arrays)
+    assert again.nbytes == dom.nbytes and again.point_count == dom.point_count
+    for k, v in _core.tile_domain_arrays(again).items():
+        assert np.array_equal(v, arrays[k]), k
+    ids, core = np.arange(len(p), dtype=np.uint64), p[:, 0] < 0.2
+    box, cloud = (-2, -2, -2, 0.2, 2, 2), (-2, -2, -2, 2, 2, 2)
+    runs = [_core.poisson_tile(d, ids, core, 0.07, 3, box, 1.0, cloud, None, None, None) for d in (dom, again)]
+    assert runs[0]["certified"] and runs[0].keys() == runs[1].keys()
+    assert all(np.array_equal(runs[0][k], runs[1][k]) for k in runs[0])
+    arrays["adj"] = arrays["adj"][:-1]
+    with pytest.raises(ValueError, match="not one tile domain"):
+        _core.tile_domain_from_arrays(**arrays)
+
+
+def test_reads_past_the_memory_budget_are_written_to_the_folder_and_serve_the_next_runs(tmp_path):
+    """Nested levels with no memory for reads: the first level writes each tile's read, the second loads
+    them all (on any process: the folder is the job's), and both are the whole cloud's."""
+    p = bumpy_sphere(8000)
+    wide = 2 * tiles.first_halo(0.12, tiles.spacing_of(tiles.Box(p.min(axis=0), p.max(axis=0)), len(p)))
+    fine = poisson_lod_tiled(p, radius=0.06, halo=wide, reads=tiles.TileReads(0), folder=tmp_path)
+    written = sorted((tmp_path / "reads").iterdir())
+    assert len(written) == 4 and all(f.suffix == ".npy" for f in written)
+    other = tiles.TileReads(0)  # another worker
+    coarse = poisson_lod_tiled(p, radius=0.12, halo=wide, within=fine, reads=other, folder=tmp_path)
+    assert (other.loads, other.misses) == (4, 0)
+    dom = gl.Domain(p)
+    assert np.array_equal(fine, dom.poisson_lod(radius=0.06).indices)
+    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine).indices)
+
+
+def test_reads_are_not_written_where_the_disk_would_be_left_too_full(tmp_path, monkeypatch):
+    monkeypatch.setattr(tiles, "SPILL_FREE_SHARE", 1.0)
+    p = bumpy_sphere(4000)
+    reads = tiles.TileReads(0)
+    once = poisson_lod_tiled(p, radius=0.08, reads=reads, folder=tmp_path)
+    again = poisson_lod_tiled(p, radius=0.08, reads=reads, folder=tmp_path)
+    assert list((tmp_path / "reads").iterdir()) == [] and reads.loads == 0
+    assert np.array_equal(once, again)
 
 
 def test_tile_reads_keep_what_fits_the_budget_for_their_job_only_and_a_wider_halo_reads_again():

@@ -14,10 +14,10 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
                       halo: Optional[float] = None, within: Optional[np.ndarray] = None,
                       threads: Optional[int] = None,
                       on_tile: Optional[Callable[[int, Decision], None]] = None,
-                      reads: Optional[TileReads] = None) -> np.ndarray:
+                      reads: Optional[TileReads] = None, folder=None) -> np.ndarray:
     """poisson_lod(points, normals, radius=radius, seed=seed, within=within).indices, computed tile by tile in
     one process (shape: tiles per axis), by the steps the Dask pipeline runs on workers; `reads`: the tiles'
-    reads kept across runs, keyed by the tile's number."""
+    reads kept across runs, keyed by the tile's number (those that do not fit in memory written to `folder`)."""
     p, n = arrays.point_arrays(points, normals)
     domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
     cloud = Box(p.min(axis=0), p.max(axis=0))
@@ -34,7 +34,8 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
             m = np.all((p >= box.lo - halo) & (p <= box.hi + halo), axis=1)
             return p[m], None if n is None else n[m], ids[m]
         d = decide_widening(read, box=box, cloud=cloud, halo=width, domain=domain, radius=radius, seed=seed,
-                            candidates=may, threads=threads, reads=reads, job="test", tile=t)
+                            candidates=may, threads=threads, reads=reads, job="test", tile=t,
+                            folder=folder)
         if d is None:
             continue
         if on_tile:
