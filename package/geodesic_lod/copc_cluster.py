@@ -213,7 +213,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         levels = [None] * depths
         visit = cluster_order(client, cells, visit_order, total)
         # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
-        halo = tiles.first_halo(radii[0], spacing, dataclasses.replace(visit, scale=radii[0]))
+        halo = tiles.first_halo(radii[0], spacing, visit)
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
             job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),

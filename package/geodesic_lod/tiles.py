@@ -213,9 +213,11 @@ RANDOM = Order()
 
 
 def first_halo(radius: float, spacing: float, order: Order = RANDOM) -> float:
-    """A halo likely to pass the check: the radius and a few neighbourhoods of the point spacing (and the
-    order's scale, within which each rank's points lie)."""
-    return radius + 12 * spacing + (order.scale if order.keyed else 0.0)
+    """A halo likely to pass the check for the runs of radius up to `radius` (a job's coarsest, so that one
+    read of a tile serves them all): that radius and a few neighbourhoods of the point spacing, and for a
+    keyed order its scale, within which each rank's points lie (the larger of it and the radius: a coarser
+    run's order has a larger scale)."""
+    return radius + 12 * spacing + (max(order.scale, radius) if order.keyed else 0.0)
 
 
 @dataclass
