@@ -68,6 +68,9 @@ class Job:
         boxes; None: every point may become a sample.
     order : tiles.Order
         The visiting order: random, or a key order at a scale.
+    runs_again : bool
+        Whether the job runs on the tiles again (levels, count searches, a COPC file's depths): only then
+        are reads that do not fit in a worker's memory written to the work folder.
     """
     srcs: list
     cloud: tiles.Box
@@ -79,6 +82,7 @@ class Job:
     cells: partition.Partition
     within: Optional[tuple] = None
     order: tiles.Order = tiles.RANDOM
+    runs_again: bool = True
 
     def domain_param(self):
         d = _core.DomainParam()
@@ -130,7 +134,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads, order=job.order,
                                  reads=_tile_reads(), job=(job.cells.folder, tuple(sorted(job.domain.items()))),
-                                 tile=box.as_tuple(), folder=job.cells.folder)
+                                 tile=box.as_tuple(), folder=job.cells.folder if job.runs_again else None)
 
 
 def _ids_file(folder, k: int) -> pathlib.Path:
@@ -451,7 +455,8 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, dom
             ticks) -> list:
     """Each level's run (at its radius, or searched to its count) written into the run folder: index entries."""
     work = run_dir / WORK
-    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
+    once = len(targets) == 1 and targets[0][0] == "radius"  # one run: no read is needed again
+    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells, runs_again=not once)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     order = cluster_order(client, cells, size["visit_order"], total)

@@ -259,7 +259,7 @@ class TileReads:
 
     def __init__(self, budget: int, room: Callable[[], float] = lambda: math.inf):
         self.budget, self.room, self.job, self.reads = budget, room, None, {}
-        self.hits = self.loads = self.misses = 0
+        self.hits = self.loads = self.misses = self.written = 0
         self.lock = threading.Lock()  # a worker may run several tasks at once
 
     def get(self, job, tile, halo: float, folder=None) -> Optional[TileRead]:
@@ -283,8 +283,9 @@ class TileReads:
             if sum(r.nbytes() for r in self.reads.values()) + t.nbytes() <= self.budget and self.room() >= 0:
                 self.reads[tile] = t
                 return
-        if folder is not None:
-            _write_read(t, _read_path(folder, job, tile))
+        if folder is not None and _write_read(t, _read_path(folder, job, tile)):
+            with self.lock:
+                self.written += 1
 
     def clear(self) -> None:
         with self.lock:
@@ -295,10 +296,10 @@ def _read_path(folder, job, tile) -> pathlib.Path:
     return pathlib.Path(folder) / "reads" / f"read_{hashlib.sha1(repr((job, tile)).encode()).hexdigest()}.npy"
 
 
-def _write_read(t: TileRead, path: pathlib.Path) -> None:
+def _write_read(t: TileRead, path: pathlib.Path) -> bool:
     """The read as one file of arrays one after another (np.save's format), under a temporary name renamed
     when complete; not written where the disk would keep less than SPILL_FREE_SHARE of its size free, nor
-    where writing fails (the next run on the tile reads again)."""
+    where writing fails (the next run on the tile reads again). Whether it was written."""
     parts = {"halo": np.float64(t.halo), "ids": t.ids, "core": t.core, **_core.tile_domain_arrays(t.domain)}
     size = sum(np.asarray(v).nbytes for v in parts.values())
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}")
@@ -306,14 +307,16 @@ def _write_read(t: TileRead, path: pathlib.Path) -> None:
         path.parent.mkdir(exist_ok=True)
         disk = shutil.disk_usage(path.parent)
         if disk.free - size < SPILL_FREE_SHARE * disk.total:
-            return
+            return False
         with open(tmp, "wb") as f:
             np.save(f, np.array(list(parts)))
             for v in parts.values():
                 np.save(f, np.asarray(v), allow_pickle=False)
         os.replace(tmp, path)
+        return True
     except OSError:
         tmp.unlink(missing_ok=True)
+        return False
 
 
 def _load_read(path: pathlib.Path) -> Optional[TileRead]:

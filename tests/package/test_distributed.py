@@ -366,14 +366,18 @@ def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_p
 
 def test_workers_without_memory_for_the_reads_load_them_from_the_work_folder(cloud, tmp_path):
     """Workers below no memory target keep no read in memory: each level's runs load the tiles' reads the
-    first wrote into the job's work folder; the levels are still one machine's, and the folder is gone."""
+    first wrote into the job's work folder; the levels are still one machine's, and the folder is gone. A
+    job of one run writes none."""
     folder, points, records = cloud
     with dask.config.set({"distributed.worker.memory.target": 0.001}), dist.local_cluster(2) as cluster, \
             Client(cluster) as c:  # the workers' processes start with this process's config
         index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["20%", "5%"], tolerance=2.0,
                                tile_points=6000, client=c, threads=1)
-        kept = c.run(lambda: (len(dist._reads.reads), dist._reads.loads))
-    assert all(n == 0 for n, _ in kept.values()) and sum(loads for _, loads in kept.values()) > 0
+        kept = c.run(lambda: (len(dist._reads.reads), dist._reads.loads, dist._reads.written))
+        assert all(n == 0 for n, _, _ in kept.values()) and sum(loads for _, loads, _ in kept.values()) > 0
+        written = sum(w for _, _, w in kept.values())
+        dist.lod_files([str(folder)], tmp_path / "once", radius=RADIUS, tile_points=6000, client=c, threads=1)
+        assert sum(c.run(lambda: dist._reads.written).values()) == written  # one run: nothing to load again
     levels = index["levels"]
     written = [t["file"] for lv in levels for t in lv["tiles"]]
     assert files_under(tmp_path / "lod") == sorted([dist.INDEX] + written)  # the work folder's reads gone
