@@ -48,26 +48,37 @@ inline Domain TileDomainOf(const Array2& points, std::optional<Array2> normals,
   });
 }
 
+// A read-only numpy view of `rows` x `cols` elements at `data` (cols 0: one dimension), which `owner`
+// keeps alive.
+template <class T>
+nb::ndarray<nb::numpy, const T> View(const T* data, size_t rows, size_t cols, nb::handle owner) {
+  static const T none{};  // an empty array's address (an empty vector may have none)
+  if (rows == 0) data = &none;
+  if (cols == 0) return nb::ndarray<nb::numpy, const T>(data, {rows}, owner);
+  return nb::ndarray<nb::numpy, const T>(data, {rows, cols}, owner);
+}
+
 // A tile's domain as plain arrays and back: a worker writes the tiles' reads it cannot keep in memory
-// to the job's work folder (tiles.TileReads). Every array and number a point-graph domain holds.
+// to the job's work folder (tiles.TileReads). Every array and number a point-graph domain holds, the
+// arrays as views of the domain's own (writing a read adds no copy of it to the worker's memory).
 inline nb::dict TileDomainArrays(const Domain& d) {
   if (d.meshGeodesics || d.hasFaces || d.reach.size() != d.size() || d.normal.size() != d.size())
     throw std::invalid_argument("the domain must be a tile's (tile_domain)");
+  static_assert(sizeof(vcg::Point3d) == 3 * sizeof(double) && sizeof(vcg::Point3f) == 3 * sizeof(float),
+                "points are three packed coordinates");
+  const nb::handle self = nb::find(&d);
+  if (!self) throw std::invalid_argument("the domain must be a Python object");
   const size_t n = d.size();
-  std::vector<double> pos(3 * n);
-  std::vector<float> normal(3 * n);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) pos[3 * i + c] = d.points.pos[i][c], normal[3 * i + c] = d.normal[i][c];
   const auto& g = d.graph;
   nb::dict out;
-  out["pos"] = ToNumpy(std::move(pos), {n, 3});
-  out["normal"] = ToNumpy(std::move(normal), {n, 3});
-  out["vert_index"] = ToNumpy(std::vector<int>(d.points.vertIndex), {n});
-  out["curvature"] = ToNumpy(std::vector<float>(d.curvature), {d.curvature.size()});
-  out["reach"] = ToNumpy(std::vector<double>(d.reach), {n});
-  out["offset"] = ToNumpy(std::vector<int>(g.offset), {g.offset.size()});
-  out["adj"] = ToNumpy(std::vector<int>(g.adj.begin(), g.adj.end()), {g.adj.size()});
-  out["weight"] = ToNumpy(std::vector<float>(g.w), {g.w.size()});
+  out["pos"] = View(n ? &d.points.pos[0][0] : nullptr, n, 3, self);
+  out["normal"] = View(n ? &d.normal[0][0] : nullptr, n, 3, self);
+  out["vert_index"] = View(d.points.vertIndex.data(), n, 0, self);
+  out["curvature"] = View(d.curvature.data(), d.curvature.size(), 0, self);
+  out["reach"] = View(d.reach.data(), n, 0, self);
+  out["offset"] = View(g.offset.data(), g.offset.size(), 0, self);
+  out["adj"] = View(g.adj.data(), g.adj.size(), 0, self);
+  out["weight"] = View(g.w.data(), g.w.size(), 0, self);
   out["metric"] = int(d.metric);
   out["curvature_exponent"] = d.curvatureExponent;
   out["adaptivity"] = d.adaptivity;

@@ -1,6 +1,8 @@
 """Tile by tile, the same Poisson-disk samples as the whole cloud: for any tiling, seed, radius and
 metric, with halos that start too narrow, with duplicates and uneven density; separation and
 coverage checked by brute force across every seam."""
+import gc
+
 import numpy as np
 import pymeshlab
 import pytest
@@ -66,6 +68,7 @@ def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
     param = gl.arrays.DomainOptions(geodesics="point-graph").param(len(p))
     dom = _core.tile_domain(p, None, param, None, None)
     arrays = _core.tile_domain_arrays(dom)
+    assert not arrays["pos"].flags.owndata and not arrays["adj"].flags.writeable  # views of the domain's own
     again = _core.tile_domain_from_arrays(**arrays)
     assert again.nbytes == dom.nbytes and again.point_count == dom.point_count
     for k, v in _core.tile_domain_arrays(again).items():
@@ -75,6 +78,10 @@ def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
     runs = [_core.poisson_tile(d, ids, core, 0.07, 3, box, 1.0, cloud, None, None, None) for d in (dom, again)]
     assert runs[0]["certified"] and runs[0].keys() == runs[1].keys()
     assert all(np.array_equal(runs[0][k], runs[1][k]) for k in runs[0])
+    kept = {k: np.array(v) for k, v in arrays.items()}
+    del dom, again, runs
+    gc.collect()  # the views keep their domain alive
+    assert all(np.array_equal(arrays[k], kept[k]) for k in arrays)
     arrays["adj"] = arrays["adj"][:-1]
     with pytest.raises(ValueError, match="not one tile domain"):
         _core.tile_domain_from_arrays(**arrays)
