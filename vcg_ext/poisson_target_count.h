@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "disk_cache.h"
 #include "farthest_point.h"
 #include "input_error.h"
 #include "poisson_disk.h"
@@ -123,6 +124,8 @@ class PoissonTargetCount {
     uint64_t seed = 0;           ///< the farthest-point fallback's first sample
     const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
                                               ///< every point or only of those that may be samples
+    double keptDisks = 2;        ///< disks kept from run to run and for the thinning (DiskCache), in
+                                 ///< entries per point (8 bytes each in float); 0: none
   };
   struct Result {
     std::vector<int> samples;    ///< point indices, in visiting order (farthest-point order when trimmed from all points)
@@ -136,6 +139,7 @@ class PoissonTargetCount {
     /// Every point lies within this distance of a sample: the exact largest one
     /// when trimmed, else the Poisson set's radius (a bound).
     double coveringRadius = 0;
+    size_t keptDiskHits = 0;     ///< disk searches the runs and the thinning read from kept disks
   };
 
   static void CheckTolerance(double tolerance) {
@@ -154,12 +158,17 @@ class PoissonTargetCount {
                                              "), got " + std::to_string(p.sampleNum));
     CheckTolerance(p.tolerance);
     RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);
+    // The runs and the thinning search their disks through the cache: the same
+    // disks, fewer searches (the thinning reads those of the last run).
+    DiskCache<Scalar> cache(n, size_t(std::max(0.0, p.keptDisks) * double(n)));
+    typename DiskCache<Scalar>::template Cached<Search> disks(search, cache);
     Trial above, accepted;     // above: the run with count >= target at the largest radius
     above.count = candidates;  // radius 0: every point is a sample
     Result out;
     const int phase = std::max(1, p.maxIterations);
     for (int it = 0; !steps.Done(); ++it) {
-      Trial t = Run(n, search, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
+      cache.Keeping(it > 0);
+      Trial t = Run(n, disks, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
       ++out.iterations;
       switch (steps.Report(t.count)) {
         case RadiusSearch::Role::Accepted: accepted = std::move(t); break;
@@ -168,6 +177,7 @@ class PoissonTargetCount {
         case RadiusSearch::Role::None: break;
       }
     }
+    out.keptDiskHits = cache.Hits();
     const bool found = accepted.radius > 0;
     Trial& from = found ? accepted : above;
     out.radius = from.radius;
@@ -182,7 +192,9 @@ class PoissonTargetCount {
     if (from.radius > 0) {
       // Thin the Poisson set to the exact count; then every point's nearest kept sample.
       std::vector<int> pool = std::move(from.samples);
-      auto thinned = SampleElimination::Keep<Scalar>(n, search, pool, from.radius, p.sampleNum, progress.Sub(80, 95));
+      cache.Keeping(false);
+      auto thinned = SampleElimination::Keep<Scalar>(n, disks, pool, from.radius, p.sampleNum, progress.Sub(80, 95));
+      out.keptDiskHits = cache.Hits();
       out.samples = std::move(thinned.samples);
       std::vector<Scalar>& dist = thinned.dist;
       out.voronoiOwner = std::move(thinned.owner);
