@@ -65,10 +65,12 @@ inline std::vector<int> SortKeys(std::vector<uint64_t>& key) {
   const size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<uint64_t> blockAll(blocks, ~uint64_t(0)), blockAny(blocks, 0);
   ParallelFor(blocks, 1, [&](size_t k) {
+    uint64_t all = ~uint64_t(0), any = 0;  // in registers: neighbouring blocks' words share a cache line
     for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i) {
       order[i] = int(i);
-      blockAll[k] &= key[i], blockAny[k] |= key[i];
+      all &= key[i], any |= key[i];
     }
+    blockAll[k] = all, blockAny[k] = any;
   });
   uint64_t all = ~uint64_t(0), any = 0;
   for (size_t k = 0; k < blocks; ++k) all &= blockAll[k], any |= blockAny[k];
