@@ -3,25 +3,29 @@ a grid of LAZ files, sampled by geodesic_lod.distributed on a local cluster of 1
 a memory limit each; time, peak memory per worker, points per second, the halo's share of the points
 read and the time of each phase (the split decodes each record once). Beside them, one process on the
 points of the job's tile of median count (read beforehand, one thread): the rate a worker is measured
-against. Writes
-docs/cluster_scale.json.
+against; and the split alone on one worker, by turns with and without Dask's default MALLOC_TRIM_THRESHOLD_
+for its workers (ours start without it). Writes docs/cluster_scale.json.
 
 Also writes docs/cluster_scale.md: the table, and a projection to 10^9 and 10^10 points from the
 measured rates (--report rewrites it from the JSON alone).
 
 usage: bench/cluster_scale.py [--points 100000000] [--files-per-side 10] [--tile-points 2000000]
-                              [--worker-memory 3GB] [--workers 1,2] [--data DIR] [--report]
+                              [--worker-memory 3GB] [--workers 1,2] [--split-repeats 3] [--data DIR] [--report]
 """
 import argparse
 import json
+import math
+import os
 import pathlib
 import shutil
 import time
 
+import dask
 import laspy
 import numpy as np
 from dask.distributed import Client
 
+from geodesic_lod import cloud_files, partition, tiles
 from geodesic_lod import distributed as dist
 from host import ROOT, peak_rss_mb
 from make_scan import _height
@@ -50,8 +54,37 @@ def write_grid(folder: pathlib.Path, n: int, side: int, seed: int = 0):
     done.write_text(f"{n} {side} {seed}")
 
 
+def cluster_with(workers, memory, trim=None):
+    """A local cluster whose workers start with MALLOC_TRIM_THRESHOLD_ `trim` (None: unset, as ours)."""
+    users, dist.USERS_TRIM = dist.USERS_TRIM, trim  # as if the user's environment set it
+    try:
+        return dist.local_cluster(workers, memory)
+    finally:
+        dist.USERS_TRIM = users
+        os.environ.pop(dist.TRIM, None)  # Dask leaves it here; the next cluster starts without it
+
+
+def split_seconds(folder, scratch, memory, tile_points, trim, repeats):
+    """The split alone (the files decoded into cells) on one worker, `repeats` times, each setting of `trim`
+    in turn: {trim: [seconds]}."""
+    paths = cloud_files.expand_inputs([str(folder)])
+    srcs = cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
+    cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                    sum(s.count for s in srcs), tile_points)
+    grid = partition.Grid(cloud.lo, cloud.hi, shape)
+    out = {t: [] for t in trim}
+    for _ in range(repeats):
+        for t in trim:
+            with cluster_with(1, memory, t) as cluster, Client(cluster) as client:
+                start = time.perf_counter()
+                partition.make(client, srcs, grid, scratch, tile_points)
+                out[t].append(round(time.perf_counter() - start, 1))
+            shutil.rmtree(scratch)
+    return out
+
+
 def run(folder, out, workers, memory, tile_points, radius):
-    with dist.local_cluster(workers, memory) as cluster, Client(cluster) as client:
+    with cluster_with(workers, memory) as cluster, Client(cluster) as client:
         t = time.perf_counter()
         index = dist.lod_files([str(folder)], out, radius=radius, tile_points=tile_points, client=client, threads=1)
         seconds = time.perf_counter() - t
@@ -92,6 +125,7 @@ def main():
     ap.add_argument("--tile-points", type=int, default=2_000_000)
     ap.add_argument("--worker-memory", default="3GB")
     ap.add_argument("--workers", default="1,2")
+    ap.add_argument("--split-repeats", type=int, default=3)
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-cluster"))
     a = ap.parse_args()
     folder = pathlib.Path(a.data) / f"scan_{a.points}"
@@ -101,18 +135,26 @@ def main():
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
     rows = [run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius)
             for w in a.workers.split(",")]
+    # The split with workers as Dask's nannies start them by default (distributed.nanny.pre-spawn-environ).
+    splits = split_seconds(folder, pathlib.Path(a.data) / "cells", a.worker_memory, a.tile_points,
+                           [None, str(DASK_TRIM)], a.split_repeats) if a.split_repeats else {}
     single = one_process(folder, rows[0].pop("median_tile"), radius)
     for r in rows[1:]:
         r.pop("median_tile")
     for r in rows:  # a worker's rate against one process's on a tile of the same size
         r["one_process"] = single
         r["worker_share"] = round(r["points_per_second"] / r["workers"] / single["points_per_second"], 3)
+    if splits:
+        rows[0]["split_seconds_by_trim"] = {"unset" if t is None else t: v for t, v in splits.items()}
     publish("cluster_scale", rows, COLUMNS)
     report(rows)
 
 
+DASK_TRIM = dask.config.get(f"distributed.nanny.pre-spawn-environ.{dist.TRIM}")
+
 COLUMNS = [
-    ("workers", lambda r: str(r["workers"])), ("points", lambda r: f"{r['points']:,}"),
+    ("workers", lambda r: str(r["workers"])),
+    ("points", lambda r: f"{r['points']:,}"),
     ("samples", lambda r: f"{r['samples']:,}"), ("tiles", lambda r: str(r["tiles"])),
     ("time (s)", lambda r: str(r["seconds"])), ("points/s", lambda r: f"{r['points_per_second']:,}"),
     ("peak per worker (MB)", lambda r: ", ".join(map(str, r["worker_peak_mb"]))),
@@ -153,9 +195,21 @@ def report(rows):
     by_workers = {r["workers"]: r["seconds"] for r in rows}
     if 1 in by_workers and 2 in by_workers:
         lines += ["", f"2 workers took {by_workers[1] / by_workers[2]:.2f}x less time than 1."]
+    splits = rows[0].get("split_seconds_by_trim")
+    if splits:
+        trim = next(k for k in splits if k != "unset")
+        lines += ["", f"The split alone on one worker, {len(splits['unset'])} times each way by turns: "
+                  f"{', '.join(map(str, splits['unset']))} s as our clusters start their workers, against "
+                  f"{', '.join(map(str, splits[trim]))} s with `MALLOC_TRIM_THRESHOLD_={trim}`, which Dask's "
+                  "nannies give their workers by default (`distributed.nanny.pre-spawn-environ`). That setting also "
+                  "fixes glibc's mmap threshold: every array above 128 kB freed goes back to the system, and the "
+                  "next is faulted in anew. `local_cluster` and the command's `--workers` start theirs without it "
+                  "unless the environment sets it, and each task gives back what it freed when its worker holds "
+                  "more than half its memory limit (`geodesic_lod/task_memory.py`); on a cluster of your own, set "
+                  "it to null in that Dask setting."]
     lines += ["", f"One process would hold about {per_point * n / 1e9:.1f} GB for these {n:,} points "
               f"({per_point} bytes per point, `docs/array_memory.json`); each worker peaked below "
-              f"{max(best['worker_peak_mb']) / 1024:.1f} GB of its {best['memory_limit']}.", "",
+              f"{math.ceil(max(best['worker_peak_mb']) / 102.4) / 10:.1f} GB of its {best['memory_limit']}.", "",
               "## Projection", "",
               f"Assumed: every worker sustains this run's {rate:,.0f} points/s (one core, tiles of the same size, "
               "storage and network keeping up), the halo's share stays the same (it depends on the tile size and the "

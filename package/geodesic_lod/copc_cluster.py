@@ -25,6 +25,7 @@ import numpy as np
 
 from . import arrays, cloud_files, las_files, partition, point_files, tiles
 from . import tile_points as tile_points_
+from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
 from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_order, domain_fields, finer_samples,
@@ -34,6 +35,7 @@ from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_co
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
 
 
+@give_back
 def _node_counts(cells: partition.Partition, cell: int, octree: Octree) -> list:
     """A Dask task: per depth 0 to MAX_TILE_DEPTH, a cell's points per node, as (packed keys, counts)."""
     parts = [[] for _ in range(MAX_TILE_DEPTH + 1)]
@@ -102,6 +104,7 @@ def _tile_points(job: Job, tile: NodeTile) -> tuple:
     return points[mine], ids[mine]
 
 
+@give_back
 def _depth_stats(job: Job, tile: NodeTile) -> dict:
     """A Dask task: what deep_enough needs of one tile, per depth from 0 until the tile alone is deep
     enough and t is reached (deeper, its cells stay as many as its distinct points and its nodes within
@@ -139,6 +142,7 @@ def depth_count(stats: list, t: int) -> int:
     return MAX_DEPTH
 
 
+@give_back
 def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     """A Dask task: one tile's records with their depths (the coarsest level holding each; the deepest
     depth for the others); its nodes of depth t and deeper compressed into `path`, the shallower records

@@ -36,6 +36,7 @@ from .cloud_files import Source
 from .docstrings import documented
 from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
+from .task_memory import TRIM, USERS_TRIM, give_back, process_rss
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
 CELLS = ".cells"   # the input decoded once, cut into the tiles' cells (partition.py)
@@ -108,7 +109,7 @@ def _tile_reads() -> tiles.TileReads:
             limit = None
         if limit:  # below Dask's target, far from the pause that would stop the worker taking tasks
             target = dask.config.get("distributed.worker.memory.target", 0.6) or 0.6
-            _reads = tiles.TileReads(int(READS_SHARE * limit), lambda: target * limit - _worker_rss())
+            _reads = tiles.TileReads(int(READS_SHARE * limit), lambda: target * limit - process_rss())
         else:
             _reads = tiles.TileReads(int(READS_SHARE * psutil.virtual_memory().total))
     return _reads
@@ -121,6 +122,7 @@ def forget_reads() -> None:
         _reads.clear()
 
 
+@give_back
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     """A Dask task: one tile's decision, reading a wider halo until the check passes. What the tile read
     (its points and their domain) is kept for the job's next run on it, a level or a step of a count
@@ -161,6 +163,7 @@ def seams(d: Optional[tiles.Decision]):
     return None if d is None else d.seams()
 
 
+@give_back
 def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: Optional[str],
                ids_path: Optional[str] = None, box: Optional[tiles.Box] = None) -> Optional[dict]:
     """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order (path
@@ -192,17 +195,22 @@ def domain_fields(metric: str, adaptivity: float) -> dict:
 
 def local_cluster(workers: int, memory_limit="auto"):
     """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
-    127.0.0.1 only (its dashboard too). Its processes ignore Ctrl-C: a terminal signals them with the
-    caller, which stops the job and closes the cluster."""
+    127.0.0.1 only (its dashboard too), without Dask's MALLOC_TRIM_THRESHOLD_ unless the environment sets it
+    (``task_memory``). Its processes ignore Ctrl-C: a terminal signals them with the caller, which stops the
+    job and closes the cluster."""
     import signal
     import threading
+    import dask
     from dask.distributed import LocalCluster
+    if USERS_TRIM is None:
+        os.environ.pop(TRIM, None)  # left by an earlier cluster's nanny: the workers would inherit it
     main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None  # inherited by the processes
     try:
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
-                            host="127.0.0.1", dashboard_address="127.0.0.1:0",
-                            silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
+        with dask.config.set({f"distributed.nanny.pre-spawn-environ.{TRIM}": USERS_TRIM}):  # None: not set
+            return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                memory_limit=memory_limit, host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                                silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
     finally:
         if main:
             signal.signal(signal.SIGINT, previous)
@@ -325,6 +333,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     return best, steps.runs
 
 
+@give_back
 def _cell_pass(cells: partition.Partition, cell: int, targets, gather: bool):
     """A Dask task: core_diagonal's pass over one cell."""
     return core_diagonal.file_pass(lambda: iter(cells.cell_xyz(cell)), targets, gather)
@@ -362,6 +371,7 @@ def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> 
     return tiles.Order(kind, 0.0, noise, cell_side)
 
 
+@give_back
 def _subsample_of_cell(cells: partition.Partition, cell: int, ids: np.ndarray) -> tuple:
     """A Dask task: the ids and coordinates of a cell's points among `ids` (increasing)."""
     got, xyz = [], []
@@ -373,11 +383,6 @@ def _subsample_of_cell(cells: partition.Partition, cell: int, ids: np.ndarray) -
             np.concatenate(xyz) if xyz else np.empty((0, 3)))
 
 
-def _worker_rss() -> int:
-    import psutil
-    return psutil.Process().memory_info().rss
-
-
 def check_worker_memory(client) -> None:
     """Refuses workers whose memory limit their own footprint already fills past Dask's pause
     threshold: they would pause before any task and the job would wait for ever. A worker lost while
@@ -385,7 +390,7 @@ def check_worker_memory(client) -> None:
     import dask
     pause = dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0
     workers = client.scheduler_info()["workers"]
-    used = client.run(_worker_rss, on_error="return")
+    used = client.run(process_rss, on_error="return")
     for addr, w in workers.items():
         limit = w.get("memory_limit") or 0
         rss = used.get(addr, 0)

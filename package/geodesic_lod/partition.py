@@ -20,6 +20,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from . import cloud_files, las_files, point_files, tiles
+from .task_memory import give_back
 
 BLOCKS = 8  # blocks per axis of a cell: a halo reads the blocks of its neighbours it reaches, not whole cells
 
@@ -115,6 +116,7 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
     os.replace(tmp, path)
 
 
+@give_back
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
     """A Dask task: decodes one piece and writes each cell's share of it, block by block, each block in id
     order (``blocks``: where each block starts, and the end). Returns whether its points carry normals,

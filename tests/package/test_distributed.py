@@ -386,3 +386,17 @@ def test_workers_without_memory_for_the_reads_load_them_from_the_work_folder(clo
         ids = level_ids(tmp_path / "lod", lv)["gps_time"].astype(np.int64)
         assert sorted(ids) == sorted(gl.poisson_lod(points, radius=lv["radius"], within=finer).indices)
         finer = ids
+
+
+TRIM_AT_START = os.environ.get("MALLOC_TRIM_THRESHOLD_")  # read before any cluster starts (Dask sets it here)
+
+
+def test_our_local_clusters_workers_keep_the_allocators_own_trimming(client):
+    """Dask's nannies start workers with MALLOC_TRIM_THRESHOLD_ set, which also fixes glibc's mmap threshold:
+    every array freed goes back to the system and the next is faulted in anew (docs/cluster_scale.md). Our
+    clusters' workers start without it; the rest of Dask's settings stay."""
+    env = client.run(lambda: {k: os.environ.get(k) for k in ("MALLOC_TRIM_THRESHOLD_", "OMP_NUM_THREADS")})
+    assert len(env) == 2
+    for e in env.values():
+        assert e["MALLOC_TRIM_THRESHOLD_"] == TRIM_AT_START  # a user's own setting is kept
+        assert e["OMP_NUM_THREADS"] == "1"
