@@ -124,9 +124,10 @@ def forget_reads() -> None:
 
 @give_back
 def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
-    """A Dask task: one tile's decision, reading a wider halo until the check passes. What the tile read
-    (its points and their domain) is kept for the job's next run on it, a level or a step of a count
-    search (the same points give the same domain): on the worker, or in the job's work folder."""
+    """A Dask task: one tile's decision, reading a wider halo until the check passes. When the job runs on
+    the tiles again, what the tile read (its points and their domain) is kept for its next run on it, a
+    level or a step of a count search (the same points give the same domain): on the worker, or in the
+    job's work folder."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
     candidates = None
     if job.within is not None:
@@ -135,7 +136,8 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
                                  seed=job.seed, candidates=candidates, threads=job.threads, order=job.order,
-                                 reads=_tile_reads(), job=(job.cells.folder, tuple(sorted(job.domain.items()))),
+                                 reads=_tile_reads() if job.runs_again else None,  # else none is read again
+                                 job=(job.cells.folder, tuple(sorted(job.domain.items()))),
                                  tile=box.as_tuple(), folder=job.cells.folder if job.runs_again else None)
 
 

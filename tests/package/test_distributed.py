@@ -7,6 +7,7 @@ import pathlib
 import signal
 import subprocess
 import sys
+import threading
 import time
 
 import dask
@@ -400,3 +401,25 @@ def test_our_local_clusters_workers_keep_the_allocators_own_trimming(client):
     for e in env.values():
         assert e["MALLOC_TRIM_THRESHOLD_"] == TRIM_AT_START  # a user's own setting is kept
         assert e["OMP_NUM_THREADS"] == "1"
+
+
+def test_a_job_of_one_run_keeps_no_read(cloud, tmp_path):
+    """A job of one radius runs on each tile once: its workers keep none of the tiles' reads, in memory or
+    on disk, while it runs (they would only take the room of the tasks)."""
+    with dist.local_cluster(1) as cluster, Client(cluster) as c:
+        seen = []
+
+        def watch():
+            while not stop.is_set():
+                seen.append(sum(c.run(lambda: 0 if dist._reads is None else len(dist._reads.reads)).values()))
+                time.sleep(0.05)
+        stop = threading.Event()
+        watcher = threading.Thread(target=watch)
+        watcher.start()
+        try:
+            dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=c, threads=1)
+        finally:
+            stop.set()
+            watcher.join()
+        assert seen and max(seen) == 0
+        assert all(r is None for r in c.run(lambda: dist._reads).values())
