@@ -15,7 +15,6 @@ usage: bench/cluster_scale.py [--points 100000000] [--files-per-side 10] [--tile
 import argparse
 import json
 import math
-import os
 import pathlib
 import shutil
 import time
@@ -61,7 +60,6 @@ def cluster_with(workers, memory, trim=None):
         return dist.local_cluster(workers, memory)
     finally:
         dist.USERS_TRIM = users
-        os.environ.pop(dist.TRIM, None)  # Dask leaves it here; the next cluster starts without it
 
 
 def split_seconds(folder, scratch, memory, tile_points, trim, repeats):

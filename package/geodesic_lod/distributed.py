@@ -36,7 +36,7 @@ from .cloud_files import Source
 from .docstrings import documented
 from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
-from .task_memory import TRIM, USERS_TRIM, give_back, process_rss
+from .task_memory import TRIM, USERS_TRIM, give_back, process_rss, worker_memory_limit
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
 CELLS = ".cells"   # the input decoded once, cut into the tiles' cells (partition.py)
@@ -102,11 +102,7 @@ def _tile_reads() -> tiles.TileReads:
     if _reads is None:
         import dask
         import psutil
-        from dask.distributed import get_worker
-        try:
-            limit = get_worker().memory_manager.memory_limit
-        except ValueError:  # not on a worker: a task run in this process
-            limit = None
+        limit = worker_memory_limit()
         if limit:  # below Dask's target, far from the pause that would stop the worker taking tasks
             target = dask.config.get("distributed.worker.memory.target", 0.6) or 0.6
             _reads = tiles.TileReads(int(READS_SHARE * limit), lambda: target * limit - process_rss())

@@ -31,7 +31,8 @@ MALLOC_TRIM = _malloc_trim()
 KEEP_SHARE = 0.5  # of a worker's memory limit: below it, a worker keeps what its tasks freed for the next
 
 
-def _memory_limit() -> Optional[int]:
+def worker_memory_limit() -> Optional[int]:
+    """The memory limit of the Dask worker this runs on, in bytes; None (or 0) off a worker or without one."""
     try:
         from distributed import get_worker
         return get_worker().memory_manager.memory_limit
@@ -42,7 +43,7 @@ def _memory_limit() -> Optional[int]:
 def holds_too_much() -> bool:
     """Whether this process should give back what it freed: on a worker with a memory limit, when it holds
     more than KEEP_SHARE of it; elsewhere always."""
-    limit = _memory_limit()
+    limit = worker_memory_limit()
     return not limit or process_rss() > KEEP_SHARE * limit
 
 
