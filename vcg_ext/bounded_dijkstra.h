@@ -22,7 +22,7 @@ class BoundedDijkstra {
   typedef vcg::Point3<Scalar> Coord;
   /// On the graph's stored weights (a point graph stores none: use Lengths()).
   explicit BoundedDijkstra(const NeighbourGraph<Scalar>& g) : BoundedDijkstra(g, g.w) {}
-  /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for adj[e].
+  /// On weights kept beside the graph (NeighbourGraph::Weights), w[e] for arc e.
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const std::vector<float>& w)
       : g_(g), w_(w.data()) {
     assert(w.size() == g.adj.size() && "one weight per arc");
@@ -55,11 +55,11 @@ class BoundedDijkstra {
       const double bound = room * (1 + eps) + eps * double(r), room2 = bound * bound;
       const Coord* pi = len_.pos ? &(*len_.pos)[size_t(i)] : nullptr;
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-        const int j = g_.adj[e];
+        const int j = g_.To(i, e);
         if (pi && double(vcg::SquaredDistance(*pi, (*len_.pos)[size_t(j)])) > room2) continue;
         Scalar* dj = near_.Find(j);
         if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
-        const Scalar nd = top.first + Length(i, e);
+        const Scalar nd = top.first + Length(i, j, e);
         if (nd <= r && (!dj || nd < *dj)) {
           if (dj) *dj = nd; else near_.Add(j, nd);
           Push(j, nd);
@@ -107,9 +107,9 @@ class BoundedDijkstra {
       if (top.first != dist[i]) continue;  // stale
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-        const int j = g_.adj[e];
+        const int j = g_.To(i, e);
         if (dist[j] <= top.first) continue;  // no edge can lower it: its length is not needed
-        const Scalar nd = top.first + Length(i, e);
+        const Scalar nd = top.first + Length(i, j, e);
         if (nd < dist[j]) {
           dist[j] = nd;
           reached(i, j);
@@ -118,11 +118,11 @@ class BoundedDijkstra {
       }
     }
   }
-  float Length(int i, int e) const { return w_ ? w_[e] : len_(i, g_.adj[size_t(e)]); }
+  float Length(int i, int j, int e) const { return w_ ? w_[e] : len_(i, j); }
   void Push(int j, Scalar d) {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
-    Prefetch(g_.adj.data() + g_.offset[j]);
+    Prefetch(g_.adj.slot.data() + g_.offset[j]);
     if (w_) Prefetch(w_ + g_.offset[j]);
     heap_.push(d, j);
   }

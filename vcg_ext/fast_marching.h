@@ -160,7 +160,7 @@ class FastMarching {
         reached(from, j);
         // j's edges and fans are read when it is finalized: start fetching
         // them now (a front's new vertices are rarely cached).
-        Prefetch(m_.edges.adj.data() + m_.edges.offset[j]);
+        Prefetch(m_.edges.adj.slot.data() + m_.edges.offset[j]);
         Prefetch(m_.edges.w.data() + m_.edges.offset[j]);
         PrefetchRange(m_.fans.data() + m_.fanOffset[j], m_.fans.data() + m_.fanOffset[j + 1]);  // about 3 lines
         heap_.push(Scalar(d), j);
@@ -184,7 +184,7 @@ class FastMarching {
       }
       const auto& g = m_.edges;
       for (int e = g.offset[v]; e < g.offset[v + 1]; ++e)
-        if (done_[g.adj[e]] != stamp) offer(g.adj[e], tv + g.w[e]);
+        if (done_[g.To(v, e)] != stamp) offer(g.To(v, e), tv + g.w[e]);
     }
   }
   void NextStamp() {

@@ -139,7 +139,7 @@ class GeodesicDomain {
       }
       if (p.keepReach) {
         d.reach.resize(d.size());
-        for (size_t i = 0; i < d.size(); ++i) d.reach[i] = vcg::Distance(d.points.pos[i], d.points.pos[knn.Row(i)[k - 1]]);
+        for (size_t i = 0; i < d.size(); ++i) d.reach[i] = vcg::Distance(d.points.pos[i], d.points.pos[size_t(knn.At(i, k - 1))]);
       }
       auto nr = PointNormals<Scalar>::Estimate(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
       d.points.normal = std::vector<Coord>();  // nr holds them now
@@ -196,7 +196,7 @@ class GeodesicDomain {
   size_t MemoryBytes() const {
     const auto& g = meshGeodesics ? fmMesh.edges : graph;
     return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) +
-           Bytes(g.offset) + Bytes(g.adj) + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
+           Bytes(g.offset) + g.adj.MemoryBytes() + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
            Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach);
   }
 

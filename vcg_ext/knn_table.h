@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <utility>
 #include <vector>
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "cell_grid.h"
+#include "compact_index.h"
 #include "parallel.h"
 #include "progress.h"
 #include "realloc_array.h"
@@ -18,27 +20,38 @@
 namespace vcg_ext {
 
 /// Row i holds the k nearest other points of point i, nearest first.
-/// Memory: 4k bytes per point.
+/// Memory: about 2k bytes per point on points numbered along the cells
+/// (CompactIndex), up to 4k otherwise.
 template <class Scalar>
 class KnnTable {
  public:
   typedef vcg::Point3<Scalar> Coord;
 
   int k = 0;
-  ReallocArray<int> idx;      ///< n*k neighbour indices, by increasing distance per row
+  CompactIndex idx;  ///< n*k neighbours, by increasing distance per row
 
   size_t size() const { return k ? idx.size() / k : 0; }
+
+  /// The c-th nearest of point i.
+  int At(size_t i, int c) const { return idx.At(i * size_t(k) + size_t(c), int(i)); }
+  /// The `count` nearest of point i (count <= k), into `out`.
+  void Row(size_t i, int count, int* out) const { idx.Get(i * size_t(k), count, int(i), out); }
 
   /// Keeps the first `c` columns (the c nearest), in place: the table shrinks
   /// without a second copy. O(n c), one thread (rows move towards the front).
   void KeepColumns(int c) {
     if (c >= k) return;
     const size_t n = size();
-    for (size_t i = 1; i < n; ++i) std::memmove(&idx[i * c], &idx[i * k], size_t(c) * sizeof(int));
-    idx.resize(n * c);
+    std::vector<CompactIndex::Far> far = idx.Unseal();
+    for (size_t i = 1; i < n; ++i) std::memmove(&idx.slot[i * c], &idx.slot[i * k], size_t(c) * sizeof(int16_t));
+    idx.slot.resize(n * c);
+    size_t kept = 0;
+    for (const auto& f : far)
+      if (int(f.slot % size_t(k)) < c) far[kept++] = {f.slot / size_t(k) * size_t(c) + f.slot % size_t(k), f.target};
+    far.resize(kept);
     k = c;
+    idx.Seal(std::move(far));
   }
-  const int* Row(size_t i) const { return &idx[i * k]; }
 
   /// kNN of all points, excluding the point itself; 1 <= k < pos.size().
   /// Exact. Cost O(n k) on well-sampled surfaces, on all threads; the same
@@ -68,8 +81,16 @@ class KnnTable {
     auto number = [&](int64_t key) { return int(id ? key % kLow : key); };
     KnnTable t;
     t.k = k;
-    t.idx.ResizeForOverwrite(pos.size() * k);  // every row is written below
+    t.idx.slot.ResizeForOverwrite(pos.size() * k);  // every row is written below
+    FarEntries far;
+    std::vector<int> rest;  // rows the grid could not answer
+    std::mutex restMutex;
+    auto put = [&](size_t i, const int* row) {
+      std::vector<CompactIndex::Far>& farOut = far.Mine();
+      for (int c = 0; c < k; ++c) t.idx.Put(i * size_t(k) + size_t(c), int(i), row[c], farOut);
+    };
     ParallelChunks(pos.size(), progress, "Finding nearest neighbours", [&](size_t b, size_t e) {
+      std::vector<int> out(size_t(k), 0), unsure;
       std::vector<double> bx, by, bz, d2;  // the block of cells searched: positions, numbers
       std::vector<int64_t> bi;  // the block's sort keys
       std::vector<int> cand;    // the candidates' places in the block
@@ -81,8 +102,7 @@ class KnnTable {
       for (size_t r = b; r < e; ++r) {
         const int i = grid.Point(r);
         const typename CellGrid<Scalar>::Cell cell = grid.CellOf(pos[i]);
-        int* out = &t.idx[size_t(i) * k];
-        out[0] = -1;  // until found: the kd-tree answers the rows left so
+        bool answered = false;  // else the kd-tree answers the row
         for (int ring = 1; ring <= kMaxRing; ++ring) {
           if (cell != last || ring != lastRing) {  // near points share their cell's block
             bx.clear(), by.clear(), bz.clear(), bi.clear();
@@ -114,15 +134,18 @@ class KnnTable {
             if (found >= size_t(k)) break;
           }
           if (found < size_t(k)) continue;  // some of the k nearest may lie beyond the block
-          hint = SelectNearest(d2.data(), bi.data(), cand.data(), found, k, scratch, out);
-          for (int c = 0; c < k; ++c) out[c] = number(bi[size_t(out[c])]);
+          hint = SelectNearest(d2.data(), bi.data(), cand.data(), found, k, scratch, out.data());
+          for (int c = 0; c < k; ++c) out[size_t(c)] = number(bi[size_t(out[size_t(c)])]);
+          put(size_t(i), out.data());
+          answered = true;
           break;
         }
+        if (!answered) unsure.push_back(i);
       }
+      far.Add();
+      std::lock_guard<std::mutex> lock(restMutex);
+      rest.insert(rest.end(), unsure.begin(), unsure.end());
     });
-    std::vector<int> rest;
-    for (size_t i = 0; i < pos.size(); ++i)
-      if (t.idx[i * k] < 0) rest.push_back(int(i));
     if (!rest.empty()) {
       vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())));
       ParallelChunks(rest.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
@@ -130,6 +153,7 @@ class KnnTable {
         std::vector<unsigned int> ball;
         std::vector<Scalar> ballD2;
         std::vector<std::pair<double, int64_t>> row;
+        std::vector<int> out(size_t(k), 0);
         for (size_t r = b; r < e; ++r) {
           const int i = rest[r];
           const vcg::Point3d q = vcg::Point3d::Construct(pos[i]);
@@ -147,10 +171,13 @@ class KnnTable {
             if (int(j) != i) row.emplace_back(d2(int(j)), key(int(j)));
           std::nth_element(row.begin(), row.begin() + (k - 1), row.end());
           std::sort(row.begin(), row.begin() + k);
-          for (int c = 0; c < k; ++c) t.idx[size_t(i) * k + c] = number(row[c].second);
+          for (int c = 0; c < k; ++c) out[size_t(c)] = number(row[size_t(c)].second);
+          put(size_t(i), out.data());
         }
+        far.Add();
       });
     }
+    t.idx.Seal(far.Take());
     return t;
   }
 

@@ -1,6 +1,7 @@
 #ifndef VCG_EXT_NEIGHBOUR_GRAPH_H
 #define VCG_EXT_NEIGHBOUR_GRAPH_H
-// Symmetric k-nearest-neighbour graph with weighted edges (compressed rows).
+// Symmetric k-nearest-neighbour graph with weighted edges (compressed rows,
+// neighbours in 2 bytes each where near: CompactIndex).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <numeric>
 #include <utility>
 #include <vector>
+#include "compact_index.h"
 #include "geodesic_metric.h"
 #include "knn_table.h"
 #include "parallel.h"
@@ -22,17 +24,20 @@ template <class Scalar>
 class NeighbourGraph {
  public:
   std::vector<int> offset;   ///< n+1 row starts
-  ReallocArray<int> adj;     ///< neighbour indices, ascending per row
+  CompactIndex adj;          ///< neighbours, ascending per row: To(i, e)
   /// Edge weights g_ij, w[e] for adj[e], as FloatAtLeast (distances are still
   /// summed in Scalar). Empty where the searches compute them (EdgeLength).
   std::vector<float> w;
 
   size_t size() const { return offset.empty() ? 0 : offset.size() - 1; }
 
+  /// The neighbour arc e of point i (offset[i] <= e < offset[i + 1]) leads to.
+  int To(int i, int e) const { return adj.At(size_t(e), i); }
+
   /// Edge (i, j) exists iff j is among the k nearest of i or i among the k
   /// nearest of j (symmetric, so graph distances are symmetric). Uses the
   /// first k columns of `knn` (k <= knn.k). `weight(i, j, |p_i - p_j|)` gives
-  /// g_ij. Memory: about 1.4k (4 + 4) bytes per point. O(n k^2), on all threads.
+  /// g_ij. Memory: about 1.4k (2 + 4) bytes per point. O(n k^2), on all threads.
   template <class WeightFn>
   static NeighbourGraph Compute(const std::vector<vcg::Point3<Scalar>>& pos, const KnnTable<Scalar>& knn, int k,
                                 const WeightFn& weight, Progress progress = Progress(nullptr)) {
@@ -59,13 +64,22 @@ class NeighbourGraph {
     // Chunks start at multiples of 1024 rows, so no two threads write the same word.
     std::vector<bool> oneWay(n * k);
     ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i)
+      std::vector<int> row(static_cast<size_t>(k));
+      for (size_t i = b; i < e; ++i) {
+        knn.Row(i, k, row.data());
         for (int c = 0; c < k; ++c) {
-          const int* back = knn.Row(knn.Row(i)[c]);
-          int found = 0;  // branch-free: the whole short row is compared at once
-          for (int d = 0; d < k; ++d) found |= back[d] == int(i);
+          const int j = row[size_t(c)];
+          int found = 0;
+          if (CompactIndex::Fits(j, int(i))) {  // i is in j's row as this offset if at all
+            const int16_t* back = &knn.idx.slot[size_t(j) * size_t(knn.k)];
+            const int16_t want = int16_t(int(i) - j);
+            for (int d = 0; d < k; ++d) found |= back[d] == want;  // branch-free: the short row at once
+          } else {
+            for (int d = 0; d < k; ++d) found |= knn.At(size_t(j), d) == int(i);
+          }
           oneWay[i * k + c] = !found;
         }
+      }
     });
     return oneWay;
   }
@@ -84,7 +98,7 @@ class NeighbourGraph {
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c)
           if (oneWay[i * k + c]) {
-            __atomic_fetch_add(&g.offset[knn.Row(i)[c] + 1], 1, __ATOMIC_RELAXED);
+            __atomic_fetch_add(&g.offset[knn.At(i, c) + 1], 1, __ATOMIC_RELAXED);
           }
     });
     int64_t total = 0;
@@ -95,29 +109,76 @@ class NeighbourGraph {
     }
     // Each row moves to its start, from the last back: a row's start is at or
     // after its place in the table, so no row is overwritten before it moves.
-    g.adj.swap(knn.idx);
+    // A slot's offset is from its row's point, so it moves unchanged; the far
+    // entries (in slot order) move with their rows.
+    std::vector<CompactIndex::Far> far = knn.idx.Unseal();
+    for (auto& f : far) f.slot = size_t(g.offset[f.slot / size_t(k)]) + f.slot % size_t(k);
+    g.adj.slot.swap(knn.idx.slot);
     knn.k = 0;
-    g.adj.resize(size_t(total));
+    g.adj.slot.resize(size_t(total));
     for (size_t i = n; i-- > 1;)
-      std::memmove(&g.adj[size_t(g.offset[i])], &g.adj[i * k], size_t(k) * sizeof(int));
+      std::memmove(&g.adj.slot[size_t(g.offset[i])], &g.adj.slot[i * k], size_t(k) * sizeof(int16_t));
+    auto tableArc = [&](int i, int e) {  // the end of arc e of row i, among the row's first k
+      const int v = g.adj.slot[size_t(e)];
+      if (v >= CompactIndex::kNearMin) return i + v;
+      return std::lower_bound(far.begin(), far.end(), CompactIndex::Far{size_t(e), 0})->target;
+    };
     std::vector<int> fill(n);
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) fill[i] = g.offset[i] + k;
     });
+    FarEntries added;
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
+      std::vector<CompactIndex::Far>& mine = added.Mine();
       for (size_t i = b; i < e; ++i)
         for (int c = 0; c < k; ++c)
           if (oneWay[i * k + c]) {
-            int& next = fill[g.adj[size_t(g.offset[i] + c)]];  // the arc's end, in its row's first k
-            const int slot = __atomic_fetch_add(&next, 1, __ATOMIC_RELAXED);
-            g.adj[size_t(slot)] = int(i);
+            const int j = tableArc(int(i), g.offset[i] + c);
+            const int slot = __atomic_fetch_add(&fill[size_t(j)], 1, __ATOMIC_RELAXED);
+            g.adj.Put(size_t(slot), j, int(i), mine);
           }
+      added.Add();
     });
     oneWay = std::vector<bool>();
     fill = std::vector<int>();
+    {
+      std::vector<CompactIndex::Far> more = added.Take(), both;
+      std::sort(more.begin(), more.end());
+      both.resize(far.size() + more.size());
+      std::merge(far.begin(), far.end(), more.begin(), more.end(), both.begin());
+      far.swap(both);
+    }
+    // Ascending offsets are ascending neighbours; a row with far entries is
+    // sorted whole, its far entries staying in its span of `far`.
+    struct Span { size_t row, lo, hi; };
+    std::vector<Span> farRows;
+    std::vector<bool> hasFar(n);
+    for (size_t f = 0, row = 0; f < far.size(); ++f) {
+      while (size_t(g.offset[row + 1]) <= far[f].slot) ++row;
+      if (farRows.empty() || farRows.back().row != row) farRows.push_back({row, f, f}), hasFar[row] = true;
+      farRows.back().hi = f + 1;
+    }
     ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) std::sort(g.adj.begin() + g.offset[i], g.adj.begin() + g.offset[i + 1]);
+      for (size_t i = b; i < e; ++i)
+        if (!hasFar[i]) std::sort(g.adj.slot.begin() + g.offset[i], g.adj.slot.begin() + g.offset[i + 1]);
     });
+    ParallelFor(farRows.size(), 64, [&](size_t r) {
+      const Span& sp = farRows[r];
+      const int i = int(sp.row);
+      const size_t s0 = size_t(g.offset[sp.row]), s1 = size_t(g.offset[sp.row + 1]);
+      std::vector<int> row;
+      for (size_t f = sp.lo; f < sp.hi; ++f) row.push_back(far[f].target);
+      for (size_t s = s0; s < s1; ++s)
+        if (g.adj.slot[s] >= CompactIndex::kNearMin) row.push_back(i + g.adj.slot[s]);
+      std::sort(row.begin(), row.end());
+      size_t f = sp.lo;
+      for (size_t s = s0; s < s1; ++s) {
+        const int j = row[s - s0];
+        if (CompactIndex::Fits(i, j)) g.adj.slot[s] = int16_t(j - i);
+        else far[f++] = {s, j};
+      }
+    });
+    g.adj.Seal(std::move(far));
     return g;
   }
 
@@ -131,19 +192,20 @@ class NeighbourGraph {
     for (const auto& p : pairs) ++g.offset[p.first + 1];
     for (size_t i = 0; i < n; ++i) g.offset[i + 1] += g.offset[i];
     std::vector<int> fill(g.offset.begin(), g.offset.end() - 1);
-    g.adj.resize(pairs.size());
-    for (const auto& p : pairs) g.adj[fill[p.first]++] = p.second;
+    std::vector<int> adj(pairs.size());
+    for (const auto& p : pairs) adj[size_t(fill[p.first]++)] = p.second;
     // Sort and dedupe each row in place, then close the gaps.
     int out = 0;
     for (size_t i = 0; i < n; ++i) {
-      auto b = g.adj.begin() + g.offset[i], e = g.adj.begin() + g.offset[i + 1];
+      auto b = adj.begin() + g.offset[i], e = adj.begin() + g.offset[i + 1];
       std::sort(b, e);
       e = std::unique(b, e);
       g.offset[i] = out;
-      for (auto it = b; it != e; ++it) g.adj[out++] = *it;
+      for (auto it = b; it != e; ++it) adj[size_t(out++)] = *it;
     }
     g.offset[n] = out;
-    g.adj.resize(out);
+    adj.resize(size_t(out));
+    g.adj = CompactIndex::FromRows(g.offset, adj);
     g.SetWeights(pos, weight);
     return g;
   }
@@ -163,15 +225,20 @@ class NeighbourGraph {
     std::vector<float> out(adj.size());
     ParallelChunks(size(), progress, "Weighting the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
-        for (int a = offset[i]; a < offset[i + 1]; ++a) out[a] = len(int(i), adj[a]);
+        for (int a = offset[i]; a < offset[i + 1]; ++a) out[size_t(a)] = len(int(i), To(int(i), a));
     });
     return out;
   }
 
   /// g_ij of the edge (i, j), which must exist. Cost O(log degree).
   float Weight(int i, int j) const {
-    const auto b = adj.begin() + offset[i], e = adj.begin() + offset[i + 1];
-    return w[std::lower_bound(b, e, j) - adj.begin()];
+    int lo = offset[i], hi = offset[i + 1];
+    while (lo < hi) {
+      const int mid = lo + (hi - lo) / 2;
+      if (To(i, mid) < j) lo = mid + 1;
+      else hi = mid;
+    }
+    return w[size_t(lo)];
   }
 
   /// Number of connected components. By union-find over the edges in row
@@ -180,15 +247,17 @@ class NeighbourGraph {
   int ComponentCount() const {
     return CountComponents(size(), [&](size_t i, auto&& edge) {
       for (int e = offset[i]; e < offset[i + 1]; ++e)
-        if (adj[e] < int(i)) edge(adj[e]);  // each edge once
+        if (To(int(i), e) < int(i)) edge(To(int(i), e));  // each edge once
     });
   }
   /// The same for the graph FromKnn(knn, k) would build, from the table: an
   /// edge joins the same two points whichever of them has the other among its
   /// k nearest. O(n k), one thread.
   static int ComponentCount(const KnnTable<Scalar>& knn, int k) {
+    std::vector<int> row(static_cast<size_t>(k));
     return CountComponents(knn.size(), [&](size_t i, auto&& edge) {
-      for (int c = 0; c < k; ++c) edge(knn.Row(i)[c]);
+      knn.Row(i, k, row.data());
+      for (int c = 0; c < k; ++c) edge(row[size_t(c)]);
     });
   }
 
@@ -225,7 +294,7 @@ void SeedFromOwned(const NeighbourGraph<Scalar>& g, const std::vector<int>& owne
     if (owner[i] >= 0) continue;
     dist[i] = std::numeric_limits<Scalar>::infinity();
     for (int e = g.offset[i]; e < g.offset[i + 1]; ++e) {
-      const size_t j = size_t(g.adj[e]);
+      const size_t j = size_t(g.To(int(i), e));
       if (owner[j] >= 0 && !seeded[j]) seeded[j] = 1, heap.push(dist[j], int(j));
     }
   }

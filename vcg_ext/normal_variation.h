@@ -22,11 +22,12 @@ class NormalVariation {
     if (k <= 0) k = knn.k;
     std::vector<float> v(normal.size());
     ParallelChunks(normal.size(), progress, "Normal variation", [&](size_t b, size_t e) {
+      std::vector<int> row(static_cast<size_t>(k));
       for (size_t i = b; i < e; ++i) {
-        const int* row = knn.Row(i);
+        knn.Row(i, k, row.data());
         double s = 0;
         const vcg::Point3d ni = vcg::Point3d::Construct(normal[i]);
-        for (int j = 0; j < k; ++j) s += 1.0 - std::abs(ni.dot(vcg::Point3d::Construct(normal[row[j]])));
+        for (int j = 0; j < k; ++j) s += 1.0 - std::abs(ni.dot(vcg::Point3d::Construct(normal[size_t(row[size_t(j)])])));
         v[i] = float(std::max(0.0, s / k));
       }
     });

@@ -121,9 +121,10 @@ class PointNormals {
                                        Progress progress) {
     std::vector<Normal> normal(pos.size());
     ParallelChunks(pos.size(), progress, "Estimating normals", [&](size_t b, size_t e) {
+      std::vector<int> row(size_t(std::max(k, 1)));
       for (size_t i = b; i < e; ++i) {
-        const int* row = knn.Row(i);
-        auto at = [&](int c) { return vcg::Point3d::Construct(c == 0 ? pos[i] : pos[row[c - 1]]); };
+        if (k > 1) knn.Row(i, k - 1, &row[1]);
+        auto at = [&](int c) { return vcg::Point3d::Construct(c == 0 ? pos[i] : pos[row[size_t(c)]]); };
         vcg::Point3d mean(0, 0, 0);
         for (int c = 0; c < k; ++c) mean += at(c);
         mean /= double(k);
@@ -163,10 +164,11 @@ class PointNormals {
     const size_t n = normal.size();
     std::vector<uint8_t> arcLevel(n * size_t(std::max(c, 0)));
     ParallelChunks(c > 0 ? n : 0, Progress(nullptr), "", [&](size_t b, size_t e) {
+      std::vector<int> row(size_t(std::max(c, 1)));
       for (size_t s = b; s < e; ++s) {
-        const int* row = knn.Row(s);
+        knn.Row(s, c, row.data());
         for (int j = 0; j < c; ++j) {
-          const double w = std::abs(Dot(normal[s], normal[row[j]]));
+          const double w = std::abs(Dot(normal[s], normal[size_t(row[size_t(j)])]));
           arcLevel[s * c + j] = w < 0.3 ? kDropped : uint8_t(std::min(kLevels - 1, int((1.0 - w) / 0.7 * kLevels)));
         }
       }
@@ -183,13 +185,12 @@ class PointNormals {
     std::vector<uint8_t> state(n, uint8_t(kLevels));
     int top = kLevels;  // lowest level that may be non-empty
     auto addArcs = [&](int s) {
-      const int* row = knn.Row(s);
       const uint8_t* level = &arcLevel[size_t(s) * c];
       for (int j = 0; j < c; ++j) {
-        const int t = row[j];
+        const int t = knn.At(size_t(s), j);
         if (level[j] == kDropped || state[t] == kVisited || level[j] > state[t]) continue;
         // The walk jumps between rows: start fetching what popping t will read.
-        Prefetch(knn.idx.data() + size_t(t) * size_t(knn.k));
+        Prefetch(knn.idx.slot.data() + size_t(t) * size_t(knn.k));
         Prefetch(arcLevel.data() + size_t(t) * size_t(c));
         Prefetch(normal.data() + t);
         state[t] = level[j];

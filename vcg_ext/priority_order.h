@@ -33,9 +33,7 @@ inline uint64_t Priority(uint64_t seed, uint64_t id) { return Mix64(Mix64(seed) 
 /// those keep their numbering's order.
 template <class Id>
 std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
-  std::vector<uint64_t> key(id.size());
-  for (size_t i = 0; i < id.size(); ++i) key[i] = Priority(seed, uint64_t(id[i]));
-  return SortKeys(key);
+  return SortBy(id.size(), [&](size_t i) { return Priority(seed, uint64_t(id[i])); });
 }
 
 /// The order by a per-point value, largest first, then by Priority(seed, id):
@@ -43,12 +41,10 @@ std::vector<int> PriorityOrder(const std::vector<Id>& id, uint64_t seed) {
 /// roundings in the sums that make them rarely reorder two points.
 template <class Id>
 std::vector<int> KeyFirstOrder(const std::vector<float>& value, const std::vector<Id>& id, uint64_t seed) {
-  std::vector<uint64_t> key(id.size());
-  for (size_t i = 0; i < id.size(); ++i) {
+  return SortBy(id.size(), [&](size_t i) {
     const double steps = std::min(double(value[i]) * 0x1p24, double(UINT32_MAX));
-    key[i] = (uint64_t(UINT32_MAX - uint32_t(steps)) << 32) | (Priority(seed, uint64_t(id[i])) >> 32);
-  }
-  return SortKeys(key);
+    return (uint64_t(UINT32_MAX - uint32_t(steps)) << 32) | (Priority(seed, uint64_t(id[i])) >> 32);
+  });
 }
 
 }  // namespace vcg_ext

@@ -9,6 +9,7 @@
 #include <nanobind/stl/optional.h>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -77,7 +78,9 @@ inline nb::dict TileDomainArrays(const Domain& d) {
   out["curvature"] = View(d.curvature.data(), d.curvature.size(), 0, self);
   out["reach"] = View(d.reach.data(), n, 0, self);
   out["offset"] = View(g.offset.data(), g.offset.size(), 0, self);
-  out["adj"] = View(g.adj.data(), g.adj.size(), 0, self);
+  out["adj"] = View(g.adj.slot.data(), g.adj.size(), 0, self);
+  out["far_base"] = View(reinterpret_cast<const uint64_t*>(g.adj.farBase.data()), g.adj.farBase.size(), 0, self);
+  out["far"] = View(g.adj.far.data(), g.adj.far.size(), 0, self);
   out["weight"] = View(g.w.data(), g.w.size(), 0, self);
   out["metric"] = int(d.metric);
   out["curvature_exponent"] = d.curvatureExponent;
@@ -100,8 +103,8 @@ std::vector<T> Copied(const A& a) {
 
 inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<float>& normal,
                                    const InFlat<int>& vertIndex, const InFlat<float>& curvature,
-                                   const InFlat<double>& reach, const InFlat<int>& offset, const InFlat<int>& adj,
-                                   const InFlat<float>& weight, int metric, double curvatureExponent,
+                                   const InFlat<double>& reach, const InFlat<int>& offset, const InFlat<int16_t>& adj,
+                                   const InFlat<uint64_t>& farBase, const InFlat<int>& far, const InFlat<float>& weight, int metric, double curvatureExponent,
                                    double adaptivity, size_t estimatedNormals, int components, size_t vertexCount) {
   const size_t n = pos.shape(0);
   const bool graph = offset.size() > 0;
@@ -111,7 +114,21 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
               (!graph || (offset.size() == n + 1 && offset(0) == 0 && size_t(offset(n)) == adj.size()));
   for (size_t i = 0; fits && i < n; ++i) fits = vertIndex(i) >= 0 && size_t(vertIndex(i)) < vertexCount;
   for (size_t i = 0; fits && graph && i < n; ++i) fits = offset(i) <= offset(i + 1);
-  for (size_t e = 0; fits && e < adj.size(); ++e) fits = adj(e) >= 0 && size_t(adj(e)) < n;
+  // The compact arcs (vcg_ext::CompactIndex): near ones inside the tile, far ones ranked within their block.
+  const size_t blocks = (adj.size() + (size_t(1) << vcg_ext::CompactIndex::kBlockBits) - 1) >>
+                        vcg_ext::CompactIndex::kBlockBits;
+  fits = fits && farBase.size() == blocks && (blocks == 0 || farBase(0) == 0);
+  for (size_t b = 0; fits && b < blocks; ++b) fits = farBase(b) <= (b + 1 < blocks ? farBase(b + 1) : far.size());
+  for (size_t f = 0; fits && f < far.size(); ++f) fits = far(f) >= 0 && size_t(far(f)) < n;
+  for (size_t i = 0; fits && graph && i < n; ++i)
+    for (size_t e = size_t(offset(i)); fits && e < size_t(offset(i + 1)); ++e) {
+      const int v = adj(e);
+      const size_t b = e >> vcg_ext::CompactIndex::kBlockBits;
+      const size_t rank = size_t(v - std::numeric_limits<int16_t>::min());
+      fits = v >= vcg_ext::CompactIndex::kNearMin
+                 ? int64_t(i) + v >= 0 && size_t(int64_t(i) + v) < n
+                 : farBase(b) + rank < (b + 1 < blocks ? farBase(b + 1) : far.size());
+    }
   if (!fits) throw std::invalid_argument("the arrays are not one tile domain's (tile_domain_arrays)");
   Domain d;
   d.points.pos.resize(n);
@@ -125,8 +142,10 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
   d.curvature = Copied<float>(curvature);
   d.reach = Copied<double>(reach);
   d.graph.offset = Copied<int>(offset);
-  d.graph.adj.resize(adj.size());
-  std::copy(adj.data(), adj.data() + adj.size(), d.graph.adj.begin());
+  d.graph.adj.slot.resize(adj.size());
+  std::copy(adj.data(), adj.data() + adj.size(), d.graph.adj.slot.begin());
+  d.graph.adj.farBase.assign(farBase.data(), farBase.data() + farBase.size());
+  d.graph.adj.far = Copied<int>(far);
   d.graph.w = Copied<float>(weight);
   d.metric = vcg_ext::Metric(metric);
   d.curvatureExponent = curvatureExponent;
@@ -220,7 +239,7 @@ inline void BindTiles(nb::module_& m) {
         "progress"_a.none(), "a tile's domain (its points in increasing id order), for poisson_tile");
   m.def("tile_domain_arrays", &TileDomainArrays, "domain"_a, "a tile's domain as arrays and numbers");
   m.def("tile_domain_from_arrays", &TileDomainFromArrays, "pos"_a, "normal"_a, "vert_index"_a, "curvature"_a,
-        "reach"_a, "offset"_a, "adj"_a, "weight"_a, "metric"_a, "curvature_exponent"_a, "adaptivity"_a,
+        "reach"_a, "offset"_a, "adj"_a, "far_base"_a, "far"_a, "weight"_a, "metric"_a, "curvature_exponent"_a, "adaptivity"_a,
         "estimated_normals"_a, "components"_a, "vertex_count"_a, "the tile domain tile_domain_arrays gave");
   m.def("poisson_tile", &PoissonTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a,
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),

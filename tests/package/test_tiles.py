@@ -87,6 +87,23 @@ def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
         _core.tile_domain_from_arrays(**arrays)
 
 
+def test_a_tile_domain_with_far_neighbours_is_the_same_after_its_arrays_and_refused_when_they_disagree():
+    """Past 31744 points some neighbours are stored whole (vcg_ext/compact_index.h): they survive the
+    round trip, and arrays whose far entries do not add up are refused."""
+    p = bumpy_sphere(60000)
+    param = gl.arrays.DomainOptions(geodesics="point-graph").param(len(p))
+    dom = _core.tile_domain(p, None, param, None, None)
+    arrays = {k: (np.array(v) if isinstance(v, np.ndarray) else v) for k, v in _core.tile_domain_arrays(dom).items()}
+    assert 0 < len(arrays["far"]) < 0.05 * len(arrays["adj"])
+    again = _core.tile_domain_from_arrays(**arrays)
+    for k, v in _core.tile_domain_arrays(again).items():
+        assert np.array_equal(v, arrays[k]), k
+    for name, broken in (("far", arrays["far"][:-1]), ("far_base", arrays["far_base"] + 1),
+                         ("far", np.full_like(arrays["far"], len(p)))):
+        with pytest.raises(ValueError, match="not one tile domain"):
+            _core.tile_domain_from_arrays(**{**arrays, name: broken})
+
+
 def test_reads_past_the_memory_budget_are_written_to_the_folder_and_serve_the_next_runs(tmp_path):
     """Nested levels with no memory for reads: the first level writes each tile's read, the second loads
     them all (on any process: the folder is the job's), and both are the whole cloud's."""

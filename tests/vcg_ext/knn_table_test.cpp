@@ -37,7 +37,8 @@ void ExpectExact(const std::vector<P>& pos, int k) {
   ASSERT_EQ(t.size(), pos.size());
   const auto want = BruteForce(pos, k);
   size_t wrong = 0;
-  for (size_t i = 0; i < pos.size(); ++i) wrong += !std::equal(want[i].begin(), want[i].end(), t.Row(i));
+  for (size_t i = 0; i < pos.size(); ++i)
+    for (int c = 0; c < k; ++c) wrong += want[i][size_t(c)] != t.At(i, c);
   EXPECT_EQ(wrong, 0u) << "of " << pos.size() << " rows, k = " << k;
 }
 }  // namespace
@@ -122,7 +123,7 @@ TEST(KnnTable, TiesByIdDoNotDependOnTheNumbering) {
   const auto byId = vcg_ext::KnnTable<float>::Compute(grid, shuffled, k, vcg_ext::Progress(nullptr), &id);
   size_t wrong = 0;
   for (size_t i = 0; i < shuffled.size(); ++i)
-    for (int c = 0; c < k; ++c) wrong += id[size_t(byId.Row(i)[c])] != plain.Row(size_t(perm[i]))[c];
+    for (int c = 0; c < k; ++c) wrong += id[size_t(byId.At(i, c))] != plain.At(size_t(perm[i]), c);
   EXPECT_EQ(wrong, 0u);
 }
 

@@ -44,14 +44,16 @@ TEST(ReallocArray, CopiesAreDeepAndMovesTakeTheBlock) {
 TEST(KnnTable, KeepColumnsKeepsEachRowsNearest) {
   vcg_ext::KnnTable<float> t;
   t.k = 5;
-  const size_t n = 1000;
-  t.idx.resize(n * 5);
-  for (size_t i = 0; i < n * 5; ++i) t.idx[i] = int(i);
+  const size_t n = 20000;
+  t.idx.slot.resize(n * 5);
+  std::vector<vcg_ext::CompactIndex::Far> far;
+  for (size_t i = 0; i < n * 5; ++i) t.idx.Put(i, int(i / 5), int(i), far);  // rows far and near
+  t.idx.Seal(far);
   t.KeepColumns(2);
   ASSERT_EQ(t.size(), n);
   for (size_t i = 0; i < n; ++i) {
-    EXPECT_EQ(t.Row(i)[0], int(i * 5));
-    EXPECT_EQ(t.Row(i)[1], int(i * 5 + 1));
+    EXPECT_EQ(t.At(i, 0), int(i * 5));
+    EXPECT_EQ(t.At(i, 1), int(i * 5 + 1));
   }
 }
 
