@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from . import _core, arrays, point_files, tile_points
+from . import _core, arrays, point_files, stop_signals, tile_points
 from .errors import ClusterJobError
 
 PROG = "geodesic-lod"
@@ -161,21 +161,20 @@ def _run_on_cluster(args, request: dict) -> int:
     else:
         OutputFolder(args.output, expand_inputs(args.input))
     start = time.perf_counter()
-    cluster = None
-    if args.scheduler:
-        try:
-            client = Client(args.scheduler, timeout=f"{SCHEDULER_TIMEOUT}s")
-        except OSError:
-            raise ValueError(f"--scheduler {args.scheduler}: no Dask scheduler answered within {SCHEDULER_TIMEOUT} "
-                             "s") from None
-    else:
-        import os
-        workers = args.workers or max(1, min(4, os.cpu_count() or 1))
-        cluster = distributed.local_cluster(workers, args.worker_memory)
-        client = Client(cluster)
-        args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
-    bar = None
+    cluster = client = bar = None
     try:
+        if args.scheduler:
+            try:
+                client = Client(args.scheduler, timeout=f"{SCHEDULER_TIMEOUT}s")
+            except OSError:
+                raise ValueError(f"--scheduler {args.scheduler}: no Dask scheduler answered within "
+                                 f"{SCHEDULER_TIMEOUT} s") from None
+        else:
+            import os
+            workers = args.workers or max(1, min(4, os.cpu_count() or 1))
+            cluster = distributed.local_cluster(workers, args.worker_memory)
+            client = Client(cluster)
+            args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
         if not args.quiet:
             print(f"{PROG}: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
             from tqdm import tqdm
@@ -205,7 +204,8 @@ def _run_on_cluster(args, request: dict) -> int:
     finally:
         if bar is not None:
             bar.close()
-        client.close()
+        if client is not None:
+            client.close()
         if cluster is not None:
             cluster.close()
     if not args.quiet and copc:
@@ -390,61 +390,49 @@ def _done(args, summary: list, start: float) -> int:
     return 0
 
 
-def _stop_on_sigterm():
-    """SIGTERM stops a run as Ctrl-C does: files being written are removed."""
-    import signal
-
-    def stop(signum, frame):
-        raise KeyboardInterrupt
-    try:
-        signal.signal(signal.SIGTERM, stop)
-    except ValueError:  # not the main thread (main() called from a thread)
-        pass
-
-
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
-    _stop_on_sigterm()
-    bar = None
-    try:
-        start = time.perf_counter()
-        request = _request(args)
-        args.visit_order = args.visit_order or arrays.DEFAULT_VISIT_ORDER  # given or not: checked above
-        _note_a_fraction(args, request)
-        if _on_cluster(args):
-            return _run_on_cluster(args, request)
-        if "copc" in request:
-            bar = _Bar(args.quiet, "sampling")
-            summary = _copc(args, bar if bar.bar is not None else None)
-            bar.close()
-            return _done(args, summary, start)
-        paths = _outputs(args, request)
-        point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
-        source = point_files.read(args.input[0])
-        n = source.points.shape[0]
-        problem = arrays.too_few_points(n, max(arrays.DOMAIN_DEFAULTS.normal_neighbors,
-                                               arrays.DOMAIN_DEFAULTS.graph_neighbors))
-        if problem:
-            raise point_files.PointFileError(source.path, problem)
-        point_files.check_writable(source, paths)
-        bar = _Bar(args.quiet, "sampling")
+    with stop_signals.stopping():
+        bar = None
         try:
-            chosen = _run(args, request, source, bar if bar.bar is not None else None)
-        except ValueError as e:  # the input's data or a value that depends on it
-            raise point_files.PointFileError(source.path, str(e)) from None
-        bar.close()
-        return _done(args, _write_levels(source, paths, chosen), start)
-    except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
-        _fail(str(e))
-    except KeyboardInterrupt:
-        if bar is not None:
+            start = time.perf_counter()
+            request = _request(args)
+            args.visit_order = args.visit_order or arrays.DEFAULT_VISIT_ORDER  # given or not: checked above
+            _note_a_fraction(args, request)
+            if _on_cluster(args):
+                return _run_on_cluster(args, request)
+            if "copc" in request:
+                bar = _Bar(args.quiet, "sampling")
+                summary = _copc(args, bar if bar.bar is not None else None)
+                bar.close()
+                return _done(args, summary, start)
+            paths = _outputs(args, request)
+            point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
+            source = point_files.read(args.input[0])
+            n = source.points.shape[0]
+            problem = arrays.too_few_points(n, max(arrays.DOMAIN_DEFAULTS.normal_neighbors,
+                                                   arrays.DOMAIN_DEFAULTS.graph_neighbors))
+            if problem:
+                raise point_files.PointFileError(source.path, problem)
+            point_files.check_writable(source, paths)
+            bar = _Bar(args.quiet, "sampling")
+            try:
+                chosen = _run(args, request, source, bar if bar.bar is not None else None)
+            except ValueError as e:  # the input's data or a value that depends on it
+                raise point_files.PointFileError(source.path, str(e)) from None
             bar.close()
-        print(f"{PROG}: stopped", file=sys.stderr)
-        return EXIT_STOPPED
-    except MemoryError as e:
-        _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
-    except OSError as e:  # writing: a full disk, a folder without permission
-        _fail(f"{e.filename or args.output}: {e.strerror or e}")
+            return _done(args, _write_levels(source, paths, chosen), start)
+        except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
+            _fail(str(e))
+        except KeyboardInterrupt:
+            if bar is not None:
+                bar.close()
+            print(f"{PROG}: stopped", file=sys.stderr)
+            return EXIT_STOPPED
+        except MemoryError as e:
+            _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
+        except OSError as e:  # writing: a full disk, a folder without permission
+            _fail(f"{e.filename or args.output}: {e.strerror or e}")
 
 
 if __name__ == "__main__":

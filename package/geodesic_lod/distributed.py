@@ -30,7 +30,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, tiles
+from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, stop_signals, tiles
 from . import tile_points as tile_points_
 from .cloud_files import Source
 from .docstrings import documented
@@ -194,24 +194,24 @@ def domain_fields(metric: str, adaptivity: float) -> dict:
 def local_cluster(workers: int, memory_limit="auto"):
     """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
     127.0.0.1 only (its dashboard too), without Dask's MALLOC_TRIM_THRESHOLD_ unless the environment sets it
-    (``task_memory``). Its processes ignore Ctrl-C: a terminal signals them with the caller, which stops the
-    job and closes the cluster."""
-    import signal
-    import threading
+    (``task_memory``). Its processes do not see Ctrl-C: a terminal signals them with the caller, which stops
+    the job and closes the cluster. Ctrl-C while it starts stops it once started."""
     import dask
     from dask.distributed import LocalCluster
     if USERS_TRIM is None:
         os.environ.pop(TRIM, None)  # left by an earlier cluster's nanny: the workers would inherit it
-    main = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None  # inherited by the processes
+    cluster = None
     try:
-        with dask.config.set({f"distributed.nanny.pre-spawn-environ.{TRIM}": USERS_TRIM}):  # None: not set
-            return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                memory_limit=memory_limit, host="127.0.0.1", dashboard_address="127.0.0.1:0",
-                                silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
-    finally:
-        if main:
-            signal.signal(signal.SIGINT, previous)
+        trim = {f"distributed.nanny.pre-spawn-environ.{TRIM}": USERS_TRIM}  # None: not set
+        with stop_signals.held(), stop_signals.children_spared(), dask.config.set(trim):
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   memory_limit=memory_limit, host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                                   silence_logs=logging.CRITICAL)  # a task's error reaches the caller; no log of it
+    except KeyboardInterrupt:
+        if cluster is not None:
+            cluster.close()
+        raise
+    return cluster
 
 
 @documented

@@ -37,12 +37,13 @@ def test_ctrl_c_in_a_terminal_stops_a_cluster_run_with_one_line(tmp_path, output
     try:
         assert started.wait(120), "".join(seen)
         os.killpg(proc.pid, signal.SIGINT)
-        assert proc.wait(60) == 130
+        status = proc.wait(60)
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
     reader.join(30)
     err = "".join(seen)
+    assert status == 130, err
     assert "geodesic-lod: stopped" in err
     assert "Traceback" not in err and "never retrieved" not in err, err
     assert names(out) == ["notes.txt"]

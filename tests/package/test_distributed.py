@@ -403,6 +403,31 @@ def test_our_local_clusters_workers_keep_the_allocators_own_trimming(client):
         assert e["OMP_NUM_THREADS"] == "1"
 
 
+def test_our_local_clusters_workers_leave_ctrl_c_to_their_caller(client):
+    """A terminal's Ctrl-C signals the workers with the command; they leave the stop to the command."""
+    blocked = client.run(lambda: signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, []))
+    assert list(blocked.values()) == [True, True]
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # this process still takes it
+
+
+def worker_processes():
+    import psutil
+    return {p.pid for p in psutil.Process().children(recursive=True) if "spawn_main" in " ".join(p.cmdline())}
+
+
+def test_ctrl_c_while_a_local_cluster_starts_stops_it_once_started():
+    before = worker_processes()  # the module's cluster's
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))  # it takes seconds to start
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        dist.local_cluster(1)
+    timer.join()
+    end = time.monotonic() + 30
+    while worker_processes() - before and time.monotonic() < end:
+        time.sleep(0.1)
+    assert worker_processes() - before == set()
+
+
 def test_a_job_of_one_run_keeps_no_read(cloud, tmp_path):
     """A job of one radius runs on each tile once: its workers keep none of the tiles' reads, in memory or
     on disk, while it runs (they would only take the room of the tasks)."""

@@ -1,0 +1,109 @@
+"""Ctrl-C and SIGTERM stop the command with KeyboardInterrupt, raised only where Python hands it on.
+
+Python's own handler raises it wherever the main thread happens to be. Raised in a gc callback or a
+finaliser (Dask's scheduler keeps one), it is printed and lost, and the run goes on. Raised in code that
+Python runs from a string (the methods a dataclass makes as its module is imported), it reaches the
+caller, but Python then ends the process by SIGINT however cleanly the caller stopped, not with the
+caller's status. In both places the signal is sent again a moment later."""
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+
+RETRY_SECONDS = 0.01
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+_state = {"boundary": None, "signal": signal.SIGINT, "timers": [], "previous_hook": None}
+
+
+def _from_a_string(frame) -> bool:
+    """Whether code run from a string is between `frame` and the frame that took the signals."""
+    inside = False
+    while frame is not None:
+        if frame.f_code is _state["boundary"]:
+            return inside
+        inside = inside or frame.f_code.co_filename == "<string>"
+        frame = frame.f_back
+    return False  # not under the taking frame: Python's own rules
+
+
+def _again(signum: int):
+    timer = threading.Timer(RETRY_SECONDS, os.kill, (os.getpid(), signum))
+    timer.daemon = True
+    _state["timers"].append(timer)
+    timer.start()
+
+
+def _stop(signum, frame):
+    _state["signal"] = signum
+    if _from_a_string(frame):
+        _again(signum)
+        return
+    raise KeyboardInterrupt
+
+
+def _lost(unraisable):
+    if unraisable.exc_type is not None and issubclass(unraisable.exc_type, KeyboardInterrupt):
+        _again(_state["signal"])  # raised in a gc callback or a finaliser: not printed, raised again
+    else:
+        _state["previous_hook"](unraisable)
+
+
+@contextlib.contextmanager
+def stopping():
+    """Within: SIGINT and SIGTERM raise KeyboardInterrupt where the caller's code can catch it. Taken
+    from the main thread only (elsewhere nothing changes); Python's handlers are back on leaving."""
+    if threading.current_thread() is not threading.main_thread() or _state["boundary"] is not None:
+        yield
+        return
+    previous = {s: signal.signal(s, _stop) for s in _SIGNALS}
+    _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook)  # the caller's
+    sys.unraisablehook = _lost
+    try:
+        yield
+    finally:
+        for timer in _state["timers"]:
+            timer.cancel()
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+        sys.unraisablehook = _state["previous_hook"]
+        _state.update(boundary=None, timers=[], previous_hook=None)
+
+
+@contextlib.contextmanager
+def held():
+    """Within (from the main thread): Ctrl-C waits, and is raised as KeyboardInterrupt as the block ends."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught:
+        raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def children_spared():
+    """Within: the processes multiprocessing spawns (Dask's workers) start with SIGINT blocked. A terminal's
+    Ctrl-C signals them with their caller; the caller stops them. Blocked only in the spawning thread, for
+    the moment of the spawn: this process still takes Ctrl-C."""
+    from multiprocessing import util
+    spawn = util.spawnv_passfds
+
+    def spared(*args, **kwargs):
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})  # a child keeps its parent's mask
+        try:
+            return spawn(*args, **kwargs)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    util.spawnv_passfds = spared
+    try:
+        yield
+    finally:
+        util.spawnv_passfds = spawn
