@@ -127,6 +127,27 @@ class CompactIndex {
     });
   }
 
+  /// Whether a sealed index read by the rows of `offset` (row i: slots
+  /// offset[i] .. offset[i + 1]) names only points in [0, n), each far slot
+  /// within its block's entries: arrays from elsewhere are checked before use.
+  /// O(slots).
+  template <class Offsets>
+  bool Consistent(const Offsets& offset, size_t n) const {
+    const size_t blocks = (slot.size() + (size_t(1) << kBlockBits) - 1) >> kBlockBits;
+    auto blockEnd = [&](size_t b) { return b + 1 < blocks ? farBase[b + 1] : far.size(); };
+    bool fits = farBase.size() == blocks && (blocks == 0 || farBase[0] == 0);
+    for (size_t b = 0; fits && b < blocks; ++b) fits = farBase[b] <= blockEnd(b);
+    for (size_t f = 0; fits && f < far.size(); ++f) fits = far[f] >= 0 && size_t(far[f]) < n;
+    for (size_t i = 0; fits && i + 1 < offset.size(); ++i)
+      for (size_t e = size_t(offset[i]); fits && e < size_t(offset[i + 1]); ++e) {
+        const int v = slot[e];
+        fits = v >= kNearMin ? int64_t(i) + v >= 0 && size_t(int64_t(i) + v) < n
+                             : farBase[e >> kBlockBits] + size_t(v - std::numeric_limits<int16_t>::min()) <
+                                   blockEnd(e >> kBlockBits);
+      }
+    return fits;
+  }
+
   /// Rows given whole: row i of `offset` holds targets[offset[i] .. offset[i + 1]).
   template <class Offsets, class Targets>
   static CompactIndex FromRows(const Offsets& offset, const Targets& targets) {

@@ -16,7 +16,6 @@
 #include "knn_table.h"
 #include "parallel.h"
 #include "radix_heap.h"
-#include "realloc_array.h"
 
 namespace vcg_ext {
 

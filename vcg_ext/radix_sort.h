@@ -6,7 +6,7 @@
 // of them for Morton keys of a grid up to 2^10 cells wide), O(n) each; keys
 // still tied there (rare for hashes) are sorted by comparison. At 14M keys
 // about 2x faster than a parallel comparison sort of (key, index) pairs, in
-// 16 bytes a key where that took 32.
+// 16 bytes a key where that took 32 (tied keys take 16 more while sorted).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -55,8 +55,11 @@ void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
 /// one word (the 32 bits from the highest in which some keys differ, above
 /// the index), radix-sorted by those bits, and only the keys still tied there
 /// (rare for hashes) are asked again, to sort them by comparison. 16 bytes a
-/// key at most. The same result for any number of threads: the sorted order
-/// is unique, and each step writes to places that depend on the counts only.
+/// key, and 16 more for each key of a run tied in those bits while the run is
+/// sorted (runs are long where keys share their high bits: flat ground in the
+/// prominence and rims orders). The same result for any number of threads:
+/// the sorted order is unique, and each step writes to places that depend on
+/// the counts only.
 template <class KeyOf>
 std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
   constexpr int kBits = kRadixBits, kWindow = 32;

@@ -111,25 +111,11 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
   bool fits = metric >= int(vcg_ext::Metric::WeightedEq3) && metric <= int(vcg_ext::Metric::Euclidean) &&
               normal.shape(0) == n && vertIndex.size() == n && reach.size() == n &&
               (curvature.size() == n || curvature.size() == 0) && (weight.size() == 0 || weight.size() == adj.size()) &&
-              (!graph || (offset.size() == n + 1 && offset(0) == 0 && size_t(offset(n)) == adj.size()));
+              (graph ? offset.size() == n + 1 && offset(0) == 0 && size_t(offset(n)) == adj.size() : adj.size() == 0);
   for (size_t i = 0; fits && i < n; ++i) fits = vertIndex(i) >= 0 && size_t(vertIndex(i)) < vertexCount;
   for (size_t i = 0; fits && graph && i < n; ++i) fits = offset(i) <= offset(i + 1);
-  // The compact arcs (vcg_ext::CompactIndex): near ones inside the tile, far ones ranked within their block.
-  const size_t blocks = (adj.size() + (size_t(1) << vcg_ext::CompactIndex::kBlockBits) - 1) >>
-                        vcg_ext::CompactIndex::kBlockBits;
-  fits = fits && farBase.size() == blocks && (blocks == 0 || farBase(0) == 0);
-  for (size_t b = 0; fits && b < blocks; ++b) fits = farBase(b) <= (b + 1 < blocks ? farBase(b + 1) : far.size());
-  for (size_t f = 0; fits && f < far.size(); ++f) fits = far(f) >= 0 && size_t(far(f)) < n;
-  for (size_t i = 0; fits && graph && i < n; ++i)
-    for (size_t e = size_t(offset(i)); fits && e < size_t(offset(i + 1)); ++e) {
-      const int v = adj(e);
-      const size_t b = e >> vcg_ext::CompactIndex::kBlockBits;
-      const size_t rank = size_t(v - std::numeric_limits<int16_t>::min());
-      fits = v >= vcg_ext::CompactIndex::kNearMin
-                 ? int64_t(i) + v >= 0 && size_t(int64_t(i) + v) < n
-                 : farBase(b) + rank < (b + 1 < blocks ? farBase(b + 1) : far.size());
-    }
-  if (!fits) throw std::invalid_argument("the arrays are not one tile domain's (tile_domain_arrays)");
+  const char* problem = "the arrays are not one tile domain's (tile_domain_arrays)";
+  if (!fits) throw std::invalid_argument(problem);
   Domain d;
   d.points.pos.resize(n);
   d.normal.resize(n);
@@ -146,6 +132,7 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
   std::copy(adj.data(), adj.data() + adj.size(), d.graph.adj.slot.begin());
   d.graph.adj.farBase.assign(farBase.data(), farBase.data() + farBase.size());
   d.graph.adj.far = Copied<int>(far);
+  if (!d.graph.adj.Consistent(d.graph.offset, n)) throw std::invalid_argument(problem);  // the compact arcs
   d.graph.w = Copied<float>(weight);
   d.metric = vcg_ext::Metric(metric);
   d.curvatureExponent = curvatureExponent;

@@ -53,6 +53,25 @@ TEST(CompactIndex, FromRowsReadsBackEveryRow) {
     for (int e = offset[i]; e < offset[i + 1]; ++e) EXPECT_EQ(c.At(size_t(e), int(i)), targets[size_t(e)]);
 }
 
+// Arrays from elsewhere: a sealed index is consistent; one naming a point
+// outside [0, n), or a far rank beyond its block's entries, is not.
+TEST(CompactIndex, OnlyAnIndexNamingItsOwnPointsIsConsistent) {
+  const std::vector<int> offset = {0, 2, 2, 5};
+  const std::vector<int> targets = {1, 2000000, 0, 1999999, 7};
+  const CompactIndex c = CompactIndex::FromRows(offset, targets);
+  EXPECT_TRUE(c.Consistent(offset, 2000001));
+  EXPECT_FALSE(c.Consistent(offset, 2000000));  // a far entry names point 2000000
+  CompactIndex near = c;
+  near.slot[2] = int16_t(-3);  // row 2, point -1
+  EXPECT_FALSE(near.Consistent(offset, 2000001));
+  CompactIndex rank = c;
+  rank.slot[1] = int16_t(std::numeric_limits<int16_t>::min() + 2);  // the block holds 2 far entries
+  EXPECT_FALSE(rank.Consistent(offset, 2000001));
+  CompactIndex bases = c;
+  bases.farBase.push_back(0);  // one block, two bases
+  EXPECT_FALSE(bases.Consistent(offset, 2000001));
+}
+
 // The domain numbers its points along the cells: its kNN table and graph keep
 // nearly all entries in 2 bytes (about 1% far on scans).
 TEST(CompactIndex, ADomainsGraphTakesAboutTwoBytesAnArc) {
