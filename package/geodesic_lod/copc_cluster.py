@@ -23,7 +23,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, cloud_files, las_files, partition, point_files, tiles
+from . import arrays, cloud_files, las_files, partition, point_files, stop_signals, tiles
 from . import tile_points as tile_points_
 from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
@@ -252,6 +252,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         point_files.write_files([(out, lambda f: assemble(f, first, fmt, merge_stats(
             [p["stats"] for p in parts]), octree, pieces))])
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        with stop_signals.held():  # a second Ctrl-C does not leave the work folder
+            shutil.rmtree(work, ignore_errors=True)
     return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii,
             "spacing": octree.spacing, "seconds": round(time.perf_counter() - start, 3)}

@@ -434,7 +434,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
                        total, run_dir, ticks)
         client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
     except BaseException:
-        out.abort()
+        with stop_signals.held():  # a second Ctrl-C does not leave the run's files
+            out.abort()
         raise
     first = srcs[0]
     index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,

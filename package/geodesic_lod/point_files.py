@@ -15,7 +15,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from . import las_files
+from . import las_files, stop_signals
 from .errors import InputError, PointFileError
 
 COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
@@ -283,8 +283,9 @@ def write_files(items: Sequence[tuple]) -> None:
         for tmp, path in done:
             os.replace(tmp, path)
     except BaseException:
-        for tmp, _ in done:
-            tmp.unlink(missing_ok=True)
+        with stop_signals.held():  # a second Ctrl-C does not leave a partial file
+            for tmp, _ in done:
+                tmp.unlink(missing_ok=True)
         raise
 
 

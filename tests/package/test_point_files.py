@@ -122,3 +122,29 @@ def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
         with pytest.raises(pf.PointFileError, match=problem):
             pf.check_outputs([src], [out])
     assert sorted(os.listdir(tmp_path)) == ["in.laz"]
+
+
+def test_a_second_ctrl_c_while_partial_files_are_removed_leaves_none(tmp_path, monkeypatch):
+    """Stopped while writing the second of three files: the first two are partial; a second Ctrl-C as the
+    first is removed still lets the second go, and the stop is raised after."""
+    import pathlib
+    import signal
+    import time
+
+    def write(f):
+        f.write(b"x")
+
+    def stopped(f):
+        raise KeyboardInterrupt
+    unlink, calls = pathlib.Path.unlink, []
+
+    def unlink_then_ctrl_c(self, missing_ok=False):
+        unlink(self, missing_ok=missing_ok)
+        if not calls:
+            calls.append(self)
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.2)  # the signal lands here
+    monkeypatch.setattr(pathlib.Path, "unlink", unlink_then_ctrl_c)
+    with pytest.raises(KeyboardInterrupt):
+        pf.write_files([(tmp_path / "a.npy", write), (tmp_path / "b.npy", stopped), (tmp_path / "c.npy", write)])
+    assert calls and leftovers(tmp_path) == [] and list(tmp_path.iterdir()) == []
