@@ -1,7 +1,7 @@
 """Ctrl-C and SIGTERM stop the command with KeyboardInterrupt, raised only where Python hands it on.
 
-Python's own handler raises it wherever the main thread happens to be. Raised in a gc callback or a
-finaliser (Dask's scheduler keeps one), it is printed and lost, and the run goes on. Raised in code that
+Python's own handler raises it wherever the main thread happens to be. Raised in a gc callback (Dask's
+scheduler keeps one) or a finaliser, it is printed and lost, and the run goes on. Raised in code that
 Python runs from a string (the methods a dataclass makes as its module is imported), it reaches the
 caller, but Python then ends the process by SIGINT however cleanly the caller stopped, not with the
 caller's status. In both places the signal is sent again a moment later."""
@@ -58,7 +58,8 @@ def stopping():
     if threading.current_thread() is not threading.main_thread() or _state["boundary"] is not None:
         yield
         return
-    previous = {s: signal.signal(s, _stop) for s in _SIGNALS}
+    # A signal the process was started ignoring (a shell's background job) stays ignored.
+    previous = {s: signal.signal(s, _stop) for s in _SIGNALS if signal.getsignal(s) is not signal.SIG_IGN}
     _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook)  # the caller's
     sys.unraisablehook = _lost
     try:
@@ -74,16 +75,19 @@ def stopping():
 
 @contextlib.contextmanager
 def held():
-    """Within (from the main thread): Ctrl-C waits, and is raised as KeyboardInterrupt as the block ends."""
+    """Within (from the main thread): a stop (Ctrl-C, and SIGTERM within ``stopping``) waits, and is raised
+    as KeyboardInterrupt as the block ends."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     caught = []
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    stops = [s for s in _SIGNALS if signal.getsignal(s) in (_stop, signal.default_int_handler)]
+    previous = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in stops}
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
     if caught:
         raise KeyboardInterrupt
 

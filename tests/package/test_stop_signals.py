@@ -32,18 +32,24 @@ CHILD = textwrap.dedent("""
     def in_code_from_a_string():
         exec("os.kill(os.getpid(), signal.SIGINT)\\nspin(0.3)", {"os": os, "signal": signal, "spin": spin})
 
-    def main(where):
+    def ignored():
+        os.kill(os.getpid(), signal.SIGINT)
+
+    def main(where, wait=10):
+        if where is ignored:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)  # as a shell starts a background job
+            wait = 1
         with stop_signals.stopping():
             try:
                 where()
-                spin(10)
+                spin(wait)
                 print("not stopped", flush=True)
                 return 0
             except KeyboardInterrupt:
                 print("stopped", flush=True)
                 return 130
 
-    sys.exit(main({"gc": in_a_gc_callback, "string": in_code_from_a_string}[sys.argv[1]]))
+    sys.exit(main({"gc": in_a_gc_callback, "string": in_code_from_a_string, "ignored": ignored}[sys.argv[1]]))
 """)
 
 
@@ -65,6 +71,11 @@ def test_a_ctrl_c_inside_code_from_a_string_leaves_the_callers_exit_status(tmp_p
     child = run_child(tmp_path, "string")
     assert (child.returncode, child.stdout) == (130, "stopped\n"), child.stderr
     assert child.stderr == ""
+
+
+def test_a_ctrl_c_the_process_was_started_ignoring_stays_ignored(tmp_path):
+    child = run_child(tmp_path, "ignored")
+    assert (child.returncode, child.stdout) == (0, "not stopped\n"), child.stderr
 
 
 def test_python_handlers_are_back_after_stopping():
