@@ -1,6 +1,6 @@
 """python -m geodesic_lod: the command geodesic-lod."""
 import sys
 
-from .cli import main
+from .command import main
 
 sys.exit(main())

@@ -21,11 +21,10 @@ import time
 import numpy as np
 
 from . import _core, arrays, point_files, stop_signals, tile_points
+from .command import PROG, stopped
 from .errors import ClusterJobError
 
-PROG = "geodesic-lod"
 EXIT_BAD_INPUT = 2
-EXIT_STOPPED = 130
 SCHEDULER_TIMEOUT = 10  # seconds
 
 
@@ -427,8 +426,7 @@ def main(argv=None) -> int:
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()
-            print(f"{PROG}: stopped", file=sys.stderr)
-            return EXIT_STOPPED
+            return stopped()
         except MemoryError as e:
             _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
         except OSError as e:  # writing: a full disk, a folder without permission

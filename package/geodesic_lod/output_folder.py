@@ -15,10 +15,11 @@ import re
 from typing import Optional, Sequence
 
 from . import point_files
+from .command import PROG
 from .errors import PointFileError
 
 INDEX = "index.json"
-TOOL = "geodesic-lod"
+TOOL = PROG  # the tool an output folder's index names
 RUN = re.compile(r"run_(\d+)")
 INDEX_PARTIAL = re.compile(r"\.index\.json\.partial-\d+")  # an index being written when a run was stopped
 # What a run writes inside its folder: tiles, level folders, the levels' work folder of sample ids, the

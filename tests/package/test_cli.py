@@ -177,6 +177,30 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, make, problem):
     assert names(tmp_path) == before  # no output, no partial file
 
 
+# Runs python -m geodesic_lod with a Ctrl-C the moment the command starts to import numpy.
+CTRL_C_WHILE_LOADING = """
+import os, runpy, signal, sys
+
+class CtrlC:
+    def find_spec(self, name, path=None, target=None):
+        if name == "numpy":
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), signal.SIGINT)
+        return None
+
+sys.meta_path.insert(0, CtrlC())
+runpy.run_module("geodesic_lod", run_name="__main__", alter_sys=True)
+"""
+
+
+def test_ctrl_c_while_the_command_loads_stops_with_one_line(tmp_path):
+    np.save(tmp_path / "in.npy", bumpy_sphere(2000))
+    r = subprocess.run([sys.executable, "-c", CTRL_C_WHILE_LOADING, str(tmp_path / "in.npy"), "-o",
+                        str(tmp_path / "lod.npy"), "--count", "100"], capture_output=True, text=True, timeout=120)
+    assert (r.returncode, r.stderr) == (130, "geodesic-lod: stopped\n")
+    assert names(tmp_path) == ["in.npy"]
+
+
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
 def test_ctrl_c_and_sigterm_stop_and_write_nothing(tmp_path, sig):
     p = bumpy_sphere(1_500_000)
