@@ -15,10 +15,10 @@ import laspy
 import numpy as np
 from scipy.spatial import cKDTree
 
+import doc_tables
 import radius_search
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quality import plane_fit_error
-from results import publish
 
 FILES = {"urban tile": "lidar/file_with_both_wkt_and_geotiff_vlrs.las", "Autzen": "lidar/autzen_trim.laz"}
 # ASPRS classes, grouped as a user reads them.
@@ -129,13 +129,7 @@ def main():
                     for group, g in by_class(classes, kept, error).items():
                         rows.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(kept),
                                          group=group, seconds=seconds, **g))
-    publish("airborne_classes", over_seeds(rows), [
-        ("tile", lambda r: r["tile"]), ("rate", lambda r: f"{100 * r['rate']:g}%"), ("method", lambda r: r["method"]),
-        ("samples", lambda r: f"{r['samples']:.0f}"), ("class", lambda r: r["group"]),
-        ("points", lambda r: str(r["points"])), ("share of points", lambda r: f"{100 * r['point_share']:.1f}%"),
-        ("kept", lambda r: f"{100 * r['kept']:.1f}%"), ("mean error (m)", lambda r: f"{r['mean_error']:.3f}"),
-        ("lowest-highest (m)", lambda r: f"{r['lowest_error']:.3f}-{r['highest_error']:.3f}"),
-        ("share of error", lambda r: f"{100 * r['error_share']:.1f}%")])
+    doc_tables.publish("airborne_classes", over_seeds(rows))
 
 
 if __name__ == "__main__":

@@ -16,9 +16,9 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
+import doc_tables
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quadric_count import quadric_to_count
-from results import publish
 
 MODELS = {"dragon (100k vertices)": "dragon_100k.ply", "bunny (35k vertices)": "bunny_35k.ply"}
 TUNING_MODELS = {"dragon (437k vertices, tuning)": "dragon_437k.ply"}  # chose the default placement
@@ -125,33 +125,7 @@ def main():
                 rows.append(dict(model=model, rate=rate, method=method, vertices=len(vertices), mean=mean, max=mx,
                                  non_manifold_edges=nm, boundary_edges=boundary, seconds=seconds))
                 print(rows[-1], file=sys.stderr)
-    publish(out, rows, [
-        ("model", lambda r: r["model"]), ("rate", lambda r: f"{r['rate']:.0%}"), ("method", lambda r: r["method"]),
-        ("vertices", lambda r: str(r["vertices"])), ("mean (‰ diag)", lambda r: f"{r['mean']:.3f}"),
-        ("max (‰ diag)", lambda r: f"{r['max']:.2f}"), ("non-manifold edges", lambda r: str(r["non_manifold_edges"])),
-        ("boundary edges", lambda r: str(r["boundary_edges"])), ("time", lambda r: f"{r['seconds']:.1f} s")])
-    if not args.tune:
-        print_gap(rows)
-
-
-def print_gap(rows):
-    """Our gap to quadric edge collapse as ratios of the mean distance, split into three factors."""
-    mean = {(r["model"], r["rate"], r["method"]): r["mean"] for r in rows}
-    ours, kept = "ours, Poisson LOD, optimized (default)", "ours, Poisson LOD, input vertices"
-    fitted = "ours, Poisson LOD, vertices fitted per region"
-    qec_, qec_kept = "MeshLab quadric edge collapse (defaults)", "quadric edge collapse on input vertices"
-    theirs_ours = "its vertices, our geodesic Delaunay"
-    columns = ["ours (default) / quadric collapse", "pyramid level / quadric collapse",
-               "ours on input vertices / quadric collapse", "vertex choice", "triangulation",
-               "input vertices only", "fitted per region / on input vertices", "optimized / fitted per region"]
-    print("| model | rate | " + " | ".join(columns) + " |")
-    print("|" + "---|" * (len(columns) + 2))
-    for model, rate in dict.fromkeys((r["model"], r["rate"]) for r in rows if r["rate"] < 1):
-        m = lambda method: mean[(model, rate, method)]
-        ratios = [m(ours) / m(qec_), m("ours, LOD pyramid of every rate, optimized (default)") / m(qec_),
-                  m(kept) / m(qec_), m(kept) / m(theirs_ours), m(theirs_ours) / m(qec_kept),
-                  m(qec_kept) / m(qec_), m(fitted) / m(kept), m(ours) / m(fitted)]
-        print(f"| {model} | {rate:.0%} | " + " | ".join(f"{x:.2f}" for x in ratios) + " |")
+    doc_tables.publish(out, rows)
 
 
 if __name__ == "__main__":
