@@ -277,6 +277,8 @@ class HeightFieldLod {
 
     /// Gives each finite face of [begin, end) a new Record and hands `points`
     /// to the faces holding them; points on a sample in x, y are never eligible.
+    /// A point on an edge of those faces may be found in the face beyond it,
+    /// whose record then takes it and is examined again.
     void Distribute(const std::vector<int>& points, const std::vector<Face>& faces) {
       std::vector<int> fresh;
       for (Face f : faces) {
@@ -284,7 +286,8 @@ class HeightFieldLod {
         f->info() = NewRecord(f);
         fresh.push_back(f->info());
       }
-      Face hint = faces_[size_t(fresh.front())];
+      const int firstFresh = fresh.front();
+      Face hint = faces_[size_t(firstFresh)];
       for (int i : points) {
         DT::Locate_type lt;
         int li;
@@ -296,8 +299,11 @@ class HeightFieldLod {
         if (dt_.is_infinite(f)) f = f->neighbor(f->index(dt_.infinite_vertex()));  // on a hull edge
         owner_[size_t(i)] = f->info();
         records_[size_t(f->info())].points.push_back(i);
+        if (f->info() < firstFresh) fresh.push_back(f->info());
         hint = f;
       }
+      std::sort(fresh.begin(), fresh.end());
+      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
       for (int id : fresh) Recompute(id);
     }
 
