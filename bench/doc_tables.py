@@ -19,6 +19,7 @@ matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
+import results  # noqa: E402
 from results import DOCS  # noqa: E402
 
 IMAGES = "images"
@@ -226,7 +227,7 @@ def refresh(docs=DOCS):
 
 def publish(name, rows, docs=DOCS):
     """Saves a benchmark's rows (docs/<name>.json), rewrites the pages, prints the tables of its page."""
-    (docs / f"{name}.json").write_text(json.dumps(rows, indent=1) + "\n")
+    results.save(name, rows, docs)
     page = next(p for p in ("height_field.md", "mesh_lod.md", "airborne_classes.md") if name.startswith(p[:-3]))
     for table_name, text in tables(docs).get(page, {}).items():
         print(f"\n{page}, {table_name}:\n{text}")

@@ -6,9 +6,14 @@ import pathlib
 DOCS = pathlib.Path(__file__).resolve().parents[1] / "docs"
 
 
+def save(name, rows, docs=DOCS):
+    """Writes <docs>/<name>.json."""
+    (docs / f"{name}.json").write_text(json.dumps(rows, indent=1) + "\n")
+
+
 def publish(name, rows, columns):
     """Writes docs/<name>.json and prints a table; columns: (heading, row -> cell text) pairs."""
-    (DOCS / f"{name}.json").write_text(json.dumps(rows, indent=1) + "\n")
+    save(name, rows)
     print("| " + " | ".join(h for h, _ in columns) + " |")
     print("|" + "---|" * len(columns))
     for r in rows:
