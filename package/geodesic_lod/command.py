@@ -1,5 +1,5 @@
 """The command geodesic-lod's entry point (the console script and python -m geodesic_lod). It loads the
-command (numpy, the core, the file readers: about half a second) with a stop held, so Ctrl-C while they
+command (numpy, the core, the file readers: a few tenths of a second) with a stop held, so Ctrl-C while they
 load stops it as at any other moment, with one line and status 130, not a traceback from inside an
 import. Only the standard library is loaded before."""
 from __future__ import annotations
