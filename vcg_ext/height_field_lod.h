@@ -275,28 +275,46 @@ class HeightFieldLod {
       return o;
     }
 
-    /// Gives each finite face of [begin, end) a new Record and hands `points`
-    /// to the faces holding them; points on a sample in x, y are never eligible.
-    /// A point on an edge of those faces may be found in the face beyond it,
-    /// whose record then takes it and is examined again.
-    void Distribute(const std::vector<int>& points, const std::vector<Face>& faces) {
+    /// Gives each finite face of `faces` a new Record and hands `points` to the
+    /// faces holding them; points on a sample in x, y are never eligible.
+    /// With `center` (the vertex just inserted, `faces` its star in order
+    /// around it) the points are those of the faces it replaced, all inside its
+    /// star, and each is found by walking the star's wedges. Otherwise a point
+    /// on an edge of those faces may be found in the face beyond it, whose
+    /// record then takes it and is examined again.
+    void Distribute(const std::vector<int>& points, const std::vector<Face>& faces,
+                    DT::Vertex_handle center = DT::Vertex_handle()) {
       std::vector<int> fresh;
+      bool fan = center != DT::Vertex_handle();
       for (Face f : faces) {
-        if (dt_.is_infinite(f)) continue;
+        if (dt_.is_infinite(f)) {
+          fan = false;  // a sample on the hull: its star is not a closed fan
+          continue;
+        }
         f->info() = NewRecord(f);
         fresh.push_back(f->info());
       }
       const int firstFresh = fresh.front();
       Face hint = faces_[size_t(firstFresh)];
+      size_t wedge = 0;
       for (int i : points) {
-        DT::Locate_type lt;
-        int li;
-        Face f = dt_.locate(Pt(i), lt, li, hint);
-        if (lt == DT::VERTEX) {  // the same x, y as a sample
+        const Point q = Pt(i);
+        Face f;
+        bool onSample = false;
+        if (fan && FindWedge(faces, center, q, wedge)) {
+          f = faces[wedge];
+          for (int e = 0; e < 3; ++e) onSample |= f->vertex(e)->point() == q;
+        } else {
+          DT::Locate_type lt;
+          int li;
+          f = dt_.locate(q, lt, li, hint);
+          onSample = lt == DT::VERTEX;
+          if (!onSample && dt_.is_infinite(f)) f = f->neighbor(f->index(dt_.infinite_vertex()));  // on a hull edge
+        }
+        if (onSample) {  // the same x, y as a sample
           eligibleAt_[size_t(i)] = kNever;
           continue;
         }
-        if (dt_.is_infinite(f)) f = f->neighbor(f->index(dt_.infinite_vertex()));  // on a hull edge
         owner_[size_t(i)] = f->info();
         records_[size_t(f->info())].points.push_back(i);
         if (f->info() < firstFresh) fresh.push_back(f->info());
@@ -305,6 +323,24 @@ class HeightFieldLod {
       std::sort(fresh.begin(), fresh.end());
       fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
       for (int id : fresh) Recompute(id);
+    }
+
+    /// The wedge of `star` (the faces around v, counter-clockwise) holding q,
+    /// a point of the star, walking from `wedge`: face j holds q when q is
+    /// neither clockwise of its first edge from v nor counter-clockwise of its
+    /// second. False if the walk goes once round without finding it.
+    static bool FindWedge(const std::vector<Face>& star, DT::Vertex_handle v, const Point& q, size_t& wedge) {
+      for (size_t step = 0; step < star.size(); ++step) {
+        const Face f = star[wedge];
+        const int iv = f->index(v);
+        if (CGAL::orientation(v->point(), f->vertex(f->ccw(iv))->point(), q) == CGAL::RIGHT_TURN)
+          wedge = (wedge + star.size() - 1) % star.size();  // clockwise of the face: go clockwise
+        else if (CGAL::orientation(v->point(), f->vertex(f->cw(iv))->point(), q) == CGAL::LEFT_TURN)
+          wedge = (wedge + 1) % star.size();
+        else
+          return true;
+      }
+      return false;
     }
 
     int NewRecord(Face f) {
@@ -369,7 +405,7 @@ class HeightFieldLod {
       std::vector<Face> star;
       auto fc = dt_.incident_faces(v), done = fc;
       do star.push_back(fc); while (++fc != done);
-      Distribute(points, star);
+      Distribute(points, star, v);
     }
 
     const size_t n_;
