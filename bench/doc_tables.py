@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
 import results  # noqa: E402
+import separation_rule  # noqa: E402
 from results import DOCS  # noqa: E402
 
 IMAGES = "images"
@@ -66,13 +67,35 @@ def table(rows, columns, where=lambda r: True):
     return markdown([h for h, _ in columns], [[cell(r) for _, cell in columns] for r in rows if where(r)])
 
 
-def by_rate(rows, cell):
-    """One line per method, one column per rate: the tuning tables."""
-    rates = sorted({r["rate"] for r in rows})
-    methods = list(dict.fromkeys(r["method"] for r in rows))
-    at = {(r["method"], r["rate"]): r for r in rows}
-    return markdown(["method"] + [f"{100 * q:g}% RMS / max (m)" for q in rates],
-                    [[m] + [cell(at[(m, q)]) if (m, q) in at else "-" for q in rates] for m in methods])
+HEIGHT_FIELD_OURS = "ours, height-field LOD (defaults)"
+
+
+def against_greedy(rows, ours=HEIGHT_FIELD_OURS, greedy=separation_rule.GREEDY):
+    """One line per model and rate: our height-field LOD's RMS, largest error and time over greedy
+    insertion's, the goal's measure."""
+    at = {(r["model"], r["rate"], r["method"]): r for r in rows}
+    lines = []
+    for model, rate in dict.fromkeys((r["model"], r["rate"]) for r in rows):
+        a, b = at.get((model, rate, ours)), at.get((model, rate, greedy))
+        if a and b:
+            lines.append([model, f"{100 * rate:g}%", f"{a['rms'] / b['rms']:.3f}", f"{a['max'] / b['max']:.2f}",
+                          f"{a['seconds'] / b['seconds']:.1f}"])
+    return markdown(["model", "rate", "RMS ratio", "largest-error ratio", "time ratio"], lines)
+
+
+def separation_tuning(rows):
+    """One line per swept separation, one column per rate: its worst ratios to greedy insertion over the
+    tuning windows, and which is the default by bench/separation_rule.py."""
+    ratios = separation_rule.worst_ratios(rows)
+    rates = sorted({q for by_rate in ratios.values() for q in by_rate})
+    default = separation_rule.chosen(rows)
+    lines = []
+    for method, by_rate in ratios.items():
+        m = separation_rule.SWEPT.search(method)
+        is_default = m is not None and m["space"] == "xyz" and float(m["separation"]) == default
+        lines.append([method] + [f"{by_rate[q][0]:.3f} / {by_rate[q][1]:.2f}" if q in by_rate else "-"
+                                 for q in rates] + ["default" if is_default else ""])
+    return markdown(["method"] + [f"{100 * q:g}% RMS / max" for q in rates] + ["chosen"], lines)
 
 
 def gap(rows):
@@ -165,9 +188,10 @@ def tables(docs):
     """{page: {table name: markdown}} from the saved rows there are."""
     out = {}
     if (rows := _rows("height_field", docs)) is not None:
-        out["height_field.md"] = {m: table(rows, HEIGHT_FIELD, lambda r, m=m: r["model"] == m) for m in _models(rows)}
+        out["height_field.md"] = {"against greedy insertion": against_greedy(rows),
+                                  **{m: table(rows, HEIGHT_FIELD, lambda r, m=m: r["model"] == m) for m in _models(rows)}}
     if (rows := _rows("height_field_tuning", docs)) is not None:
-        out.setdefault("height_field.md", {})["tuning"] = by_rate(rows, lambda r: f"{r['rms']:.2f} / {r['max']:.0f}")
+        out.setdefault("height_field.md", {})["tuning"] = separation_tuning(rows)
     if (rows := _rows("mesh_lod", docs)) is not None:
         out["mesh_lod.md"] = {"gap": gap(rows), **{m: table(rows, MESH, lambda r, m=m: r["model"] == m)
                                                    for m in _models(rows)}}

@@ -49,9 +49,9 @@ class HeightFieldLod {
     /// beta: the first k samples are beta sqrt(A / k) apart in x, y (A: the area
     /// of the hull); 0 is plain greedy insertion. Below 1/sqrt(pi) the disks
     /// cannot cover the hull, so the constraint never stops the sampler. The
-    /// default is the largest whose LODs are no worse in RMS than plain greedy
-    /// insertion's on the tuning crop (docs/height_field.md).
-    double separation = 0.2;
+    /// default keeps the largest error lowest against greedy insertion's on the
+    /// tuning windows, the RMS within 1% of its (bench/separation_rule.py).
+    double separation = 0.1;
     /// The disks in x, y, z (a cliff's top and foot may both be samples); else in x, y.
     bool inHeight = true;
   };
