@@ -146,9 +146,8 @@ class HeightFieldLod {
 
     Result Run(Progress& progress) {
       Result r;
-      const std::vector<int> hull = Hull();
+      const auto [hull, distinct] = HullAndDistinct();
       r.hullSize = hull.size();
-      const size_t distinct = DistinctXY();
       if (p_.sampleNum < hull.size() || p_.sampleNum > distinct)
         throw InputError(Field::SampleNum, "must be between the " + std::to_string(hull.size()) +
                                                " points on the hull in x, y and the " + std::to_string(distinct) +
@@ -238,17 +237,37 @@ class HeightFieldLod {
       return best < r2 ? best : std::numeric_limits<double>::infinity();
     }
 
-    /// The hull's corners in x, y, counter-clockwise (points on its edges left out).
-    std::vector<int> Hull() const {
-      std::vector<int> idx(n_), out;
-      for (size_t i = 0; i < n_; ++i) idx[i] = int(i);
-      std::vector<Point> pts(n_);
-      for (size_t i = 0; i < n_; ++i) pts[i] = Pt(int(i));
+    /// The hull's corners in x, y, counter-clockwise (points on its edges left
+    /// out), and the number of distinct points in x, y. One sort by x, y gives
+    /// both: the count, and per x its lowest and highest point, the only
+    /// candidates for corners (the smallest index of equal ones).
+    std::pair<std::vector<int>, size_t> HullAndDistinct() const {
+      struct XY {
+        double x, y;
+        int i;
+        bool operator<(const XY& o) const { return x != o.x ? x < o.x : y != o.y ? y < o.y : i < o.i; }
+      };
+      std::vector<XY> xy(n_);
+      for (size_t i = 0; i < n_; ++i) xy[i] = {x_[i], y_[i], int(i)};
+      std::sort(xy.begin(), xy.end());
+      size_t distinct = 0;
+      std::vector<int> candidates;
+      for (size_t a = 0, b; a < n_; a = b) {  // [a, b): one x
+        size_t top = a;
+        for (b = a; b < n_ && xy[b].x == xy[a].x; ++b) {
+          if (b == a || xy[b].y != xy[b - 1].y) ++distinct, top = b;
+        }
+        candidates.push_back(xy[a].i);
+        if (top != a) candidates.push_back(xy[top].i);
+      }
+      std::vector<Point> pts;
+      std::vector<int> local(candidates.size()), out;
+      for (size_t c = 0; c < candidates.size(); ++c) pts.push_back(Pt(candidates[c])), local[c] = int(c);
       using Traits = CGAL::Convex_hull_traits_adapter_2<K, CGAL::Pointer_property_map<Point>::type>;
-      CGAL::convex_hull_2(idx.begin(), idx.end(), std::back_inserter(out),
-                          Traits(CGAL::make_property_map(pts)));
+      CGAL::convex_hull_2(local.begin(), local.end(), std::back_inserter(out), Traits(CGAL::make_property_map(pts)));
+      for (int& c : out) c = candidates[size_t(c)];
       if (out.size() < 3) throw InputError(Field::Points, "holds only points on one line in x, y (no area to triangulate)");
-      return out;
+      return {out, distinct};
     }
 
     double Area(const std::vector<int>& hull) const {
@@ -258,13 +277,6 @@ class HeightFieldLod {
         a += x_[u] * y_[v] - x_[v] * y_[u];
       }
       return std::abs(a) / 2;
-    }
-
-    size_t DistinctXY() const {
-      std::vector<std::pair<double, double>> xy(n_);
-      for (size_t i = 0; i < n_; ++i) xy[i] = {x_[i], y_[i]};
-      std::sort(xy.begin(), xy.end());
-      return size_t(std::unique(xy.begin(), xy.end()) - xy.begin());
     }
 
     std::vector<int> Others() const {

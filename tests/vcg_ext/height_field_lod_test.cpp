@@ -157,6 +157,32 @@ TEST(HeightFieldLod, SameResultForTheSameInput) {
   EXPECT_EQ(a.triangles, b.triangles);
 }
 
+TEST(HeightFieldLod, HullCornersHoldEveryPointAndAreTheFirstOfEqualPoints) {
+  // Scattered points, many on one x (x to a tenth), each repeated later with another height.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> xyz;
+  while (xyz.size() < 3 * 400) {
+    const double x = std::round(500 * u(rng)) / 10, y = 50 * u(rng);
+    if (x * x + y * y <= 2500) xyz.insert(xyz.end(), {x, y, u(rng)});
+  }
+  const size_t n = xyz.size() / 3;
+  for (size_t i = 0; i < n; ++i) xyz.insert(xyz.end(), {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] + 5});
+  const auto r = Lod(xyz, n, 0.1);
+  ASSERT_GT(r.hullSize, 8u);
+  auto cross = [&](int a, int b, size_t i) {
+    return (xyz[3 * b] - xyz[3 * a]) * (xyz[3 * i + 1] - xyz[3 * a + 1]) -
+           (xyz[3 * b + 1] - xyz[3 * a + 1]) * (xyz[3 * i] - xyz[3 * a]);
+  };
+  for (size_t c = 0; c < r.hullSize; ++c) {
+    const int a = r.samples[c], b = r.samples[(c + 1) % r.hullSize], next = r.samples[(c + 2) % r.hullSize];
+    EXPECT_LT(size_t(a), n);  // of equal points, the first
+    EXPECT_GT(cross(a, b, size_t(next)), 0);  // a corner, not a point on an edge
+    for (size_t i = 0; i < 2 * n; ++i) EXPECT_GE(cross(a, b, i), 0) << "point " << i << " outside edge " << c;
+  }
+  EXPECT_THROW(Lod(xyz, n + 1, 0.1), vcg_ext::InputError);  // n distinct places in x, y
+}
+
 TEST(HeightFieldLod, PointsOnOneSampleInXYCountOnce) {
   // Two returns per place (a canopy over the ground): only one of each pair can be a sample.
   auto xyz = Terrain(12);
