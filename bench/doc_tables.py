@@ -184,21 +184,27 @@ def _models(rows, key="model"):
     return list(dict.fromkeys(r[key] for r in rows))
 
 
+def _per_model(rows, columns):
+    return {m: table(rows, columns, lambda r, m=m: r["model"] == m) for m in _models(rows)}
+
+
+# Each benchmark's saved rows (docs/<name>.json): its page, and its tables there by name.
+SAVED = {
+    "height_field": ("height_field.md", lambda rows: {"against greedy insertion": against_greedy(rows),
+                                                      **_per_model(rows, HEIGHT_FIELD)}),
+    "height_field_tuning": ("height_field.md", lambda rows: {"tuning": separation_tuning(rows)}),
+    "mesh_lod": ("mesh_lod.md", lambda rows: {"gap": gap(rows), **_per_model(rows, MESH)}),
+    "mesh_lod_tuning": ("mesh_lod.md", lambda rows: {"tuning": table(rows, MESH)}),
+    "airborne_classes": ("airborne_classes.md", lambda rows: {"results": table(rows, AIRBORNE)}),
+}
+
+
 def tables(docs):
     """{page: {table name: markdown}} from the saved rows there are."""
     out = {}
-    if (rows := _rows("height_field", docs)) is not None:
-        out["height_field.md"] = {"against greedy insertion": against_greedy(rows),
-                                  **{m: table(rows, HEIGHT_FIELD, lambda r, m=m: r["model"] == m) for m in _models(rows)}}
-    if (rows := _rows("height_field_tuning", docs)) is not None:
-        out.setdefault("height_field.md", {})["tuning"] = separation_tuning(rows)
-    if (rows := _rows("mesh_lod", docs)) is not None:
-        out["mesh_lod.md"] = {"gap": gap(rows), **{m: table(rows, MESH, lambda r, m=m: r["model"] == m)
-                                                   for m in _models(rows)}}
-    if (rows := _rows("mesh_lod_tuning", docs)) is not None:
-        out.setdefault("mesh_lod.md", {})["tuning"] = table(rows, MESH)
-    if (rows := _rows("airborne_classes", docs)) is not None:
-        out["airborne_classes.md"] = {"results": table(rows, AIRBORNE)}
+    for name, (page, make) in SAVED.items():
+        if (rows := _rows(name, docs)) is not None:
+            out.setdefault(page, {}).update(make(rows))
     return out
 
 
@@ -252,7 +258,7 @@ def refresh(docs=DOCS):
 def publish(name, rows, docs=DOCS):
     """Saves a benchmark's rows (docs/<name>.json), rewrites the pages, prints the tables of its page."""
     results.save(name, rows, docs)
-    page = next(p for p in ("height_field.md", "mesh_lod.md", "airborne_classes.md") if name.startswith(p[:-3]))
+    page = SAVED[name][0]
     for table_name, text in tables(docs).get(page, {}).items():
         print(f"\n{page}, {table_name}:\n{text}")
     refresh(docs)
