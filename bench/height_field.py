@@ -16,6 +16,7 @@ from scipy.spatial import Delaunay
 
 import doc_tables
 import radius_search
+import separation_rule
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quadric_count import quadric_to_count
 
@@ -174,11 +175,11 @@ def ours_poisson(grid, n, pymeshlab):
 
 
 METHODS = {
-    "ours, height-field LOD (defaults)": ours_height_field,
+    doc_tables.HEIGHT_FIELD_OURS: ours_height_field,
     "ours, Poisson LOD (defaults)": ours_poisson,
     "MeshLab point cloud simplification": meshlab_simplify,
     "uniform random": uniform_random,
-    "greedy insertion (pydelatin, its own TIN)": greedy_insertion,
+    separation_rule.GREEDY: greedy_insertion,
     "MeshLab quadric edge collapse (defaults)": quadric_edge_collapse,
     "MeshLab quadric edge collapse (boundary kept)": lambda grid, n, pymeshlab: quadric_edge_collapse(
         grid, n, pymeshlab, preserveboundary=True),
@@ -198,10 +199,10 @@ def main():
     models = {m: s for m, s in MODELS.items() if ("tuning" in m) == args.tune}
     methods, name = METHODS, "height_field"
     if args.tune:
-        methods = {f"ours, height-field LOD, separation {b:g} in {space}": (
+        methods = {separation_rule.swept(b, space): (
             lambda grid, n, _, b=b, space=space: ours_height_field(grid, n, _, separation=b, separation_in=space))
             for space in ("xyz", "xy") for b in SEPARATIONS}
-        methods["greedy insertion (pydelatin, its own TIN)"] = greedy_insertion
+        methods[separation_rule.GREEDY] = greedy_insertion
         name = "height_field_tuning"
     rows = []
     for model, source in models.items():

@@ -12,6 +12,11 @@ RMS_SLACK = 1.01
 SWEPT = re.compile(r"separation (?P<separation>[0-9.]+) in (?P<space>xyz|xy)$")
 
 
+def swept(separation, space):
+    """The tuning rows' name of our height-field LOD at a separation, its disks in `space` (xyz or xy)."""
+    return f"ours, height-field LOD, separation {separation:g} in {space}"
+
+
 def worst_ratios(rows):
     """{method: {rate: (RMS ratio, largest-error ratio)}}: the worst over the windows of each against
     greedy insertion on the same window at the same rate."""

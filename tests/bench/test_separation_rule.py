@@ -17,7 +17,7 @@ def rows_of(table):
 
 
 def swept(b, space="xyz"):
-    return f"ours, height-field LOD, separation {b:g} in {space}"
+    return separation_rule.swept(b, space)
 
 
 def test_the_default_separation_is_the_one_the_committed_tuning_rows_choose():
