@@ -17,6 +17,7 @@ from scipy.spatial import Delaunay
 import doc_tables
 import radius_search
 import separation_rule
+from grid_tin_error import grid_tin_error
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quadric_count import quadric_to_count
 
@@ -64,41 +65,11 @@ class Grid:
                         (self.points[0, 1] - self.points[size * (size - 1), 1]) / (size - 1))
 
 
-def vertical_error(grid, vertices, triangles, chunk=1 << 20):
+def vertical_error(grid, vertices, triangles):
     """|z - LOD(x, y)| at every grid node, the LOD being triangles over vertices (seen from above), and
-    the number of nodes no triangle covers: each triangle against the nodes of its box, a chunk of
-    (triangle, node) pairs at a time."""
-    lod = np.full(grid.size * grid.size, np.nan)
-    x0, y_top = grid.points[0, 0], grid.points[0, 1]
-    dx, dy = grid.spacing
-    a, b, c = (np.asarray(vertices, float)[np.asarray(triangles)[:, v]] for v in range(3))
-    lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
-    # the nodes of the triangle's box (a thousandth of a cell of slack for the float32 spacing), clipped
-    c0 = np.clip(np.ceil((lo[:, 0] - x0) / dx - 1e-3), 0, grid.size).astype(np.int64)
-    c1 = np.clip(np.floor((hi[:, 0] - x0) / dx + 1e-3), -1, grid.size - 1).astype(np.int64)
-    r0 = np.clip(np.ceil((y_top - hi[:, 1]) / dy - 1e-3), 0, grid.size).astype(np.int64)
-    r1 = np.clip(np.floor((y_top - lo[:, 1]) / dy + 1e-3), -1, grid.size - 1).astype(np.int64)
-    width, height = np.maximum(c1 - c0 + 1, 0), np.maximum(r1 - r0 + 1, 0)
-    pairs = width * height
-    ends = np.cumsum(pairs)
-    start = 0
-    while start < len(triangles):  # triangles [start, stop) hold about `chunk` pairs
-        stop = max(start + 1, int(np.searchsorted(ends, ends[start] - pairs[start] + chunk, "right")))
-        t = np.repeat(np.arange(start, stop), pairs[start:stop])
-        local = np.arange(len(t)) - np.repeat(ends[start:stop] - pairs[start:stop] - (ends[start] - pairs[start]),
-                                              pairs[start:stop])
-        nodes = (r0[t] + local // width[t]) * grid.size + c0[t] + local % width[t]
-        p, ta, tb, tc = grid.points[nodes], a[t], b[t], c[t]
-        det = (tb[:, 0] - ta[:, 0]) * (tc[:, 1] - ta[:, 1]) - (tc[:, 0] - ta[:, 0]) * (tb[:, 1] - ta[:, 1])
-        with np.errstate(divide="ignore", invalid="ignore"):  # flat triangles cover nothing
-            wb = ((p[:, 0] - ta[:, 0]) * (tc[:, 1] - ta[:, 1]) - (tc[:, 0] - ta[:, 0]) * (p[:, 1] - ta[:, 1])) / det
-            wc = ((tb[:, 0] - ta[:, 0]) * (p[:, 1] - ta[:, 1]) - (p[:, 0] - ta[:, 0]) * (tb[:, 1] - ta[:, 1])) / det
-        wa = 1 - wb - wc
-        inside = (det != 0) & (wa >= -1e-6) & (wb >= -1e-6) & (wc >= -1e-6)
-        lod[nodes[inside]] = (wa * ta[:, 2] + wb * tb[:, 2] + wc * tc[:, 2])[inside]
-        start = stop
-    err = np.abs(grid.points[:, 2] - lod)
-    return err, int(np.isnan(lod).sum())
+    the number of nodes no triangle covers."""
+    return grid_tin_error(grid.points, grid.size, grid.points[0, :2], (grid.spacing[0], -grid.spacing[1]),
+                          vertices, triangles)
 
 
 def delaunay_tin(grid, idx):

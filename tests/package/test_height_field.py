@@ -1,9 +1,15 @@
 """geodesic_lod/height_field.py: height_field_lod on numpy arrays (vcg_ext/height_field_lod.h beneath)."""
+import pathlib
+import sys
+
 import numpy as np
 import pytest
 from scipy.spatial import Delaunay
 
 import geodesic_lod as gl
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "bench"))
+from grid_tin_error import grid_tin_error  # noqa: E402  the height-field benchmark's measure
 
 
 @pytest.fixture(scope="module")
@@ -25,28 +31,6 @@ def tin_error(points, idx):
     return np.abs(points[:, 2] - (w * points[idx][tri.simplices[simplex], 2]).sum(1))
 
 
-def grid_errors(points, side, spacing, idx, triangles):
-    """|z - TIN(x, y)| at every node of a side x side grid (node r * side + c at x = c * spacing, y = r *
-    spacing), the TIN being `triangles` over points[idx] (any triangulation): each triangle against the
-    nodes of its box."""
-    a, b, c = (points[idx][triangles[:, v]] for v in range(3))
-    lo = np.ceil(np.minimum(np.minimum(a, b), c)[:, :2] / spacing - 1e-9).astype(int)
-    hi = np.floor(np.maximum(np.maximum(a, b), c)[:, :2] / spacing + 1e-9).astype(int)
-    width, height = hi[:, 0] - lo[:, 0] + 1, hi[:, 1] - lo[:, 1] + 1
-    t = np.repeat(np.arange(len(triangles)), width * height)  # a (triangle, node of its box) pair each
-    local = np.arange(len(t)) - np.repeat(np.cumsum(width * height) - width * height, width * height)
-    nodes = (lo[t, 1] + local // width[t]) * side + lo[t, 0] + local % width[t]
-    a, b, c, p = a[t], b[t], c[t], points[nodes]
-    det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
-    wb = ((p[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (p[:, 1] - a[:, 1])) / det
-    wc = ((b[:, 0] - a[:, 0]) * (p[:, 1] - a[:, 1]) - (p[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])) / det
-    inside = (wb >= -1e-9) & (wc >= -1e-9) & (1 - wb - wc >= -1e-9)
-    out = np.full(len(points), np.nan)
-    out[nodes[inside]] = np.abs(p[:, 2] - ((1 - wb - wc) * a[:, 2] + wb * b[:, 2] + wc * c[:, 2]))[inside]
-    assert not np.isnan(out).any()
-    return out
-
-
 def test_without_disks_each_sample_is_the_point_farthest_from_the_tin_before_it():
     # A grid as a DEM is: many points lie on the TIN's edges at some step, and heights in whole metres tie.
     y, x = np.mgrid[0:60, 0:60]
@@ -54,7 +38,8 @@ def test_without_disks_each_sample_is_the_point_farthest_from_the_tin_before_it(
     dem = np.column_stack([x.ravel() * 30.0, y.ravel() * 30.0, z.ravel()])
     lod = gl.height_field_lod(dem, count=900, separation=0)
     for k in range(lod.hull_size, 900, 5):
-        error = grid_errors(dem, 60, 30.0, lod.indices[:k], lod.tin(k))
+        error, uncovered = grid_tin_error(dem, 60, (0, 0), (30.0, 30.0), dem[lod.indices[:k]], lod.tin(k))
+        assert uncovered == 0
         error[lod.indices[:k]] = -1
         assert error[lod.indices[k]] == pytest.approx(error.max(), abs=1e-9), k
         assert lod.errors[k] == pytest.approx(error.max(), abs=1e-9), k
