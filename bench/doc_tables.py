@@ -70,17 +70,13 @@ def table(rows, columns, where=lambda r: True):
 HEIGHT_FIELD_OURS = "ours, height-field LOD (defaults)"
 
 
-def against_greedy(rows, ours=HEIGHT_FIELD_OURS, greedy=separation_rule.GREEDY):
+def against_greedy(rows, ours=HEIGHT_FIELD_OURS):
     """One line per model and rate: our height-field LOD's RMS, largest error and time over greedy
     insertion's, the goal's measure."""
-    at = {(r["model"], r["rate"], r["method"]): r for r in rows}
-    lines = []
-    for model, rate in dict.fromkeys((r["model"], r["rate"]) for r in rows):
-        a, b = at.get((model, rate, ours)), at.get((model, rate, greedy))
-        if a and b:
-            lines.append([model, f"{100 * rate:g}%", f"{a['rms'] / b['rms']:.3f}", f"{a['max'] / b['max']:.2f}",
-                          f"{a['seconds'] / b['seconds']:.1f}"])
-    return markdown(["model", "rate", "RMS ratio", "largest-error ratio", "time ratio"], lines)
+    return markdown(["model", "rate", "RMS ratio", "largest-error ratio", "time ratio"],
+                    [[r["model"], f"{100 * r['rate']:g}%", f"{rms:.3f}", f"{largest:.2f}", f"{seconds:.1f}"]
+                     for r, (rms, largest, seconds) in separation_rule.over_greedy(rows, ("rms", "max", "seconds"))
+                     if r["method"] == ours])
 
 
 def separation_tuning(rows):

@@ -17,17 +17,23 @@ def swept(separation, space):
     return f"ours, height-field LOD, separation {separation:g} in {space}"
 
 
+def over_greedy(rows, keys=("rms", "max")):
+    """(row, its `keys` each divided by greedy insertion's on the same model at the same rate) for every
+    row that is not greedy insertion's; a model and rate without greedy insertion is a KeyError."""
+    greedy = {(r["model"], r["rate"]): r for r in rows if r["method"] == GREEDY}
+    for r in rows:
+        if r["method"] != GREEDY:
+            g = greedy[(r["model"], r["rate"])]
+            yield r, tuple(r[k] / g[k] for k in keys)
+
+
 def worst_ratios(rows):
     """{method: {rate: (RMS ratio, largest-error ratio)}}: the worst over the windows of each against
     greedy insertion on the same window at the same rate."""
-    greedy = {(r["model"], r["rate"]): r for r in rows if r["method"] == GREEDY}
     out = {}
-    for r in rows:
-        if r["method"] == GREEDY:
-            continue
-        g = greedy[(r["model"], r["rate"])]
+    for r, (rms_ratio, max_ratio) in over_greedy(rows):
         rms, largest = out.setdefault(r["method"], {}).get(r["rate"], (0.0, 0.0))
-        out[r["method"]][r["rate"]] = (max(rms, r["rms"] / g["rms"]), max(largest, r["max"] / g["max"]))
+        out[r["method"]][r["rate"]] = (max(rms, rms_ratio), max(largest, max_ratio))
     return out
 
 
