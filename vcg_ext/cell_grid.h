@@ -89,13 +89,14 @@ class CellGrid {
   /// cells sharing their keys: farther away, so never wrongly certified).
   template <class F>
   void ForBlock(const Cell& c, int ring, F&& f) const {
+    const size_t centre = size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
     for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
       for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
         for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
           if (x < 0 || y < 0 || z < 0) continue;
           const uint64_t k = Key({x, y, z});
-          const auto it = std::lower_bound(key_.begin(), key_.end(), k);
-          if (it != key_.end() && *it == k) f(start_[it - key_.begin()], start_[it - key_.begin() + 1]);
+          const size_t at = Seek(k, centre);
+          if (at < key_.size() && key_[at] == k) f(start_[at], start_[at + 1]);
         }
   }
 
@@ -161,6 +162,23 @@ class CellGrid {
   }
 
  private:
+  // The first cell whose key is at least k, searched outwards from cell
+  // `from` in doubling steps: a block's cells mostly lie near its centre's in
+  // Morton order, where the keys are in the cache.
+  size_t Seek(uint64_t k, size_t from) const {
+    const size_t n = key_.size();
+    size_t lo = 0, hi = n;  // the answer lies in [lo, hi]
+    if (from < n && key_[from] < k) {
+      size_t a = from, step = 1;  // key_[a] < k
+      while (a + step < n && key_[a + step] < k) a += step, step *= 2;
+      lo = a + 1, hi = std::min(n, a + step);
+    } else {
+      size_t b = std::min(from, n), step = 1;  // b == n or key_[b] >= k
+      while (b >= step && key_[b - step] >= k) b -= step, step *= 2;
+      lo = b >= step ? b - step + 1 : 0, hi = b;
+    }
+    return size_t(std::lower_bound(key_.begin() + lo, key_.begin() + hi, k) - key_.begin());
+  }
   static uint64_t Spread(uint64_t v) {  // the low 21 bits to every third bit
     v &= 0x1fffff;
     v = (v | v << 32) & 0x1f00000000ffffULL;
