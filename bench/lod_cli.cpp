@@ -168,6 +168,7 @@ int main(int argc, char** argv) {
   gClock = &clock;
   const auto t1 = Clock::now();
   std::vector<int> samples;
+  int runs = 1;
   try {
     vcg_ext::GeodesicDomain<float>::Param dp;
     if (!metric.empty()) dp.metric = metrics.at(metric);
@@ -187,7 +188,7 @@ int main(int argc, char** argv) {
       if (!order.empty()) p.order = orders.at(order);
       const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<CMesh::ScalarType>>(m, p, Callback);
       samples = r.vertIndex;
-      if (count) radius = r.radius;
+      if (count) radius = r.radius, runs = r.iterations;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
@@ -197,8 +198,8 @@ int main(int argc, char** argv) {
   const double lodTime = Seconds(t1);
   const long rssPeak = PeakRssKb();
 
-  std::printf("points %zu\nsamples %zu\nradius %.9g\nread_s %.3f\nlod_s %.3f\n", m.vert.size(), samples.size(),
-              radius, readTime, lodTime);
+  std::printf("points %zu\nsamples %zu\nradius %.9g\nruns %d\nread_s %.3f\nlod_s %.3f\n", m.vert.size(),
+              samples.size(), radius, runs, readTime, lodTime);
   for (auto& st : clock.times) std::printf("stage %.3f %s\n", st.second, st.first.c_str());
   std::printf("rss_loaded_mb %.1f\npeak_rss_mb %.1f\nbytes_per_point %.1f\n", rssLoaded / 1024.0, rssPeak / 1024.0,
               (rssPeak - rssLoaded) * 1024.0 / double(m.vert.size()));

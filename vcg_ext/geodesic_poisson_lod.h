@@ -146,9 +146,10 @@ class GeodesicPoissonLod {
     // middle 98% of the points on each axis (a few stray points far away would
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
-    // One order for every run of the search: a key order at the first radius's scale.
+    // One order for every run of the search: a key order at that guess's scale.
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p));
     tp.order = &order;
+    tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;
     // Its runs compute each edge's length as they go, as one run does: disks
     // skip most edges by their straight length, so kept weights (4 bytes an

@@ -13,6 +13,7 @@
 #include "disk_cache.h"
 #include "farthest_point.h"
 #include "input_error.h"
+#include "pilot_radius.h"
 #include "poisson_disk.h"
 #include "progress.h"
 #include "sample_elimination.h"
@@ -44,6 +45,8 @@ class RadiusSearch {
   static double FirstRadius(double coreDiagonal, size_t target) { return coreDiagonal / std::sqrt(double(target)); }
 
   double Radius() const { return r_; }
+  /// The count the runs aim at: the target, or for an exact count the middle of its window.
+  double Aim() const { return aim_; }
   bool Done() const { return done_; }
   int Runs() const { return runs_; }
 
@@ -74,8 +77,8 @@ class RadiusSearch {
   /// once there is one (above: the largest radius with count >= target, below:
   /// the smallest with count < target; radius 0 where none yet), by the local
   /// slope of log N over log r: measured from the run before (`prevRadius`,
-  /// `prevCount`; 0 for none), else -2 as on a surface; clamped so each step
-  /// makes progress.
+  /// `prevCount`; 0 for none), else kSlope; clamped so each step makes
+  /// progress.
   static double NextRadius(double aboveRadius, double aboveCount, double belowRadius, double belowCount,
                            double count, double r, double target, double prevRadius = 0, double prevCount = 0) {
     if (aboveRadius > 0 && belowRadius > 0) {
@@ -85,7 +88,7 @@ class RadiusSearch {
       f = std::min(0.9, std::max(0.1, f));
       return std::exp(la + f * (lb - la));
     }
-    double slope = 2;  // N ~ 1/r^2
+    double slope = kSlope;
     if (prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r && prevCount != count) {
       const double s = -std::log(count / prevCount) / std::log(r / prevRadius);
       if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
@@ -95,6 +98,9 @@ class RadiusSearch {
   }
 
   static constexpr double kThinning = 0.03;  // an exact count thins a set up to 3% larger
+  /// -d log N / d log r where no run has measured it: 2 for disks tiling a
+  /// plane, about 1.7 on scans at the radii of 1-10% (noise and detail add points as r shrinks).
+  static constexpr double kSlope = 1.7;
 
  private:
   double target_, tolerance_;
@@ -120,8 +126,12 @@ class PoissonTargetCount {
     double tolerance = 0;        ///< accept an untrimmed Poisson set within sampleNum * (1 +- tolerance); where
                                  ///< no run lands there, the nearest set above is thinned to sampleNum
     int maxIterations = 24;      ///< Poisson runs at most
-    double initialRadius = 0;    ///< first radius tried, > 0
-    uint64_t seed = 0;           ///< the farthest-point fallback's first sample
+    double initialRadius = 0;    ///< first radius tried, > 0 (a guess, when pilotIds is given)
+    /// Per point: its id (PilotRadius::Hash picks the pilot by it). Given, a
+    /// pilot's disks at PilotRadius::kReach * initialRadius estimate the first
+    /// radius, and the first run's disks are kept for the runs after it.
+    const std::vector<int>* pilotIds = nullptr;
+    uint64_t seed = 0;           ///< picks the pilot, and the farthest-point fallback's first sample
     const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
                                               ///< every point or only of those that may be samples
     double keptDisks = 2;        ///< disks kept from run to run and for the thinning (DiskCache), in
@@ -148,6 +158,39 @@ class PoissonTargetCount {
                                              std::to_string(100 * tolerance) + "%)");
   }
 
+  /// The first radius from pilot disks searched at PilotRadius::kReach times
+  /// `guess` (one machine's, or every tile's of a cluster): for an exact count
+  /// above the estimate by PilotRadius::kExactMargin. 0: keep the guess.
+  static double PilotFirstRadius(std::vector<PilotRadius::Disk> disks, size_t candidates, size_t target,
+                                 double tolerance, double guess) {
+    const RadiusSearch steps(target, tolerance, candidates, guess, 1);
+    const double margin = tolerance > 0 ? 1.0 : PilotRadius::kExactMargin;
+    return PilotRadius::FirstRadius(std::move(disks), candidates, steps.Aim(), PilotRadius::kReach * guess, margin,
+                                    RadiusSearch::kSlope);
+  }
+
+  /// The first radius Compute starts from with p.pilotIds given (PilotRadius;
+  /// 0 where the pilot cannot tell: it starts from p.initialRadius).
+  template <class Search>
+  static double Pilot(size_t n, Search& search, const Param& p) {
+    const std::vector<int>& order = *p.order;
+    const std::vector<int>& id = *p.pilotIds;
+    std::vector<char> candidate;  // empty: every point (the order visits all)
+    if (order.size() < n) {
+      candidate.assign(n, 0);
+      for (int i : order) candidate[size_t(i)] = 1;
+    }
+    auto counts = [&](int i) { return candidate.empty() || candidate[size_t(i)] != 0; };
+    const uint64_t below = PilotRadius::Threshold(order.size(), p.sampleNum);
+    std::vector<std::pair<uint64_t, int>> points;
+    for (size_t i = 0; i < n; ++i) {  // by index, not in the order's: no cache misses
+      const uint64_t h = PilotRadius::Hash(p.seed, uint64_t(id[i]));
+      if (PilotRadius::Picked(h, below) && counts(int(i))) points.push_back({h, int(i)});
+    }
+    auto disks = PilotRadius::Disks(search, points, PilotRadius::kReach * p.initialRadius, counts);
+    return PilotFirstRadius(std::move(disks), order.size(), p.sampleNum, p.tolerance, p.initialRadius);
+  }
+
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
   /// FastMarching, EuclideanBall).
   template <class Scalar, class Search>
@@ -158,6 +201,8 @@ class PoissonTargetCount {
                                              "), got " + std::to_string(p.sampleNum));
     CheckTolerance(p.tolerance);
     RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);
+    const double pilot = p.pilotIds ? Pilot(n, search, p) : 0;
+    if (pilot > 0) steps = RadiusSearch(p.sampleNum, p.tolerance, candidates, pilot, p.maxIterations);
     // The runs and the thinning search their disks through the cache: the same
     // disks, fewer searches (the thinning reads those of the last run).
     DiskCache<Scalar> cache(n, size_t(std::max(0.0, p.keptDisks) * double(n)));
@@ -167,7 +212,7 @@ class PoissonTargetCount {
     Result out;
     const int phase = std::max(1, p.maxIterations);
     for (int it = 0; !steps.Done(); ++it) {
-      cache.Keeping(it > 0);
+      cache.Keeping(it > 0 || pilot > 0);  // a guess's disks are seldom read again; the pilot's radius errs large
       Trial t = Run(n, disks, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
       ++out.iterations;
       switch (steps.Report(t.count)) {

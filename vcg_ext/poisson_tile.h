@@ -24,6 +24,7 @@
 #include <vcg/space/box3.h>
 #include "border_order.h"
 #include "geodesic_domain.h"
+#include "pilot_radius.h"
 #include "poisson_disk.h"
 #include "priority_order.h"
 #include "prominence.h"
@@ -150,6 +151,40 @@ class PoissonTile {
     for (size_t i = 0; i < n; ++i)
       if (isCore(int(i)) && Inside(p.core, d.points.pos[i]) <= radius) r.band.push_back(d.points.vertIndex[i]);
     std::sort(r.band.begin(), r.band.end());
+    return r;
+  }
+
+  struct PilotResult {
+    bool certified = false;  ///< as Result's, for disks of p.radius
+    double neededHalo = 0;
+    std::vector<PilotRadius::Disk> disks;  ///< of the core's pilot points (in no set order)
+  };
+
+  /// The count search's pilot in a tile (PoissonTargetCount::Pilot on one
+  /// machine): the disks at p.radius of the core's candidates picked by
+  /// PilotRadius::Hash(p.seed, id) < `below`, each holding the distances of
+  /// the candidates it reaches. Whatever the visiting order, a disk depends
+  /// only on the points within p.radius and their neighbourhoods: the halo
+  /// is checked as a random order's. Cost: the pilot's disks.
+  static PilotResult Pilot(const Domain& d, const std::vector<uint64_t>& id, const std::vector<char>& core,
+                           Param p, uint64_t below) {
+    PilotResult r;
+    const size_t n = d.size();
+    p.order = VisitOrder::Random;
+    std::vector<double> toCore(n);
+    for (size_t i = 0; i < n; ++i) toCore[i] = Outside(p.core, d.points.pos[i]);
+    const std::pair<bool, double> halo = CheckHalo(d, toCore, p);
+    r.certified = halo.first;
+    r.neededHalo = halo.second;
+    if (!r.certified) return r;
+    auto counts = [&](int i) { return !p.candidate || (*p.candidate)[size_t(d.points.vertIndex[i])] != 0; };
+    std::vector<std::pair<uint64_t, int>> points;
+    for (size_t i = 0; i < n; ++i) {
+      const size_t row = size_t(d.points.vertIndex[i]);
+      const uint64_t h = PilotRadius::Hash(p.seed, id[row]);
+      if (core[row] && PilotRadius::Picked(h, below) && counts(int(i))) points.push_back({h, int(i)});
+    }
+    d.WithSearch([&](auto& search) { r.disks = PilotRadius::Disks(search, points, p.radius, counts); });
     return r;
   }
 

@@ -142,25 +142,37 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
   return d;
 }
 
-inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
-                               std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
-                               std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
-                               vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide) {
+// A tile's rows against its domain: one id (increasing), core flag and candidate flag per point.
+inline void CheckTileRows(const Domain& d, const Ids& ids, const Flags& core, const std::optional<Flags>& candidate) {
   const size_t rows = ids.shape(0);
   if (d.vertexCount != rows || core.shape(0) != rows || (candidate && candidate->shape(0) != rows))
     throw std::invalid_argument("ids, core and candidate must have one entry per point of the tile's domain");
   if (d.reach.size() != d.size()) throw std::invalid_argument("the domain must be a tile's (tile_domain)");
   for (size_t i = 1; i < rows; ++i)
     if (!(ids(i - 1) < ids(i))) throw std::invalid_argument("a tile's points must come in increasing id order");
+}
+
+inline Tile::Param TileParam(double radius, uint64_t seed, std::array<double, 6> coreBox, double halo,
+                             std::array<double, 6> cloudBox) {
+  Tile::Param tp;
+  tp.radius = radius;
+  tp.seed = seed;
+  tp.core = Box(coreBox);
+  tp.halo = halo;
+  tp.cloud = Box(cloudBox);
+  return tp;
+}
+
+inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
+                               std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
+                               std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
+                               vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide) {
+  const size_t rows = ids.shape(0);
+  CheckTileRows(d, ids, core, candidate);
   Threads team(threads);
   PythonProgress pp(std::move(progress));
   Tile::Result r = pp.Run([&](vcg_ext::Progress pr) {
-    Tile::Param tp;
-    tp.radius = radius;
-    tp.seed = seed;
-    tp.core = Box(coreBox);
-    tp.halo = halo;
-    tp.cloud = Box(cloudBox);
+    Tile::Param tp = TileParam(radius, seed, coreBox, halo, cloudBox);
     tp.order = order;
     tp.keyScale = keyScale;
     tp.keyNoise = keyNoise;
@@ -184,6 +196,68 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
   const size_t keys = r.key.size();
   out["key"] = ToNumpy(std::move(r.key), {keys});
   return out;
+}
+
+typedef nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu> Doubles;
+
+// The count search's pilot disks of a tile's core (PoissonTile::Pilot), as (certified, needed_halo, hash,
+// offset, dist): disk k holds dist[offset[k]:offset[k + 1]].
+inline nb::dict PilotTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
+                             std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
+                             std::optional<Flags> candidate, std::optional<int> threads, uint64_t below) {
+  const size_t rows = ids.shape(0);
+  CheckTileRows(d, ids, core, candidate);
+  std::vector<uint64_t> id(ids.data(), ids.data() + rows);
+  std::vector<char> isCore(core.data(), core.data() + rows), may;
+  if (candidate) may.assign(candidate->data(), candidate->data() + rows);
+  Tile::PilotResult r;
+  {
+    nb::gil_scoped_release release;
+    Threads team(threads);
+    Tile::Param tp = TileParam(radius, seed, coreBox, halo, cloudBox);
+    if (candidate) tp.candidate = &may;
+    r = Tile::Pilot(d, id, isCore, tp, below);
+  }
+  std::vector<uint64_t> hash;
+  std::vector<int64_t> offset{0};
+  std::vector<double> dist;
+  for (const auto& k : r.disks) {
+    hash.push_back(k.hash);
+    dist.insert(dist.end(), k.dist.begin(), k.dist.end());
+    offset.push_back(int64_t(dist.size()));
+  }
+  nb::dict out;
+  out["certified"] = r.certified;
+  out["needed_halo"] = r.neededHalo;
+  const size_t m = hash.size(), entries = dist.size();
+  out["hash"] = ToNumpy(std::move(hash), {m});
+  out["offset"] = ToNumpy(std::move(offset), {m + 1});
+  out["dist"] = ToNumpy(std::move(dist), {entries});
+  return out;
+}
+
+// PoissonTargetCount::PilotFirstRadius over the pilot disks of every tile (concatenated as PilotTileRun gives
+// them, in any order).
+inline double PilotFirstRadiusOf(const Ids& hash, const Int64s& offset, const Doubles& dist, uint64_t candidates,
+                                 uint64_t target, double tolerance, double guess) {
+  const size_t m = hash.shape(0);
+  if (offset.shape(0) != m + 1 || offset(0) != 0 || size_t(offset(m)) != dist.shape(0))
+    throw std::invalid_argument("offset must have one entry per disk + 1, from 0 to the length of dist");
+  std::vector<vcg_ext::PilotRadius::Disk> disks(m);
+  for (size_t k = 0; k < m; ++k) {
+    if (offset(k) > offset(k + 1)) throw std::invalid_argument("offset must not decrease");
+    disks[k].hash = hash(k);
+    disks[k].dist.assign(dist.data() + offset(k), dist.data() + offset(k + 1));
+  }
+  nb::gil_scoped_release release;
+  return vcg_ext::PoissonTargetCount::PilotFirstRadius(std::move(disks), size_t(candidates), size_t(target),
+                                                       tolerance, guess);
+}
+
+// The diagonal one machine's count search guesses its first radius from (GeodesicPoissonLod::CoreDiagonal).
+inline double CoreDiagonalOf(const Array2& points) {
+  const vcg_ext::PointSet<double> ps = ReadPoints(points, nullptr);
+  return Poisson::CoreDiagonal(ps.pos);
 }
 
 typedef vcg_ext::CellGrid<double> Cells;
@@ -232,6 +306,16 @@ inline void BindTiles(nb::module_& m) {
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
         "key_cell_side"_a = 0.0);
+  m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
+        "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
+        "the count search's pilot disks of a tile's core, at radius");
+  m.def("pilot_threshold", &vcg_ext::PilotRadius::Threshold, "candidates"_a, "target"_a,
+        "pilot points have a pilot hash below this");
+  m.def("pilot_first_radius", &PilotFirstRadiusOf, "hash"_a, "offset"_a, "dist"_a, "candidates"_a, "target"_a,
+        "tolerance"_a, "guess"_a, "the count search's first radius from every tile's pilot disks (0: keep the guess)");
+  m.attr("PILOT_REACH") = vcg_ext::PilotRadius::kReach;
+  m.def("core_diagonal", &CoreDiagonalOf, "points"_a,
+        "the diagonal of the box of the middle 98% of the points on each axis, as one machine's count search takes it");
   m.def("cell_side_subsample", &CellSideSubsample, "n"_a,
         "the ids of the points the prominence order's point spacing is measured on, of n points");
   m.def("cell_side", &CellSideOf, "subsample"_a, "n"_a,

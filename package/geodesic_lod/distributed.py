@@ -125,16 +125,33 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     level or a step of a count search (the same points give the same domain): on the worker, or in the
     job's work folder."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
-    candidates = None
-    if job.within is not None:
-        candidates = lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
     return tiles.decide_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo),
                                  box=box,
                                  cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
-                                 seed=job.seed, candidates=candidates, threads=job.threads, order=job.order,
+                                 seed=job.seed, candidates=_tile_candidates(job, outer), threads=job.threads,
+                                 order=job.order,
                                  reads=_tile_reads() if job.runs_again else None,  # else none is read again
                                  job=(job.cells.folder, tuple(sorted(job.domain.items()))),
                                  tile=box.as_tuple(), folder=job.cells.folder if job.runs_again else None)
+
+
+def _tile_candidates(job: Job, outer: tiles.Box):
+    if job.within is None:
+        return None
+    return lambda ids, halo: finer_samples(job, outer.lo - halo, outer.hi + halo, ids)
+
+
+@give_back
+def pilot_tile(job: Job, box: tiles.Box, radius: float, below: int) -> Optional[tuple]:
+    """A Dask task: the count search's pilot disks of one tile's core (tiles.pilot_widening), its read kept
+    for the runs after it as decide_tile keeps its own."""
+    outer = box.outer(job.cloud)
+    return tiles.pilot_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo), box=box,
+                                cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=radius, below=below,
+                                seed=job.seed, candidates=_tile_candidates(job, outer), threads=job.threads,
+                                reads=_tile_reads() if job.runs_again else None,
+                                job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
+                                folder=job.cells.folder if job.runs_again else None)
 
 
 def _ids_file(folder, k: int) -> pathlib.Path:
@@ -316,8 +333,10 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
     run over all tiles, among `pool` points that may be samples, reading the halo of a radius of at least
     `reach`: (the accepted or nearest run, runs made)."""
-    steps = _core.RadiusSearch(target, tolerance / 100, pool, first_radius, max_runs)
-    best, spent = None, {"tiles": 0.0, "seams": 0.0}
+    start = time.perf_counter()
+    pilot = _pilot_radius(client, job, boxes, target, tolerance, pool, first_radius, reach, spacing, ticks, where)
+    steps = _core.RadiusSearch(target, tolerance / 100, pool, pilot or first_radius, max_runs)
+    best, spent = None, {"tiles": time.perf_counter() - start, "seams": 0.0}
     while not steps.done:
         r = steps.radius
         halo = tiles.first_halo(max(r, reach), spacing, job.order)
@@ -329,6 +348,35 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
             best = run
     best.seconds = spent  # every run's, not only the one kept
     return best, steps.runs
+
+
+def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, reach: float,
+                  spacing: float, ticks: Ticks, where: dict) -> float:
+    """The count search's first radius from the pilot disks of every tile (as poisson_lod's, to the bit), or
+    0 to start from the guess. The tiles' reads serve the runs after it."""
+    from dask.distributed import as_completed
+    radius = _core.PILOT_REACH * guess
+    job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
+    below = _core.pilot_threshold(pool, target)
+    ticks.expect(len(boxes))
+    parts = [client.submit(pilot_tile, job, b, radius, below, pure=False,
+                           **({"workers": where[k], "allow_other_workers": True} if k in where else {}))
+             for k, b in enumerate(boxes)]
+    for _ in as_completed(parts):
+        ticks()
+    held = client.who_has(parts)
+    where.update({k: list(held[f.key])[:1] for k, f in enumerate(parts) if held.get(f.key)})
+    got = [p for p in client.gather(parts) if p is not None]
+    if not got:
+        return 0.0
+    offsets, start = [], 0
+    for _, offset, _ in got:
+        offsets.append(offset[:-1] + start)
+        start += int(offset[-1])
+    return _core.pilot_first_radius(np.concatenate([h for h, _, _ in got]).astype(np.uint64),
+                                    np.concatenate(offsets + [np.array([start], np.int64)]).astype(np.int64),
+                                    np.concatenate([d for _, _, d in got]).astype(np.float64), pool, target,
+                                    tolerance / 100, guess)
 
 
 @give_back

@@ -362,29 +362,62 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
     may become samples. With `reads`, the read of at least that halo kept for (`job`, `tile`) is used
     instead of reading, and a new one kept (in memory, or in the job's work `folder`). None when the
     tile's core holds no point."""
-    neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
     while True:
-        t = None if reads is None else reads.get(job, tile, halo, folder)
+        t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
+                      tile=tile, folder=folder)
         if t is None:
-            points, normals, ids = read(halo)
-            core = box.core_mask(points, cloud)
-            if not core.any():
-                return None
-            problem = arrays.too_few_points(len(points), neighbours)
-            if problem:  # a stray point far from the rest: read as far as its neighbours
-                if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
-                    raise InputError(f"the cloud {problem}")
-                halo *= 4
-                continue
-            t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
-                         _core.tile_domain(points, normals, domain, threads, None))
-            if reads is not None:
-                reads.put(job, tile, t, folder)
+            return None
         may = None if candidates is None else candidates(t.ids, t.halo)
         d, halo = decide(t, radius=radius, box=box.outer(cloud), cloud=cloud, seed=seed, candidate=may,
                          threads=threads, order=order)
         if d is not None:
             return d
+
+
+def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, threads: Optional[int],
+              reads: Optional[TileReads], job, tile, folder) -> Optional[TileRead]:
+    """What a tile reads with a halo of at least `halo` (decide_widening's arguments): kept in `reads`, or read
+    and kept there. None when the tile's core holds no point."""
+    neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
+    while True:
+        t = None if reads is None else reads.get(job, tile, halo, folder)
+        if t is not None:
+            return t
+        points, normals, ids = read(halo)
+        core = box.core_mask(points, cloud)
+        if not core.any():
+            return None
+        problem = arrays.too_few_points(len(points), neighbours)
+        if problem:  # a stray point far from the rest: read as far as its neighbours
+            if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
+                raise InputError(f"the cloud {problem}")
+            halo *= 4
+            continue
+        t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
+                     _core.tile_domain(points, normals, domain, threads, None))
+        if reads is not None:
+            reads.put(job, tile, t, folder)
+        return t
+
+
+def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
+                   below: int, seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
+                   threads: Optional[int] = None, reads: Optional[TileReads] = None, job=None, tile=None,
+                   folder=None) -> Optional[tuple]:
+    """The count search's pilot disks of one tile's core at `radius` (``_core.pilot_tile``: hash, offset,
+    dist), reading a wider halo until the check passes, as decide_widening. None when the core holds no
+    point."""
+    while True:
+        t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
+                      tile=tile, folder=folder)
+        if t is None:
+            return None
+        may = None if candidates is None else np.ascontiguousarray(candidates(t.ids, t.halo), dtype=bool)
+        r = _core.pilot_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.outer(cloud).as_tuple(),
+                             float(t.halo), cloud.as_tuple(), may, threads, int(below))
+        if r["certified"]:
+            return r["hash"], r["offset"], r["dist"]
+        halo = max(r["needed_halo"] * 1.01, 1.5 * t.halo)
 
 
 def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:

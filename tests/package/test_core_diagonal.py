@@ -56,15 +56,8 @@ def diagonal(points, files=1, chunk=10 ** 9, bounds=None, log=None, gathered=Non
 
 
 def one_machines_first_radius(points):
-    """The radius of the first run of poisson_lod's count search (a count of 1 and one run: it is kept)."""
-    param = _core.PoissonParam()
-    param.sample_num, param.max_iterations = 1, 1
-    domain = _core.DomainParam()
-    domain.metric = _core.Metric.Euclidean  # the first radius does not depend on the metric; this is quick
-    for k in ("normal_neighbors", "graph_neighbors"):  # a cloud of 2 points too
-        setattr(domain, k, min(getattr(domain, k), len(points) - 1))
-    param.domain = domain
-    return _core.poisson_lod(points, None, None, param, 1, None)["radius"]
+    """The guess one machine's count search starts its pilot from, for a count of 1."""
+    return _core.RadiusSearch.first_radius(_core.core_diagonal(np.ascontiguousarray(points, dtype=np.float64)), 1)
 
 
 def clouds():
@@ -147,8 +140,7 @@ def test_the_whole_box_is_taken_below_100_points_and_where_the_core_box_is_flat(
 def test_the_first_radius_is_one_machines(name):
     points = CLOUDS[name]
     d = diagonal(points, files=3, chunk=250)
-    target = 1  # one machine's first run then keeps its radius, whatever it counts
-    assert _core.RadiusSearch.first_radius(d, target) == one_machines_first_radius(points)
+    assert _core.RadiusSearch.first_radius(d, 1) == one_machines_first_radius(points)
 
 
 def test_the_first_radius_over_laz_files_is_one_machines(monkeypatch, tmp_path):

@@ -95,6 +95,8 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
     target = size.get("count") or int(gl._core.percent_of(size["rate"], len(points)))
     assert index["target"] == target and index["runs"] >= 1
     assert abs(index["samples"] - target) <= 0.01 * target
+    # One machine's search from the same pilot takes the same steps to the same radius.
+    assert index["radius"] == gl.poisson_lod(points, count=target, tolerance=1.0).radius
     index, got = output_records(tmp_path / "lod")  # the Poisson set of the radius found, as on one machine
     whole = gl.poisson_lod(points, radius=index["radius"]).indices
     assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)

@@ -164,34 +164,36 @@ TEST(MeshOptimization, TheLodsBorderStaysOnTheInputsBorder) {
   test::TMesh m;
   const int n = 40;
   test::GridMesh(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
-  const auto r = FittedWithRegions(m, 120);
-  std::vector<vcg::Point3<Scalar>> pts;
-  std::vector<std::array<int, 3>> tri;
-  for (const auto& v : m.vert) pts.push_back(v.cP());
-  for (const auto& f : m.face)
-    tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
-  std::vector<std::pair<V3, V3>> border;
-  auto at = [&](int i) { return V3(pts[size_t(i)][0], pts[size_t(i)][1], pts[size_t(i)][2]); };
-  for (const auto& e : vcg_ext::TriangleBorders::Edges(tri)) border.emplace_back(at(e.u), at(e.v));
-  const std::vector<char> onBorder = vcg_ext::TriangleBorders::Points(tri, pts.size());
-  std::vector<char> regionOnBorder(r.position.size(), 0);  // the samples whose region holds border points
-  for (size_t i = 0; i < pts.size(); ++i)
-    if (onBorder[i]) regionOnBorder[size_t(r.regionOf[i])] = 1;
-  ASSERT_EQ(border.size(), size_t(4 * (n - 1)));
-  auto optimized = [&](double weight) {
-    std::vector<vcg::Point3<Scalar>> pos = r.position;
-    std::vector<std::array<int, 3>> faces = r.faces;
-    Optimization::Param op;
-    op.border = weight;
-    Optimization::Compute(pts, r.regionOf, onBorder, r.normal, pos, faces, vcg_ext::Progress(nullptr), op);
-    return BorderGaps(pos, faces, border, regionOnBorder);
-  };
-  const std::vector<double> held = optimized(Optimization::Param().border), free = optimized(0);
-  ASSERT_EQ(held.size(), free.size());
-  ASSERT_GT(held.size(), 20u);
-  auto mean = [](const std::vector<double>& g) { return std::accumulate(g.begin(), g.end(), 0.0) / double(g.size()); };
-  EXPECT_LT(mean(held), 0.75 * mean(free)) << "the border vertices drift off the input's border";
-  EXPECT_LE(*std::max_element(held.begin(), held.end()), *std::max_element(free.begin(), free.end()));
+  for (int count : {100, 120, 140}) {  // the gaps vary with the samples: held to a margin at several counts
+    const auto r = FittedWithRegions(m, count);
+    std::vector<vcg::Point3<Scalar>> pts;
+    std::vector<std::array<int, 3>> tri;
+    for (const auto& v : m.vert) pts.push_back(v.cP());
+    for (const auto& f : m.face)
+      tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
+    std::vector<std::pair<V3, V3>> border;
+    auto at = [&](int i) { return V3(pts[size_t(i)][0], pts[size_t(i)][1], pts[size_t(i)][2]); };
+    for (const auto& e : vcg_ext::TriangleBorders::Edges(tri)) border.emplace_back(at(e.u), at(e.v));
+    const std::vector<char> onBorder = vcg_ext::TriangleBorders::Points(tri, pts.size());
+    std::vector<char> regionOnBorder(r.position.size(), 0);  // the samples whose region holds border points
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (onBorder[i]) regionOnBorder[size_t(r.regionOf[i])] = 1;
+    ASSERT_EQ(border.size(), size_t(4 * (n - 1)));
+    auto optimized = [&](double weight) {
+      std::vector<vcg::Point3<Scalar>> pos = r.position;
+      std::vector<std::array<int, 3>> faces = r.faces;
+      Optimization::Param op;
+      op.border = weight;
+      Optimization::Compute(pts, r.regionOf, onBorder, r.normal, pos, faces, vcg_ext::Progress(nullptr), op);
+      return BorderGaps(pos, faces, border, regionOnBorder);
+    };
+    const std::vector<double> held = optimized(Optimization::Param().border), free = optimized(0);
+    ASSERT_EQ(held.size(), free.size());
+    ASSERT_GT(held.size(), 20u);
+    auto mean = [](const std::vector<double>& g) { return std::accumulate(g.begin(), g.end(), 0.0) / double(g.size()); };
+    EXPECT_LT(mean(held), 0.9 * mean(free)) << "the border vertices drift off the input's border, " << count;
+    EXPECT_LE(*std::max_element(held.begin(), held.end()), *std::max_element(free.begin(), free.end())) << count;
+  }
 }
 
 TEST(MeshOptimization, NoVertexLeavesItsRegionsPointsFartherThanTheyReachOnTheBunny) {

@@ -1,7 +1,7 @@
 // vcg_ext/poisson_target_count.h, the count search: Poisson-disk sampling to a
 // wanted number of samples gives exact counts, counts within a tolerance,
-// separation kept, termination where the count jumps across the target, and
-// the regions reported on the input.
+// separation kept, termination where the count jumps across the target, the
+// regions reported on the input, and a pilot's first radius near the target.
 #include <gtest/gtest.h>
 #include <set>
 #include <vcg_ext/geodesic_fps_lod.h>
@@ -167,6 +167,38 @@ TEST(TargetCount, ExactCountsOnTheBunnyScan) {
     EXPECT_EQ(r.vertIndex.size(), n) << rate;
     EXPECT_LE(r.iterations, p.maxIterations);
     RecordProperty("iterations_" + std::to_string(n), r.iterations);
+  }
+}
+
+TEST(TargetCount, APilotsFirstRadiusGivesACountNearTheTargetOnTheBunnyScan) {
+  // The box's guess is off by up to 2x in count; the pilot, by a few percent.
+  test::TMesh m;
+  READ_SHARED_SCAN_OR_SKIP("bunny_35k.ply", m);
+  const Domain d = Domain::FromMesh(m, LOD::Param().domain);
+  const std::vector<int> order = vcg_ext::PriorityOrder(d.points.vertIndex, 3);
+  for (double rate : {0.10, 0.05, 0.02}) {
+    vcg_ext::PoissonTargetCount::Param p;
+    p.sampleNum = size_t(rate * double(d.size()));
+    p.tolerance = 0.01;  // no margin: the estimate itself
+    p.seed = 3;
+    p.order = &order;
+    p.pilotIds = &d.points.vertIndex;
+    p.initialRadius = vcg_ext::RadiusSearch::FirstRadius(LOD::CoreDiagonal(d.points.pos), p.sampleNum);
+    double r = 0;
+    size_t count = 0;
+    d.WithSearch([&](auto& search) {
+      r = vcg_ext::PoissonTargetCount::Pilot(d.size(), search, p);
+      vcg_ext::PoissonDisk::Param pp;
+      pp.radius = r;
+      pp.order = &order;
+      if (r > 0) count = vcg_ext::PoissonDisk::Compute(d.size(), search, pp).samples.size();
+    });
+    ASSERT_GT(r, 0) << rate;
+    EXPECT_NEAR(double(count) / double(p.sampleNum), 1.0, 0.1) << rate;
+    p.tolerance = 0;  // an exact count's errs large: the next, smaller radius reads the first run's disks
+    double exact = 0;
+    d.WithSearch([&](auto& search) { exact = vcg_ext::PoissonTargetCount::Pilot(d.size(), search, p); });
+    EXPECT_GT(exact, r) << rate;
   }
 }
 
