@@ -48,8 +48,18 @@ class PilotRadius {
   }
   /// The pilot hash of a point: independent of the visiting order's.
   static uint64_t Hash(uint64_t seed, uint64_t id) { return Priority(~seed, id); }
-  /// Whether a point of that hash is a pilot point, under Threshold's.
-  static bool Picked(uint64_t hash, uint64_t below) { return hash < below || below == UINT64_MAX; }
+  /// The pilot points among n: (hash, index) of each i with counts(i) whose
+  /// Hash(seed, idOf(i)) is below `below` (Threshold's), in index order.
+  template <class IdOf, class Counts>
+  static std::vector<std::pair<uint64_t, int>> Pick(size_t n, uint64_t seed, uint64_t below, IdOf idOf,
+                                                    Counts counts) {
+    std::vector<std::pair<uint64_t, int>> points;
+    for (size_t i = 0; i < n; ++i) {  // by index: no cache misses
+      const uint64_t h = Hash(seed, uint64_t(idOf(i)));
+      if ((h < below || below == UINT64_MAX) && counts(int(i))) points.push_back({h, int(i)});
+    }
+    return points;
+  }
 
   /// One pilot point: its hash (the sums' order) and the distances of the
   /// candidates within the pilot radius, increasing.

@@ -182,11 +182,7 @@ class PoissonTargetCount {
     }
     auto counts = [&](int i) { return candidate.empty() || candidate[size_t(i)] != 0; };
     const uint64_t below = PilotRadius::Threshold(order.size(), p.sampleNum);
-    std::vector<std::pair<uint64_t, int>> points;
-    for (size_t i = 0; i < n; ++i) {  // by index, not in the order's: no cache misses
-      const uint64_t h = PilotRadius::Hash(p.seed, uint64_t(id[i]));
-      if (PilotRadius::Picked(h, below) && counts(int(i))) points.push_back({h, int(i)});
-    }
+    const auto points = PilotRadius::Pick(n, p.seed, below, [&](size_t i) { return id[i]; }, counts);
     auto disks = PilotRadius::Disks(search, points, PilotRadius::kReach * p.initialRadius, counts);
     return PilotFirstRadius(std::move(disks), order.size(), p.sampleNum, p.tolerance, p.initialRadius);
   }

@@ -178,12 +178,9 @@ class PoissonTile {
     r.neededHalo = halo.second;
     if (!r.certified) return r;
     auto counts = [&](int i) { return !p.candidate || (*p.candidate)[size_t(d.points.vertIndex[i])] != 0; };
-    std::vector<std::pair<uint64_t, int>> points;
-    for (size_t i = 0; i < n; ++i) {
-      const size_t row = size_t(d.points.vertIndex[i]);
-      const uint64_t h = PilotRadius::Hash(p.seed, id[row]);
-      if (core[row] && PilotRadius::Picked(h, below) && counts(int(i))) points.push_back({h, int(i)});
-    }
+    const auto points = PilotRadius::Pick(
+        n, p.seed, below, [&](size_t i) { return id[size_t(d.points.vertIndex[i])]; },
+        [&](int i) { return core[size_t(d.points.vertIndex[i])] && counts(i); });
     d.WithSearch([&](auto& search) { r.disks = PilotRadius::Disks(search, points, p.radius, counts); });
     return r;
   }
