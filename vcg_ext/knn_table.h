@@ -1,7 +1,7 @@
 #ifndef VCG_EXT_KNN_TABLE_H
 #define VCG_EXT_KNN_TABLE_H
-// The k nearest neighbours of every point, from a grid of cells (vcglib's
-// kd-tree for the few points the grid cannot answer).
+// The k nearest neighbours of every point, from a grid of cells (for the few
+// points the grid cannot answer, a scan of all points or vcglib's kd-tree).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -74,7 +74,7 @@ class KnnTable {
   /// The same on a grid of `pos` (numbered as `pos`). Each point is answered
   /// from the cells around it, growing the block until its k nearest lie
   /// closer than the block's boundary; the few points still unsure (isolated
-  /// outliers) are asked of a kd-tree.
+  /// outliers) are answered by a scan of all points, or a kd-tree when many.
   static KnnTable Compute(const CellGrid<Scalar>& grid, const std::vector<Coord>& pos, int k,
                           Progress progress = Progress(nullptr), const std::vector<int>* id = nullptr) {
     constexpr int kMaxRing = 3;
@@ -146,7 +146,30 @@ class KnnTable {
       std::lock_guard<std::mutex> lock(restMutex);
       rest.insert(rest.end(), unsure.begin(), unsure.end());
     });
-    if (!rest.empty()) {
+    // A few unsure rows (a bird, a multipath return) are answered by a scan of
+    // all points: a kd-tree's build costs as much as about 100 scans.
+    constexpr size_t kScanRows = 32;
+    if (!rest.empty() && rest.size() <= kScanRows) {
+      ParallelFor(rest.size(), 1, [&](size_t r) {
+        const int i = rest[r];
+        const double qx = pos[i][0], qy = pos[i][1], qz = pos[i][2];
+        std::vector<std::pair<double, int64_t>> best;  // a max-heap of the k nearest so far
+        best.reserve(size_t(k) + 1);
+        for (size_t j = 0; j < pos.size(); ++j) {
+          if (int(j) == i) continue;
+          const double dx = pos[j][0] - qx, dy = pos[j][1] - qy, dz = pos[j][2] - qz;
+          const std::pair<double, int64_t> c(dx * dx + dy * dy + dz * dz, key(int(j)));
+          if (best.size() == size_t(k) && !(c < best.front())) continue;
+          best.push_back(c), std::push_heap(best.begin(), best.end());
+          if (best.size() > size_t(k)) std::pop_heap(best.begin(), best.end()), best.pop_back();
+        }
+        std::sort_heap(best.begin(), best.end());
+        std::vector<int> out(static_cast<size_t>(k));
+        for (int c = 0; c < k; ++c) out[size_t(c)] = number(best[size_t(c)].second);
+        put(size_t(i), out.data());
+        far.Add();
+      });
+    } else if (!rest.empty()) {
       vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(pos.data(), int(pos.size())));
       ParallelChunks(rest.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
         typename vcg::KdTree<Scalar>::PriorityQueue heap;

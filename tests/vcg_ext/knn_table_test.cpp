@@ -41,6 +41,23 @@ void ExpectExact(const std::vector<P>& pos, int k) {
     for (int c = 0; c < k; ++c) wrong += want[i][size_t(c)] != t.At(i, c);
   EXPECT_EQ(wrong, 0u) << "of " << pos.size() << " rows, k = " << k;
 }
+// The same cloud numbered otherwise, with each point's id given, has the same
+// rows by id.
+void ExpectSameRowsById(const std::vector<P>& pos, int k, unsigned seed) {
+  std::vector<int> perm(pos.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+  std::vector<P> shuffled(pos.size());
+  std::vector<int> id(pos.size());
+  for (size_t i = 0; i < pos.size(); ++i) shuffled[i] = pos[perm[i]], id[i] = perm[i];
+  const auto plain = vcg_ext::KnnTable<float>::Compute(pos, k);
+  const vcg_ext::CellGrid<float> grid(shuffled, vcg_ext::KnnTable<float>::CellSide(shuffled, k));
+  const auto byId = vcg_ext::KnnTable<float>::Compute(grid, shuffled, k, vcg_ext::Progress(nullptr), &id);
+  size_t wrong = 0;
+  for (size_t i = 0; i < shuffled.size(); ++i)
+    for (int c = 0; c < k; ++c) wrong += id[size_t(byId.At(i, c))] != plain.At(size_t(perm[i]), c);
+  EXPECT_EQ(wrong, 0u) << "of " << pos.size() << " rows, k = " << k;
+}
 }  // namespace
 
 TEST(KnnTable, EqualsBruteForceOnANoisyBumpySurface) {
@@ -103,28 +120,31 @@ TEST(KnnTable, AFarOutlierKeepsTheCellsSmallAndTheTableExact) {
   }
 }
 
-// Ties by id: the same cloud numbered otherwise, with each point's id given,
-// has the same rows by id (what lets a tile of a larger cloud, numbered its
-// own way, see the neighbours the whole cloud sees).
+// Ties by id (what lets a tile of a larger cloud, numbered its own way, see
+// the neighbours the whole cloud sees).
 TEST(KnnTable, TiesByIdDoNotDependOnTheNumbering) {
   std::vector<P> pos;
   for (int i = 0; i < 30; ++i)
     for (int j = 0; j < 30; ++j) pos.emplace_back(i * 0.01f, j * 0.01f, 0.f);  // lattice ties
   for (int d = 0; d < 25; ++d) pos.emplace_back(0.1f, 0.1f, 0.f);              // duplicates
-  std::vector<int> perm(pos.size());
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
-  std::vector<P> shuffled(pos.size());
-  std::vector<int> id(pos.size());
-  for (size_t i = 0; i < pos.size(); ++i) shuffled[i] = pos[perm[i]], id[i] = perm[i];
-  const int k = 20;
-  const auto plain = vcg_ext::KnnTable<float>::Compute(pos, k);
-  const vcg_ext::CellGrid<float> grid(shuffled, vcg_ext::KnnTable<float>::CellSide(shuffled, k));
-  const auto byId = vcg_ext::KnnTable<float>::Compute(grid, shuffled, k, vcg_ext::Progress(nullptr), &id);
-  size_t wrong = 0;
-  for (size_t i = 0; i < shuffled.size(); ++i)
-    for (int c = 0; c < k; ++c) wrong += id[size_t(byId.At(i, c))] != plain.At(size_t(perm[i]), c);
-  EXPECT_EQ(wrong, 0u);
+  ExpectSameRowsById(pos, 20, 3);
+}
+
+// Rows the grid cannot answer (isolated outliers) are scanned when few and
+// asked of a kd-tree when many: both exact, both ranking ties by id.
+TEST(KnnTable, FewAndManyOutliersAreExactAndRankedById) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<P> base;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) base.emplace_back(i * 0.01f, j * 0.01f, 0.f);  // lattice ties
+  for (int outliers : {1, 3, 200}) {
+    std::vector<P> pos = base;
+    for (int o = 0; o < outliers; ++o) pos.emplace_back(1e3f * (1 + u(rng)), -1e3f * u(rng), 1e3f * (o % 2));
+    const int k = 12;
+    ExpectExact(pos, k);
+    ExpectSameRowsById(pos, k, unsigned(outliers));
+  }
 }
 
 }  // namespace knn_table_test
