@@ -124,15 +124,18 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     the tiles again, what the tile read (its points and their domain) is kept for its next run on it, a
     level or a step of a count search (the same points give the same domain): on the worker, or in the
     job's work folder."""
+    return tiles.decide_widening(radius=job.radius, order=job.order, **_tile_arguments(job, box))
+
+
+def _tile_arguments(job: Job, box: tiles.Box) -> dict:
+    """What a tile's task reads and how (tiles.read_tile's arguments), for decide_tile and pilot_tile alike."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
-    return tiles.decide_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo),
-                                 box=box,
-                                 cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=job.radius,
-                                 seed=job.seed, candidates=_tile_candidates(job, outer), threads=job.threads,
-                                 order=job.order,
-                                 reads=_tile_reads() if job.runs_again else None,  # else none is read again
-                                 job=(job.cells.folder, tuple(sorted(job.domain.items()))),
-                                 tile=box.as_tuple(), folder=job.cells.folder if job.runs_again else None)
+    return dict(read=lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo), box=box,
+                cloud=job.cloud, halo=job.halo, domain=job.domain_param(), seed=job.seed,
+                candidates=_tile_candidates(job, outer), threads=job.threads,
+                reads=_tile_reads() if job.runs_again else None,  # else none is read again
+                job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
+                folder=job.cells.folder if job.runs_again else None)
 
 
 def _tile_candidates(job: Job, outer: tiles.Box):
@@ -145,13 +148,7 @@ def _tile_candidates(job: Job, outer: tiles.Box):
 def pilot_tile(job: Job, box: tiles.Box, radius: float, below: int) -> Optional[tuple]:
     """A Dask task: the count search's pilot disks of one tile's core (tiles.pilot_widening), its read kept
     for the runs after it as decide_tile keeps its own."""
-    outer = box.outer(job.cloud)
-    return tiles.pilot_widening(lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo), box=box,
-                                cloud=job.cloud, halo=job.halo, domain=job.domain_param(), radius=radius, below=below,
-                                seed=job.seed, candidates=_tile_candidates(job, outer), threads=job.threads,
-                                reads=_tile_reads() if job.runs_again else None,
-                                job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
-                                folder=job.cells.folder if job.runs_again else None)
+    return tiles.pilot_widening(radius=radius, below=below, **_tile_arguments(job, box))
 
 
 def _ids_file(folder, k: int) -> pathlib.Path:
