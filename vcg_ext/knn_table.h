@@ -97,6 +97,8 @@ class KnnTable {
       std::vector<double> bx, by, bz, d2;  // the block of cells searched: positions, numbers
       std::vector<int64_t> bi;  // the block's sort keys
       std::vector<int> cand;    // the candidates' places in the block
+      std::vector<std::pair<int, int>> runs;  // the block's cells, as runs of grid places
+      size_t nb = 0;                          // the block's points (the arrays may be longer)
       std::vector<std::pair<double, int64_t>> scratch;
       typename CellGrid<Scalar>::Cell last = {-2, -2, -2};
       int lastRing = 0;
@@ -108,21 +110,25 @@ class KnnTable {
         bool answered = false;  // else the kd-tree answers the row
         for (int ring = 1; ring <= kMaxRing; ++ring) {
           if (cell != last || ring != lastRing) {  // near points share their cell's block
-            bx.clear(), by.clear(), bz.clear(), bi.clear();
+            // Its cells' runs first, then the block written in place: no push_back per point.
+            runs.clear(), nb = 0;
             grid.ForBlock(cell, ring, [&](int s, int t2) {
-              if (size_t(s) <= r && r < size_t(t2)) selfAt = bx.size() + (r - size_t(s)), centre = r;
-              for (int c = s; c < t2; ++c) {
-                const int j = grid.Point(c);
-                bx.push_back(pos[j][0]), by.push_back(pos[j][1]), bz.push_back(pos[j][2]), bi.push_back(key(j));
-              }
+              if (size_t(s) <= r && r < size_t(t2)) selfAt = nb + (r - size_t(s)), centre = r;
+              runs.emplace_back(s, t2), nb += size_t(t2 - s);
             });
+            if (bx.size() < nb)  // grown only; cand has room for the 3 Within may write past its count
+              bx.resize(nb), by.resize(nb), bz.resize(nb), bi.resize(nb), d2.resize(nb), cand.resize(nb + 4);
+            size_t at = 0;
+            for (const auto& run : runs)
+              for (int c = run.first; c < run.second; ++c, ++at) {
+                const int j = grid.Point(c);
+                bx[at] = pos[j][0], by[at] = pos[j][1], bz[at] = pos[j][2], bi[at] = key(j);
+              }
             last = cell, lastRing = ring;
-            d2.resize(bx.size()), cand.resize(bx.size() + 4);  // Within may write 3 past its count
           } else {
             selfAt += r - centre, centre = r;
           }
           const double qx = pos[i][0], qy = pos[i][1], qz = pos[i][2], m = grid.Margin(pos[i], cell, ring);
-          const size_t nb = bx.size();
           for (size_t c = 0; c < nb; ++c)
             d2[c] = (bx[c] - qx) * (bx[c] - qx) + (by[c] - qy) * (by[c] - qy) + (bz[c] - qz) * (bz[c] - qz);
           d2[selfAt] = std::numeric_limits<double>::infinity();  // never its own neighbour
