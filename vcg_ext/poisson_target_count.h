@@ -13,6 +13,7 @@
 #include "disk_cache.h"
 #include "farthest_point.h"
 #include "input_error.h"
+#include "parallel.h"
 #include "pilot_radius.h"
 #include "poisson_disk.h"
 #include "progress.h"
@@ -241,10 +242,8 @@ class PoissonTargetCount {
       out.voronoiOwner = std::move(thinned.owner);
       search.Complete(out.samples, dist, out.voronoiOwner);
       out.trimmed = out.samples.size() < from.count;
-      out.coveringRadius = 0;
-      for (Scalar d : dist)
-        if (std::isfinite(double(d))) out.coveringRadius = std::max(out.coveringRadius, double(d));
-      out.diskOwner = DiskOwners(from, pool, out.samples, out.voronoiOwner);
+      out.coveringRadius = LargestFinite(dist);
+      out.diskOwner = DiskOwners(from, thinned.rankOf, out.voronoiOwner);
       return out;
     }
     // No run had enough samples: the farthest-point order of every point the order visits.
@@ -297,17 +296,27 @@ class PoissonTargetCount {
 
   // Disk regions of the kept samples; the disks of trimmed samples go to
   // their points' nearest kept sample.
-  static std::vector<int> DiskOwners(const Trial& from, const std::vector<int>& candidates,
-                                     const std::vector<int>& kept, const std::vector<int>& voronoi) {
-    if (from.radius == 0) return voronoi;
-    std::vector<int> rankOf(voronoi.size(), -1);
-    for (size_t k = 0; k < kept.size(); ++k) rankOf[kept[k]] = int(k);
+  // keptRank: per sample of `from`, its rank among the kept ones (-1: taken out).
+  static std::vector<int> DiskOwners(const Trial& from, const std::vector<int>& keptRank,
+                                     const std::vector<int>& voronoi) {
     std::vector<int> owner(voronoi.size());
-    for (size_t i = 0; i < owner.size(); ++i) {
-      const int disk = from.owner[i] >= 0 ? rankOf[candidates[from.owner[i]]] : -1;
+    ParallelFor(owner.size(), 4096, [&](size_t i) {
+      const int disk = from.owner[i] >= 0 ? keptRank[size_t(from.owner[i])] : -1;
       owner[i] = disk >= 0 ? disk : voronoi[i];
-    }
+    });
     return owner;
+  }
+
+  // The largest finite value (0 for none), on all threads.
+  template <class Scalar>
+  static double LargestFinite(const std::vector<Scalar>& v) {
+    constexpr size_t kChunk = 1 << 16;
+    std::vector<double> largest((v.size() + kChunk - 1) / kChunk, 0.0);
+    ParallelFor(largest.size(), 1, [&](size_t c) {
+      for (size_t i = c * kChunk, e = std::min(v.size(), i + kChunk); i < e; ++i)
+        if (std::isfinite(double(v[i]))) largest[c] = std::max(largest[c], double(v[i]));
+    });
+    return largest.empty() ? 0.0 : *std::max_element(largest.begin(), largest.end());
   }
 };
 

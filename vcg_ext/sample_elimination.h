@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 #include "parallel.h"
+#include "prefetch.h"
 #include "progress.h"
 
 namespace vcg_ext {
@@ -30,6 +31,7 @@ class SampleElimination {
     /// regions of the samples taken out: the search's Complete fills them).
     std::vector<int> owner;
     std::vector<Scalar> dist;
+    std::vector<int> rankOf;    ///< per given sample: its index in `samples`, -1 where taken out
   };
 
   /// Keeps `keep` of `samples`, a Poisson set of radius r (every point within
@@ -46,21 +48,28 @@ class SampleElimination {
     keep = std::min(keep, m);
     // Per point: the sample nearest so far and its distance. A sample reaching a
     // point another holds notes the pair, at the sum of their distances.
-    std::vector<int> owner(n, -1);
-    std::vector<double> at(n, std::numeric_limits<double>::infinity());
+    // Side by side, so that a disk's points cost one cache line each, not two
+    // (a disk in visiting order lands anywhere); distances as the search gives them.
+    struct Nearest {
+      int owner;
+      Scalar at;
+    };
+    std::vector<Nearest> nearestOfPoint(n, Nearest{-1, std::numeric_limits<Scalar>::infinity()});
     std::vector<Pair> notes;  // appended in the disks' order, gathered per sample below
-    Disks(search, samples, r, [&](int k, const std::vector<std::pair<int, double>>& disk) {
+    Disks<Scalar>(search, samples, r, [&](const std::vector<std::pair<int, Scalar>>& disk) {
+      for (const auto& e : disk) Prefetch(&nearestOfPoint[size_t(e.first)]);
+    }, [&](int k, const std::vector<std::pair<int, Scalar>>& disk) {
       const size_t first = notes.size();  // k's pairs: each noted once, at the least distance
       for (const auto& e : disk) {
-        const size_t i = size_t(e.first);
-        if (owner[i] >= 0 && owner[i] != k) {
-          const double d = at[i] + e.second;
+        Nearest& p = nearestOfPoint[size_t(e.first)];
+        if (p.owner >= 0 && p.owner != k) {
+          const double d = double(p.at) + double(e.second);
           size_t j = first;
-          while (j < notes.size() && notes[j].a != owner[i]) ++j;
-          if (j == notes.size()) notes.push_back({owner[i], k, d});
+          while (j < notes.size() && notes[j].a != p.owner) ++j;
+          if (j == notes.size()) notes.push_back({p.owner, k, d});
           else notes[j].d = std::min(notes[j].d, d);
         }
-        if (e.second < at[i]) at[i] = e.second, owner[i] = k;
+        if (e.second < p.at) p.at = e.second, p.owner = k;
       }
     }, progress);
     const Neighbours near = Gather(m, notes);
@@ -99,14 +108,17 @@ class SampleElimination {
     }
     Result<Scalar> res;
     res.samples.reserve(keep);
-    std::vector<int> rank(m, -1);
+    std::vector<int>& rank = res.rankOf;
+    rank.assign(m, -1);
     for (size_t a = 0; a < m; ++a)
       if (!out[a]) rank[a] = int(res.samples.size()), res.samples.push_back(samples[a]);
     if (res.samples.size() != keep) throw std::logic_error("sample elimination kept the wrong count");
     res.owner.assign(n, -1);
     res.dist.assign(n, std::numeric_limits<Scalar>::infinity());
-    for (size_t i = 0; i < n; ++i)
-      if (owner[i] >= 0 && rank[size_t(owner[i])] >= 0) res.owner[i] = rank[size_t(owner[i])], res.dist[i] = Scalar(at[i]);
+    ParallelFor(n, 4096, [&](size_t i) {
+      const Nearest& p = nearestOfPoint[i];
+      if (p.owner >= 0 && rank[size_t(p.owner)] >= 0) res.owner[i] = rank[size_t(p.owner)], res.dist[i] = p.at;
+    });
     return res;
   }
 
@@ -138,15 +150,20 @@ class SampleElimination {
   // Calls take(k, disk of src[k]) in order of k, each disk a list of (point,
   // distance) within r. The disks of a batch are searched on all threads while
   // the calling thread first takes those of the batch before: the serial part
-  // hides behind the searches.
-  template <class Search, class Take>
-  static void Disks(Search& search, const std::vector<int>& src, double r, Take take, Progress progress) {
+  // hides behind the searches. ahead(disk) sees each disk kAhead takes before
+  // its own, to start fetching what the take will read there.
+  template <class Scalar, class Search, class Ahead, class Take>
+  static void Disks(Search& search, const std::vector<int>& src, double r, Ahead ahead, Take take, Progress progress) {
     PerThread<Search> searches(search);
-    std::vector<std::vector<std::pair<int, double>>> disks[2];
+    std::vector<std::vector<std::pair<int, Scalar>>> disks[2];
     disks[0].resize(kBatch), disks[1].resize(kBatch);
     auto takeBatch = [&](size_t b) {
       const size_t m = std::min(kBatch, src.size() - b);
-      for (size_t c = 0; c < m; ++c) take(int(b + c), disks[(b / kBatch) % 2][c]);
+      const auto& batch = disks[(b / kBatch) % 2];
+      for (size_t c = 0; c < m; ++c) {
+        if (c + kAhead < m) ahead(batch[c + kAhead]);
+        take(int(b + c), batch[c]);
+      }
     };
     for (size_t b = 0; b < src.size() + kBatch; b += kBatch) {  // one more round: the last batch's take
       const size_t m = b < src.size() ? std::min(kBatch, src.size() - b) : 0;
@@ -157,7 +174,7 @@ class SampleElimination {
         auto& disk = batch[c];
         disk.clear();
         try {
-          s.Visit(src[b + c], r, [&](int i, double d) { disk.emplace_back(i, d); });
+          s.Visit(src[b + c], r, [&](int i, Scalar d) { disk.emplace_back(i, d); });
         } catch (const std::bad_alloc&) {
           outOfMemory = true;
         }
@@ -168,6 +185,7 @@ class SampleElimination {
   }
 
   static constexpr size_t kBatch = 4096;
+  static constexpr size_t kAhead = 4;  // about a miss's latency in takes
 };
 
 }  // namespace vcg_ext
