@@ -4,7 +4,8 @@
 // the Poisson visiting order, on all threads. A least-significant-digit radix
 // sort over the 8-bit digits of the 32 highest bits in which keys differ (all
 // of them for Morton keys of a grid up to 2^10 cells wide), O(n) each; keys
-// still tied there (rare for hashes) are sorted by comparison. At 14M keys
+// still tied there are sorted by comparison (rare for hashes), or in long
+// runs (skewed keys) by passes over their bits below. At 14M keys
 // about 2x faster than a parallel comparison sort of (key, index) pairs, in
 // 16 bytes a key where that took 32 (tied keys take 16 more while sorted).
 #include <algorithm>
@@ -12,9 +13,6 @@
 #include <cstdint>
 #include <utility>
 #include <vector>
-#ifdef _OPENMP
-#include <parallel/algorithm>
-#endif
 #include "parallel.h"
 
 namespace vcg_ext {
@@ -50,19 +48,33 @@ void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
   });
 }
 
+/// Stable passes over the digits of the words' high 32 bits in which `differ`
+/// (a mask of those 32 bits) has some bit set; the others order nothing.
+inline void RadixPasses(std::vector<uint64_t>& packed, uint64_t differ) {
+  std::vector<uint64_t> packed2;
+  for (int d = 0; d < 32 / kRadixBits; ++d)
+    if ((differ >> (d * kRadixBits)) & ((uint64_t(1) << kRadixBits) - 1)) {
+      packed2.resize(packed.size());
+      RadixScatter(packed, 32 + d * kRadixBits, [&](size_t from, size_t to) { packed2[to] = packed[from]; });
+      packed.swap(packed2);
+    }
+}
+
 /// order[r] = the index i in [0, n) with the r-th smallest keyOf(i), equal
 /// keys by index. The keys are not kept: each is packed with its index into
 /// one word (the 32 bits from the highest in which some keys differ, above
 /// the index), radix-sorted by those bits, and only the keys still tied there
-/// (rare for hashes) are asked again, to sort them by comparison. 16 bytes a
-/// key, and 16 more for each key of a run tied in those bits while the run is
+/// (rare for hashes) are asked again: a short run is sorted by comparison, a
+/// long one by radix passes over the bits below the window. 16 bytes a key,
+/// and 16 more for each key of a run tied in those bits while the run is
 /// sorted (runs are long where keys share their high bits: flat ground in the
-/// prominence and rims orders). The same result for any number of threads:
+/// prominence and rims orders, a far outlier's Morton key above a cloud's).
+/// The same result for any number of threads:
 /// the sorted order is unique, and each step writes to places that depend on
 /// the counts only.
 template <class KeyOf>
 std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
-  constexpr int kBits = kRadixBits, kWindow = 32;
+  constexpr int kWindow = 32;
   constexpr uint64_t kLow = 0xffffffffULL;
   std::vector<uint64_t> packed(n);
   // Per block, the bits all its keys share and those any has: a block's
@@ -89,14 +101,7 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
     for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i)
       packed[i] = (((packed[i] >> shift) & kLow) << 32) | uint64_t(i);
   });
-  if (high >= 0) {
-    std::vector<uint64_t> packed2(n);
-    for (int d = 0; d < kWindow / kBits; ++d)
-      if (((differ >> shift) >> (d * kBits)) & ((uint64_t(1) << kBits) - 1)) {
-        RadixScatter(packed, 32 + d * kBits, [&](size_t from, size_t to) { packed2[to] = packed[from]; });
-        packed.swap(packed2);
-      }
-  }
+  if (high >= 0) RadixPasses(packed, (differ >> shift) & kLow);
   if (shift > 0) {  // keys equal in the window: by the whole key, then the index
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t i = 0, j; i < n; i = j) {
@@ -104,25 +109,33 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
       if (j - i > 1) runs.emplace_back(i, j);
     }
     typedef std::vector<std::pair<uint64_t, uint64_t>> Pairs;
-    auto sortRun = [&](size_t b, size_t e, Pairs& kp, bool parallel) {
+    auto sortRun = [&](size_t b, size_t e, Pairs& kp) {
       kp.resize(e - b);
       for (size_t i = b; i < e; ++i) kp[i - b] = {keyOf(size_t(packed[i] & kLow)), packed[i]};
-#ifdef _OPENMP
-      if (parallel) __gnu_parallel::sort(kp.begin(), kp.end());
-      else
-#endif
-        std::sort(kp.begin(), kp.end());
+      std::sort(kp.begin(), kp.end());
       for (size_t i = b; i < e; ++i) packed[i] = kp[i - b].second;
     };
     const size_t large = std::max<size_t>(size_t(1) << 16, n / (4 * size_t(ThreadCount())));
     std::vector<Pairs> scratch(static_cast<size_t>(ThreadCount()));
     ParallelFor(runs.size(), 64, [&](size_t r) {
       if (runs[r].second - runs[r].first <= large)
-        sortRun(runs[r].first, runs[r].second, scratch[size_t(ThreadIndex())], false);
+        sortRun(runs[r].first, runs[r].second, scratch[size_t(ThreadIndex())]);
     });
-    Pairs kp;
-    for (const auto& r : runs)  // skewed keys: the few large runs on all threads each
-      if (r.second - r.first > large) sortRun(r.first, r.second, kp, true);
+    // Skewed keys (a far outlier above a cloud's Morton keys, the many points
+    // of value 0 in a key-first order): the few large runs on all threads each.
+    // A run's keys agree from `shift` up, so they differ in its 32 bits below
+    // at most: radix passes order it whole. Tied keys stay in index order
+    // there (the passes are stable), as the inner sort's ties by place keep.
+    const uint64_t below = (uint64_t(1) << shift) - 1;  // shift <= 32: the bits a run's keys differ in
+    for (const auto& r : runs) {
+      const size_t len = r.second - r.first;
+      if (len <= large) continue;
+      std::vector<uint64_t> run(len);  // (the key's bits below shift, place in the run)
+      ParallelFor(len, 4096, [&](size_t j) { run[j] = ((keyOf(size_t(packed[r.first + j] & kLow)) & below) << 32) | j; });
+      RadixPasses(run, below);
+      ParallelFor(len, 4096, [&](size_t j) { run[j] = packed[r.first + size_t(run[j] & kLow)]; });
+      std::copy(run.begin(), run.end(), packed.begin() + std::ptrdiff_t(r.first));
+    }
   }
   std::vector<int> order(n);
   ParallelFor(blocks, 1, [&](size_t k) {

@@ -43,6 +43,9 @@ void AllShapes() {
   auto tied = Keys(200000, 4, 0xffff);                                  // all tied in the high digits but
   for (size_t i = 0; i < tied.size(); i += 1000) tied[i] |= uint64_t(1) << 60;  // a few outliers: long runs
   MatchesAComparisonSort(tied);
+  auto farOutlier = Keys(300000, 6, 0x3fffffff);  // Morton-like keys below one far above them: one
+  farOutlier[123] = uint64_t(1) << 62;             // long run, ordered by its bits below the window
+  MatchesAComparisonSort(farOutlier);
   // Five differing digits, the four high ones from 40 values: runs of about
   // eight tied there, short enough for insertion, with equal keys in them.
   std::mt19937_64 rng(5);
