@@ -123,9 +123,9 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
     });
     // Skewed keys (a far outlier above a cloud's Morton keys, the many points
     // of value 0 in a key-first order): the few large runs on all threads each.
-    // A run's keys agree from `shift` up, so they differ in its 32 bits below
-    // at most: radix passes order it whole. Tied keys stay in index order
-    // there (the passes are stable), as the inner sort's ties by place keep.
+    // A run's keys agree from `shift` up, so they differ in the 32 bits below
+    // at most: radix passes over those order it whole. The run holds its keys
+    // in index order (every pass is stable), so ties by place are ties by index.
     const uint64_t below = (uint64_t(1) << shift) - 1;  // shift <= 32: the bits a run's keys differ in
     for (const auto& r : runs) {
       const size_t len = r.second - r.first;
