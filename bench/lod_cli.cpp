@@ -5,7 +5,7 @@
 // memory, without any host's overhead.
 //
 // usage: lod_cli IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]
-//                [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt]
+//                [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt] [--voronoi OUT.txt]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -122,13 +122,13 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]\n"
                          "       [--visit-order random|prominence|rims] [--recompute-normals] [--seed S] [--threads T]\n"
-                         "       [--samples OUT.txt]\n", argv[0]);
+                         "       [--samples OUT.txt] [--voronoi OUT.txt]\n", argv[0]);
     return 2;
   }
   double radius = 0, radiusPct = 0.5;
   size_t fps = 0, count = 0;
   uint64_t seed = 0;
-  std::string metric, samplesOut, order;  // no --metric or --visit-order: the product default
+  std::string metric, samplesOut, voronoiOut, order;  // no --metric or --visit-order: the product default
   bool recompute = false;
   for (int a = 2; a < argc; ++a) {
     const std::string o = argv[a];
@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
     else if (o == "--recompute-normals") recompute = true;
     else if (o == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (o == "--samples") samplesOut = next();
+    else if (o == "--voronoi") voronoiOut = next();  // per point: the rank of its nearest sample
 #ifdef _OPENMP
     else if (o == "--threads") omp_set_num_threads(std::atoi(next().c_str()));
 #endif
@@ -167,7 +168,7 @@ int main(int argc, char** argv) {
   StageClock clock;
   gClock = &clock;
   const auto t1 = Clock::now();
-  std::vector<int> samples;
+  std::vector<int> samples, voronoi;
   int runs = 1;
   try {
     vcg_ext::GeodesicDomain<float>::Param dp;
@@ -186,8 +187,10 @@ int main(int argc, char** argv) {
       p.sampleNum = count;
       p.seed = seed;
       if (!order.empty()) p.order = orders.at(order);
+      if (!voronoiOut.empty()) p.regions = vcg_ext::Regions::Voronoi;
       const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<CMesh::ScalarType>>(m, p, Callback);
       samples = r.vertIndex;
+      voronoi = r.regionOf;
       if (count) radius = r.radius, runs = r.iterations;
     }
   } catch (const std::exception& e) {
@@ -206,6 +209,10 @@ int main(int argc, char** argv) {
   if (!samplesOut.empty()) {
     std::ofstream o(samplesOut);
     for (int i : samples) o << i << '\n';
+  }
+  if (!voronoiOut.empty()) {
+    std::ofstream o(voronoiOut);
+    for (int i : voronoi) o << i << '\n';
   }
   return 0;
 }

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 #include "neighbour_graph.h"
+#include "open_regions.h"
+#include "parallel.h"
 #include "prefetch.h"
 #include "radix_heap.h"
 
@@ -62,7 +64,7 @@ class BoundedDijkstra {
         const Scalar nd = top.first + Length(i, j, e);
         if (nd <= r && (!dj || nd < *dj)) {
           if (dj) *dj = nd; else near_.Add(j, nd);
-          Push(j, nd);
+          Push(heap_, j, nd);
         }
       }
     }
@@ -77,15 +79,53 @@ class BoundedDijkstra {
     heap_.clear();
     dist[src] = 0;
     heap_.push(Scalar(0), src);
-    Propagate(dist, f, [](int, int) {});
+    Propagate(dist, f);
   }
 
   /// Completes a nearest-source field exact where owner[i] >= 0: the points with
-  /// owner -1 get their nearest source by fronts entering from their neighbours.
-  /// Costs in proportion to those points (`sources` is not needed here).
+  /// owner -1 get their nearest source by fronts entering from their neighbours
+  /// (infinity and -1 where none enters). Costs in proportion to those points
+  /// (`sources` is not needed here); their regions are filled on all threads,
+  /// each by a front of its own. The fronts settle in the order of one front
+  /// over all regions (by distance, then point), so ties fall alike on any
+  /// number of threads.
   void Complete(const std::vector<int>& /*sources*/, std::vector<Scalar>& dist, std::vector<int>& owner) {
-    SeedFromOwned(g_, owner, dist, heap_);
-    Propagate(dist, [](int, Scalar) {}, [&](int from, int to) { owner[to] = owner[from]; });
+    const OpenRegions holes = OpenRegions::Of(g_, owner);
+    ParallelFor(holes.points.size(), 4096,
+                [&](size_t k) { dist[size_t(holes.points[k])] = std::numeric_limits<Scalar>::infinity(); });
+    struct Scratch {
+      RadixHeap<Scalar> heap;
+      std::vector<int> seeds;
+    } first;
+    PerThread<Scratch> scratch(first);
+    ParallelFor(holes.Regions(), 16, [&](size_t r) {
+      Scratch& s = scratch.Mine();
+      s.heap.clear(), s.seeds.clear();
+      for (size_t k = holes.start[r]; k < holes.start[r + 1]; ++k) {
+        const int i = holes.points[k];
+        for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e)
+          if (owner[size_t(g_.To(i, e))] >= 0) s.seeds.push_back(g_.To(i, e));
+      }
+      std::sort(s.seeds.begin(), s.seeds.end());
+      s.seeds.erase(std::unique(s.seeds.begin(), s.seeds.end()), s.seeds.end());
+      for (int j : s.seeds) s.heap.push(dist[size_t(j)], j);
+      while (!s.heap.empty()) {
+        const Entry top = s.heap.pop();
+        const int i = top.second;
+        if (top.first != dist[size_t(i)]) continue;  // stale
+        for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
+          const int j = g_.To(i, e);
+          if (dist[size_t(j)] <= top.first) continue;
+          const Scalar nd = top.first + Length(i, j, e);
+          // Owned points are final: only the region's own are lowered.
+          if (nd < dist[size_t(j)] && holes.InRegion(r, j)) {
+            dist[size_t(j)] = nd;
+            owner[size_t(j)] = owner[size_t(i)];
+            Push(s.heap, j, nd);
+          }
+        }
+      }
+    });
   }
 
   /// Graph distances from `src` to every point (infinity where unreachable).
@@ -98,9 +138,9 @@ class BoundedDijkstra {
  private:
   typedef std::pair<Scalar, int> Entry;
   // Dijkstra from the points in heap_ (their distances set) as far as `dist`
-  // drops: f(i, d) as each is settled, reached(from, to) as `from` lowers `to`.
-  template <class F, class Reached>
-  void Propagate(std::vector<Scalar>& dist, F&& f, const Reached& reached) {
+  // drops: f(i, d) as each is settled.
+  template <class F>
+  void Propagate(std::vector<Scalar>& dist, F&& f) {
     while (!heap_.empty()) {
       const Entry top = heap_.pop();
       const int i = top.second;
@@ -112,19 +152,18 @@ class BoundedDijkstra {
         const Scalar nd = top.first + Length(i, j, e);
         if (nd < dist[j]) {
           dist[j] = nd;
-          reached(i, j);
-          Push(j, nd);
+          Push(heap_, j, nd);
         }
       }
     }
   }
   float Length(int i, int j, int e) const { return w_ ? w_[e] : len_(i, j); }
-  void Push(int j, Scalar d) {
+  void Push(RadixHeap<Scalar>& heap, int j, Scalar d) const {
     // Searches start anywhere in the graph, so j's row is rarely cached:
     // start fetching it, for its pop, while the heap works.
     Prefetch(g_.adj.slot.data() + g_.offset[j]);
     if (w_) Prefetch(w_ + g_.offset[j]);
-    heap_.push(d, j);
+    heap.push(d, j);
   }
 
   const NeighbourGraph<Scalar>& g_;

@@ -135,8 +135,10 @@ class PoissonTargetCount {
     uint64_t seed = 0;           ///< picks the pilot, and the farthest-point fallback's first sample
     const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
                                               ///< every point or only of those that may be samples
-    double keptDisks = 2;        ///< disks kept from run to run and for the thinning (DiskCache), in
-                                 ///< entries per point (8 bytes each in float); 0: none
+    double keptDisks = 2.5;      ///< disks kept from run to run and for the thinning (DiskCache), in
+                                 ///< entries per point (8 bytes each in float); 0: none. A run's disks
+                                 ///< hold about 1.9 a point at any radius; 2.5 keeps also the second
+                                 ///< run's new ones, which the thinning reads again
   };
   struct Result {
     std::vector<int> samples;    ///< point indices, in visiting order (farthest-point order when trimmed from all points)
