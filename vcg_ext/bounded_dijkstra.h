@@ -113,12 +113,16 @@ class BoundedDijkstra {
         const Entry top = s.heap.pop();
         const int i = top.second;
         if (top.first != dist[size_t(i)]) continue;  // stale
+        // A seed may border other regions, which other threads fill: it reads
+        // only its own region's points. A point of the region borders no other.
+        const bool seed = !holes.InRegion(r, i);
         for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
           const int j = g_.To(i, e);
+          if (seed && !holes.InRegion(r, j)) continue;
           if (dist[size_t(j)] <= top.first) continue;
           const Scalar nd = top.first + Length(i, j, e);
           // Owned points are final: only the region's own are lowered.
-          if (nd < dist[size_t(j)] && holes.InRegion(r, j)) {
+          if (nd < dist[size_t(j)] && (seed || holes.InRegion(r, j))) {
             dist[size_t(j)] = nd;
             owner[size_t(j)] = owner[size_t(i)];
             Push(s.heap, j, nd);
