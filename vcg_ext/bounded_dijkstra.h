@@ -79,7 +79,7 @@ class BoundedDijkstra {
     heap_.clear();
     dist[src] = 0;
     heap_.push(Scalar(0), src);
-    Propagate(dist, f);
+    Propagate(heap_, dist, [](int) { return true; }, f, [](int, int) {});
   }
 
   /// Completes a nearest-source field exact where owner[i] >= 0: the points with
@@ -109,26 +109,10 @@ class BoundedDijkstra {
       std::sort(s.seeds.begin(), s.seeds.end());
       s.seeds.erase(std::unique(s.seeds.begin(), s.seeds.end()), s.seeds.end());
       for (int j : s.seeds) s.heap.push(dist[size_t(j)], j);
-      while (!s.heap.empty()) {
-        const Entry top = s.heap.pop();
-        const int i = top.second;
-        if (top.first != dist[size_t(i)]) continue;  // stale
-        // A seed may border other regions, which other threads fill: it reads
-        // only its own region's points. A point of the region borders no other.
-        const bool seed = !holes.InRegion(r, i);
-        for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-          const int j = g_.To(i, e);
-          if (seed && !holes.InRegion(r, j)) continue;
-          if (dist[size_t(j)] <= top.first) continue;
-          const Scalar nd = top.first + Length(i, j, e);
-          // Owned points are final: only the region's own are lowered.
-          if (nd < dist[size_t(j)] && (seed || holes.InRegion(r, j))) {
-            dist[size_t(j)] = nd;
-            owner[size_t(j)] = owner[size_t(i)];
-            Push(s.heap, j, nd);
-          }
-        }
-      }
+      // Only the region's own points are read and lowered: owned points are
+      // final, and the other regions a seed borders are other threads'.
+      Propagate(s.heap, dist, [&](int j) { return holes.InRegion(r, j); }, [](int, Scalar) {},
+                [&](int from, int to) { owner[size_t(to)] = owner[size_t(from)]; });
     });
   }
 
@@ -141,22 +125,25 @@ class BoundedDijkstra {
 
  private:
   typedef std::pair<Scalar, int> Entry;
-  // Dijkstra from the points in heap_ (their distances set) as far as `dist`
-  // drops: f(i, d) as each is settled.
-  template <class F>
-  void Propagate(std::vector<Scalar>& dist, F&& f) {
-    while (!heap_.empty()) {
-      const Entry top = heap_.pop();
+  // Dijkstra from the points in `heap` (their distances set) as far as `dist`
+  // drops, over the points with within(j) only (neither read nor lowered
+  // elsewhere): f(i, d) as each is settled, reached(from, to) as `from` lowers `to`.
+  template <class Within, class F, class Reached>
+  void Propagate(RadixHeap<Scalar>& heap, std::vector<Scalar>& dist, const Within& within, F&& f,
+                 const Reached& reached) const {
+    while (!heap.empty()) {
+      const Entry top = heap.pop();
       const int i = top.second;
       if (top.first != dist[i]) continue;  // stale
       f(i, top.first);
       for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
         const int j = g_.To(i, e);
-        if (dist[j] <= top.first) continue;  // no edge can lower it: its length is not needed
+        if (!within(j) || dist[j] <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, j, e);
         if (nd < dist[j]) {
           dist[j] = nd;
-          Push(heap_, j, nd);
+          reached(i, j);
+          Push(heap, j, nd);
         }
       }
     }

@@ -280,8 +280,8 @@ class NeighbourGraph {
   }
 };
 
-/// Where fronts start that complete a nearest-source field (BoundedDijkstra's
-/// and FastMarching's Complete): the points with owner -1 get an infinite
+/// Where fronts start that complete a nearest-source field (FastMarching's
+/// Complete): the points with owner -1 get an infinite
 /// distance, and each of their neighbours with an owner goes once on the
 /// heap (emptied first), at its distance.
 template <class Scalar>
