@@ -48,6 +48,13 @@ def ours_rims_first(pymeshlab, xyz, n, seed):
     return gl.poisson_lod(xyz, count=n, seed=seed, metric="euclidean", visit_order="rims").indices
 
 
+def ours_surface_density(pymeshlab, xyz, n, seed):
+    """The surface-density metric (vcg_ext/surface_density.h: denser on smooth surfaces, twice so at their
+    rims, than in an even scatter), visiting the rims first, as for the Euclidean metric above."""
+    import geodesic_lod as gl
+    return gl.poisson_lod(xyz, count=n, seed=seed, metric="surface-density", visit_order="rims").indices
+
+
 def meshlab_simplification(pymeshlab, xyz, n, seed):
     """MeshLab's point cloud simplification of the points in a seeded order (seed 0: the file's), its
     radius searched to the count; its points are input points."""
@@ -78,6 +85,7 @@ def uniform_random(pymeshlab, xyz, n, seed):
 METHODS = {"ours (defaults)": ours,
            "ours, Euclidean metric": lambda pm, xyz, n, seed: ours(pm, xyz, n, seed, metric="euclidean"),
            "ours, Euclidean metric, rims first": ours_rims_first,
+           "ours, surface-density metric, rims first": ours_surface_density,
            "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
 
 

@@ -48,7 +48,8 @@ using vcg_ext::Regions;
 const Choices<Metric> kMetrics{{{Metric::WeightedEq3, "Weighted geodesic (eq. 3)"},
                                 {Metric::CurvatureDensity, "Curvature-density geodesic"},
                                 {Metric::Geodesic, "Geodesic (unweighted)"},
-                                {Metric::Euclidean, "Euclidean"}}};
+                                {Metric::Euclidean, "Euclidean"},
+                                {Metric::SurfaceDensity, "Surface-density geodesic (airborne LiDAR)"}}};
 const Choices<GeodesicMode> kModes{{{GeodesicMode::Auto, "Auto"},
                                     {GeodesicMode::Mesh, "Mesh (fast marching)"},
                                     {GeodesicMode::PointGraph, "Point graph (Dijkstra)"}}};
@@ -139,9 +140,11 @@ void AddDomainParams(std::vector<ParamSpec>& p, const Choices<OutputKind>& outpu
                "c in eq. 3: g_ij = exp(|v_i - v_j|^c) |p_i - p_j|. Must be positive.",
                kDomainDefaults.curvatureExponent});
   p.push_back({ParamKind::Float, kAdaptivity, "Adaptivity a",
-               "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|); used "
-               "only by that metric. 0 gives the unweighted geodesic; 3 did best in the quality benchmark, "
-               "10 and more over-sample noisy scans.", kDomainDefaults.adaptivity});
+               "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|) and of the "
+               "surface-density one (v_i replaced by s_i, twice a point's flatness at its surfaces' rims, once "
+               "inside them, 0 in an even scatter such as leaves); used only by those. 0 gives the unweighted "
+               "geodesic; 3 did best in the quality benchmark, 10 and more over-sample noisy scans.",
+               kDomainDefaults.adaptivity});
   p.push_back(NormalNeighboursParam());
   p.push_back({ParamKind::Int, kGraphNeighbors, "Graph neighbours k",
                "Neighbours of each point in the (symmetric) k-nearest-neighbour graph the point-graph geodesics "

@@ -20,6 +20,7 @@
 #include "normal_variation.h"
 #include "point_normals.h"
 #include "point_set.h"
+#include "surface_density.h"
 
 namespace vcg_ext {
 
@@ -53,6 +54,7 @@ class GeodesicDomain {
   std::vector<vcg::Point3f> normal; ///< n_i, unit (in float: PointNormals)
   size_t estimatedNormals = 0;
   std::vector<float> curvature;     ///< v_i, eq. 1 (in float: NormalVariation)
+  std::vector<float> density;       ///< s_i of the surface-density metric (empty for the others)
   Metric metric = Param().metric;
   double curvatureExponent = Param().curvatureExponent;
   double adaptivity = Param().adaptivity;
@@ -144,6 +146,8 @@ class GeodesicDomain {
       auto nr = PointNormals<Scalar>::Estimate(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
       d.points.normal = std::vector<Coord>();  // nr holds them now
       d.curvature = NormalVariation<Scalar>::Compute(nr.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
+      if (p.metric == Metric::SurfaceDensity)
+        d.density = SurfaceDensity<Scalar>::Compute(d.points.pos, knn, p.normalNeighbours, p.adaptivity);
       // Eq. 1 is blind to the normals' signs: they are made consistent after
       // it, when the table has shrunk to what the graph and the walk read (at
       // the peak, the walk's queue and levels would add about 20 bytes a point).
@@ -189,13 +193,14 @@ class GeodesicDomain {
     len.weight.exponent = curvatureExponent;
     len.weight.adaptivity = adaptivity;
     len.weight.curvature = &curvature;
+    len.weight.density = &density;
     return len;
   }
 
   /// The bytes its arrays hold: what keeping a domain for several LODs costs.
   size_t MemoryBytes() const {
     const auto& g = meshGeodesics ? fmMesh.edges : graph;
-    return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) +
+    return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) + Bytes(density) +
            Bytes(g.offset) + g.adj.MemoryBytes() + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
            Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach);
   }

@@ -1,7 +1,7 @@
 #ifndef VCG_EXT_GEODESIC_METRIC_H
 #define VCG_EXT_GEODESIC_METRIC_H
 // Edge lengths of the curvature-weighted geodesic metric, paper eq. 2-3,
-// and the curvature-density weighting offered beside it.
+// and the curvature- and surface-density weightings offered beside it.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -14,11 +14,12 @@ enum class Metric {
   WeightedEq3 = 0,       ///< g_ij = exp(|v_i - v_j|^c) |p_i - p_j|   (paper eq. 3)
   CurvatureDensity = 1,  ///< g_ij = (1 + a (v_i + v_j) / 2) |p_i - p_j|
   Geodesic = 2,          ///< g_ij = |p_i - p_j|
-  Euclidean = 3          ///< straight-line distance, no graph (for comparison)
+  Euclidean = 3,         ///< straight-line distance, no graph (for comparison)
+  SurfaceDensity = 4     ///< g_ij = (1 + (s_i + s_j) / 2) |p_i - p_j|, s of SurfaceDensity (airborne LiDAR)
 };
 
 /// Functor giving the weighted length g_ij of the edge (i, j) of Euclidean
-/// length `len`; both weightings are >= 1, so g_ij >= |p_i - p_j| and every
+/// length `len`; every weighting is >= 1, so g_ij >= |p_i - p_j| and every
 /// geodesic disk of radius r lies inside the Euclidean ball of radius r.
 template <class Scalar>
 struct EdgeWeight {
@@ -26,6 +27,7 @@ struct EdgeWeight {
   double exponent = 1.0;              ///< c of eq. 3, > 0
   double adaptivity = 0.0;            ///< a of the density weighting, >= 0
   const std::vector<float>* curvature = nullptr;  ///< v_i of eq. 1
+  const std::vector<float>* density = nullptr;    ///< s_i >= 0 of SurfaceDensity
 
   Scalar operator()(int i, int j, Scalar len) const {
     switch (metric) {
@@ -35,6 +37,8 @@ struct EdgeWeight {
       }
       case Metric::CurvatureDensity:
         return Scalar((1.0 + adaptivity * 0.5 * (double((*curvature)[i]) + double((*curvature)[j]))) * len);
+      case Metric::SurfaceDensity:
+        return Scalar((1.0 + 0.5 * (double((*density)[i]) + double((*density)[j]))) * len);
       default:
         return len;
     }

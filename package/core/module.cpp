@@ -208,7 +208,8 @@ NB_MODULE(_core, m) {
       .value("WeightedEq3", vcg_ext::Metric::WeightedEq3)
       .value("CurvatureDensity", vcg_ext::Metric::CurvatureDensity)
       .value("Geodesic", vcg_ext::Metric::Geodesic)
-      .value("Euclidean", vcg_ext::Metric::Euclidean);
+      .value("Euclidean", vcg_ext::Metric::Euclidean)
+      .value("SurfaceDensity", vcg_ext::Metric::SurfaceDensity);
   nb::enum_<vcg_ext::GeodesicMode>(m, "GeodesicMode")
       .value("Auto", vcg_ext::GeodesicMode::Auto)
       .value("Mesh", vcg_ext::GeodesicMode::Mesh)

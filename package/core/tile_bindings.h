@@ -76,6 +76,7 @@ inline nb::dict TileDomainArrays(const Domain& d) {
   out["normal"] = View(n ? &d.normal[0][0] : nullptr, n, 3, self);
   out["vert_index"] = View(d.points.vertIndex.data(), n, 0, self);
   out["curvature"] = View(d.curvature.data(), d.curvature.size(), 0, self);
+  out["density"] = View(d.density.data(), d.density.size(), 0, self);
   out["reach"] = View(d.reach.data(), n, 0, self);
   out["offset"] = View(g.offset.data(), g.offset.size(), 0, self);
   out["adj"] = View(g.adj.slot.data(), g.adj.size(), 0, self);
@@ -103,14 +104,16 @@ std::vector<T> Copied(const A& a) {
 
 inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<float>& normal,
                                    const InFlat<int>& vertIndex, const InFlat<float>& curvature,
+                                   const InFlat<float>& density,
                                    const InFlat<double>& reach, const InFlat<int>& offset, const InFlat<int16_t>& adj,
                                    const InFlat<uint64_t>& farBase, const InFlat<int>& far, const InFlat<float>& weight, int metric, double curvatureExponent,
                                    double adaptivity, size_t estimatedNormals, int components, size_t vertexCount) {
   const size_t n = pos.shape(0);
   const bool graph = offset.size() > 0;
-  bool fits = metric >= int(vcg_ext::Metric::WeightedEq3) && metric <= int(vcg_ext::Metric::Euclidean) &&
+  bool fits = metric >= int(vcg_ext::Metric::WeightedEq3) && metric <= int(vcg_ext::Metric::SurfaceDensity) &&
               normal.shape(0) == n && vertIndex.size() == n && reach.size() == n &&
-              (curvature.size() == n || curvature.size() == 0) && (weight.size() == 0 || weight.size() == adj.size()) &&
+              (curvature.size() == n || curvature.size() == 0) &&
+              (density.size() == (metric == int(vcg_ext::Metric::SurfaceDensity) ? n : 0)) && (weight.size() == 0 || weight.size() == adj.size()) &&
               (graph ? offset.size() == n + 1 && offset(0) == 0 && size_t(offset(n)) == adj.size() : adj.size() == 0);
   for (size_t i = 0; fits && i < n; ++i) fits = vertIndex(i) >= 0 && size_t(vertIndex(i)) < vertexCount;
   for (size_t i = 0; fits && graph && i < n; ++i) fits = offset(i) <= offset(i + 1);
@@ -126,6 +129,7 @@ inline Domain TileDomainFromArrays(const InRows3<double>& pos, const InRows3<flo
   d.points.vertIndex = Copied<int>(vertIndex);
   d.points.vertexCount = d.vertexCount = vertexCount;
   d.curvature = Copied<float>(curvature);
+  d.density = Copied<float>(density);
   d.reach = Copied<double>(reach);
   d.graph.offset = Copied<int>(offset);
   d.graph.adj.slot.resize(adj.size());
@@ -300,7 +304,7 @@ inline void BindTiles(nb::module_& m) {
         "progress"_a.none(), "a tile's domain (its points in increasing id order), for poisson_tile");
   m.def("tile_domain_arrays", &TileDomainArrays, "domain"_a, "a tile's domain as arrays and numbers");
   m.def("tile_domain_from_arrays", &TileDomainFromArrays, "pos"_a, "normal"_a, "vert_index"_a, "curvature"_a,
-        "reach"_a, "offset"_a, "adj"_a, "far_base"_a, "far"_a, "weight"_a, "metric"_a, "curvature_exponent"_a, "adaptivity"_a,
+        "density"_a, "reach"_a, "offset"_a, "adj"_a, "far_base"_a, "far"_a, "weight"_a, "metric"_a, "curvature_exponent"_a, "adaptivity"_a,
         "estimated_normals"_a, "components"_a, "vertex_count"_a, "the tile domain tile_domain_arrays gave");
   m.def("poisson_tile", &PoissonTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a,
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),

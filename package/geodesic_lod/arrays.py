@@ -22,7 +22,8 @@ from .errors import InputError
 DOMAIN_DEFAULTS = _core.DomainParam()
 
 METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
-           "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean}
+           "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean,
+           "surface-density": _core.Metric.SurfaceDensity}
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
@@ -249,12 +250,12 @@ class DomainOptions:
 
     Attributes
     ----------
-    metric : {'curvature-density', 'eq3', 'geodesic', 'euclidean'}
+    metric : {'curvature-density', 'eq3', 'geodesic', 'euclidean', 'surface-density'}
         As ``poisson_lod``'s.
     geodesics : {'auto', 'mesh', 'point-graph'}
         As ``poisson_lod``'s.
     adaptivity : float
-        a of the curvature-density metric, no unit.
+        a of the curvature- and surface-density metrics, no unit.
     curvature_exponent : float
         c of eq. 3, no unit.
     normal_neighbors : int

@@ -80,9 +80,11 @@ def parser() -> argparse.ArgumentParser:
                    "scan's scatter first) or rims (points at the rim of their surroundings, such as roof edges, "
                    f"first (default: {arrays.DEFAULT_VISIT_ORDER})")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
-                   help="the distance the samples are spread in (default: %(default)s)")
+                   help="the distance the samples are spread in; surface-density, with --visit-order rims, "
+                        "for airborne LiDAR (default: %(default)s)")
     p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
-                   help="curvature-density metric: how much denser rugged parts get (default: %(default)s)")
+                   help="curvature- and surface-density metrics: how much denser rugged parts (smooth "
+                        "surfaces) get (default: %(default)s)")
     p.add_argument("--recompute-normals", action="store_true", help="estimate normals even where the file has them")
     p.add_argument("--seed", type=int, default=0, help="the seed of the sampling order (default: %(default)s)")
     p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "

@@ -16,15 +16,19 @@ INPUTS = """points : (n, 3) array of float32 or float64
 FACES = """faces : (m, 3) array of int, optional
         Triangles over the points: geodesics then run over them (fast marching). Default: none."""
 
-METRIC = f"""metric : {{'curvature-density', 'eq3', 'geodesic', 'euclidean'}}
+METRIC = f"""metric : {{'curvature-density', 'eq3', 'geodesic', 'euclidean', 'surface-density'}}
         The distance the samples are spread in: ``'curvature-density'``, (1 + a (v_i + v_j) / 2) |p_i - p_j|
         (the default); ``'eq3'``, the method's exp(|v_i - v_j|^c) |p_i - p_j|; ``'geodesic'``, unweighted;
-        ``'euclidean'``, straight lines.
+        ``'euclidean'``, straight lines; ``'surface-density'``, (1 + (s_i + s_j) / 2) |p_i - p_j| with s_i
+        = a times a point's flatness (1 on a plane, 0 in an even scatter such as leaves), doubled at a
+        surface's rim: for airborne LiDAR, where it gives ground and roofs the samples the curvature-density
+        metric spends on vegetation (best with ``visit_order='rims'``).
     geodesics : {{'auto', 'mesh', 'point-graph'}}
         Where geodesics run: ``'mesh'`` over the faces, ``'point-graph'`` on the symmetric k-nearest-neighbour
         graph; ``'auto'`` (the default) picks the mesh where there are faces.
     adaptivity : float
-        a of the curvature-density metric, >= 0: how much denser rugged parts get. Default {_D.adaptivity:g}.
+        a of the curvature- and surface-density metrics, >= 0: how much denser rugged parts (smooth
+        surfaces) get. Default {_D.adaptivity:g}.
     curvature_exponent : float
         c of eq. 3, > 0. Default {_D.curvature_exponent:g}.
     normal_neighbors : int

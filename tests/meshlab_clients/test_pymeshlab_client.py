@@ -90,9 +90,12 @@ def test_same_seed_same_bytes(plugin, tmp_path):
 def test_every_metric_runs_and_curvature_density_adapts(plugin):
     pts = bumpy_points()
     share = {}
-    for metric in ["Weighted geodesic (eq. 3)", "Curvature-density geodesic", "Geodesic (unweighted)", "Euclidean"]:
+    # The surface-density metric is about 1 + a = 4 times the Euclidean on a plane: a radius as long in it.
+    for metric, radius in [("Weighted geodesic (eq. 3)", 0.04), ("Curvature-density geodesic", 0.04),
+                           ("Geodesic (unweighted)", 0.04), ("Euclidean", 0.04),
+                           ("Surface-density geodesic (airborne LiDAR)", 0.16)]:
         ms = mesh_set(pts)
-        res = ms.apply_filter(FILTER, radius=pymeshlab.PureValue(0.04), metric=metric)
+        res = ms.apply_filter(FILTER, radius=pymeshlab.PureValue(radius), metric=metric)
         idx = check_lod(ms, 0, res)
         share[metric] = np.mean(pts[idx, 0] >= 0.5)
     assert share["Curvature-density geodesic"] > share["Euclidean"]

@@ -42,6 +42,18 @@ def test_curvature_density_is_denser_where_bumpy(cloud):
     assert bumpy[lod.indices].mean() > bumpy.mean()
 
 
+def test_surface_density_is_denser_on_a_surface_than_in_a_scatter():
+    """Half a plane, half an even scatter in a box of the same points: the surface-density metric gives the
+    plane more of the samples than the Euclidean metric does, the curvature-density metric fewer."""
+    rng = np.random.default_rng(3)
+    plane = np.column_stack([rng.random(3000), rng.random(3000), np.zeros(3000)])
+    scatter = rng.random((3000, 3)) * [1, 1, 0.3] + [1.2, 0, 0]
+    p = np.vstack([plane, scatter])
+    on_plane = {m: (gl.poisson_lod(p, count=300, metric=m).indices < 3000).mean()
+                for m in ("surface-density", "euclidean", "curvature-density")}
+    assert on_plane["surface-density"] > on_plane["euclidean"] + 0.1 > on_plane["curvature-density"] + 0.1
+
+
 @pytest.mark.parametrize("ask", [dict(count=321), dict(rate=7.5), dict(count=4000), dict(count=1)])
 def test_poisson_exact_counts(cloud, ask):
     lod = gl.poisson_lod(cloud, **ask)

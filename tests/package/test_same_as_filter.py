@@ -11,7 +11,8 @@ from conftest import bumpy_sphere, grid_mesh, rows_of
 
 # The plugin's words for each metric (its dialog's), against the package's.
 PLUGIN_METRIC = {"curvature-density": "Curvature-density geodesic", "eq3": "Weighted geodesic (eq. 3)",
-                 "geodesic": "Geodesic (unweighted)", "euclidean": "Euclidean"}
+                 "geodesic": "Geodesic (unweighted)", "euclidean": "Euclidean",
+                 "surface-density": "Surface-density geodesic (airborne LiDAR)"}
 
 
 def filter_rows(ms, points):

@@ -27,6 +27,7 @@ def uneven(n=12000, seed=1):
     ((5, 1, 1), 3, 0.03, "eq3"),
     ((2, 3, 2), 1, 0.06, "geodesic"),
     ((3, 3, 1), 2, 0.05, "euclidean"),
+    ((2, 2, 2), 5, 0.06, "surface-density"),
 ])
 def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
     p = uneven()

@@ -1,6 +1,6 @@
 // vcg_ext/geodesic_metric.h: every weighting is symmetric and never shorter
-// than the straight edge, eq. 3 and the curvature-density weighting are the
-// formulas they name, and FloatAtLeast is the least float at or above x.
+// than the straight edge, eq. 3 and the curvature- and surface-density
+// weightings are the formulas they name, and FloatAtLeast is the least float at or above x.
 #include <gtest/gtest.h>
 #include <cmath>
 #include <limits>
@@ -20,10 +20,12 @@ TEST(GeodesicMetric, WeightsAreSymmetricNeverShorterAndTheNamedFormulas) {
   std::uniform_real_distribution<float> v(0.f, 1.f);
   std::vector<float> curvature(200);
   for (float& c : curvature) c = v(rng);
-  for (Metric m : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic})
+  std::vector<float> density(200);
+  for (float& s : density) s = 6 * v(rng);
+  for (Metric m : {Metric::WeightedEq3, Metric::CurvatureDensity, Metric::Geodesic, Metric::SurfaceDensity})
     for (double c : {0.5, 1.0, 2.0}) {
       EdgeWeight<double> w;
-      w.metric = m, w.exponent = c, w.adaptivity = 3.0, w.curvature = &curvature;
+      w.metric = m, w.exponent = c, w.adaptivity = 3.0, w.curvature = &curvature, w.density = &density;
       for (int k = 0; k < 1000; ++k) {
         const int i = int(rng() % 200), j = int(rng() % 200);
         const double len = 1e-3 + 10 * v(rng), dv = std::abs(double(curvature[i]) - double(curvature[j]));
@@ -32,6 +34,8 @@ TEST(GeodesicMetric, WeightsAreSymmetricNeverShorterAndTheNamedFormulas) {
         if (m == Metric::WeightedEq3) EXPECT_NEAR(w(i, j, len), std::exp(std::pow(dv, c)) * len, 1e-12 * len);
         if (m == Metric::CurvatureDensity)
           EXPECT_NEAR(w(i, j, len), (1 + 3.0 * (double(curvature[i]) + double(curvature[j])) / 2) * len, 1e-12 * len);
+        if (m == Metric::SurfaceDensity)
+          EXPECT_NEAR(w(i, j, len), (1 + (double(density[i]) + double(density[j])) / 2) * len, 1e-12 * len);
         if (m == Metric::Geodesic) EXPECT_EQ(w(i, j, len), len);
       }
     }

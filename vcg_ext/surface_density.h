@@ -1,0 +1,81 @@
+#ifndef VCG_EXT_SURFACE_DENSITY_H
+#define VCG_EXT_SURFACE_DENSITY_H
+// Per point, how much denser the surface-density metric samples it: high on
+// smooth surfaces and higher at their rims, low where points scatter in all
+// directions. On airborne LiDAR eq. 1 is highest in vegetation (leaves and
+// scan lines, not shape), so the curvature-density metric spends the samples
+// there and ground and roofs thin out; this density moves them back to the
+// surfaces and to roof edges (docs/airborne_classes.md). Cost O(n k), on all
+// threads; the same values on any thread count and in any tile holding a
+// point's k nearest.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+#include <Eigen/Eigenvalues>
+#include <vcg/space/point3.h>
+#include "knn_table.h"
+#include "parallel.h"
+
+namespace vcg_ext {
+
+template <class Scalar>
+class SurfaceDensity {
+ public:
+  /// A point counts fully as a rim when the mean of its neighbourhood lies a
+  /// tenth of the neighbourhood's radius inward along the fitted plane: about
+  /// a quarter of the offset at the straight edge of a half-disc (4 / (3 pi)).
+  static constexpr double kRimOffset = 0.1;
+  /// The standard errors of the mean discounted from that offset, as
+  /// BorderOrder's: an evenly scattered neighbourhood is no rim.
+  static constexpr double kRimNoise = 4.0;
+
+  /// s_i = a f_i (1 + rim_i), over the point and its k - 1 nearest (k <= knn.k + 1):
+  /// f_i = 1 - l0 / l1 of the neighbourhood's covariance (eigenvalues
+  /// l0 <= l1 <= l2), 1 on a plane, 0 where the points scatter evenly (and
+  /// on a line); rim_i in [0, 1], the offset of the neighbourhood's mean from the
+  /// point along the fitted plane, in units of kRimOffset times the distance to
+  /// the farthest of them, less kRimNoise standard errors of that mean.
+  static std::vector<float> Compute(const std::vector<vcg::Point3<Scalar>>& pos, const KnnTable<Scalar>& knn, int k,
+                                    double a, Progress progress = Progress(nullptr)) {
+    std::vector<float> s(pos.size(), 0.f);
+    k = std::min(k, knn.k + 1);
+    if (k < 3 || !(a > 0)) return s;
+    ParallelChunks(pos.size(), progress, "Surface density", [&](size_t b, size_t e) {
+      std::vector<int> row(static_cast<size_t>(k));
+      for (size_t i = b; i < e; ++i) {
+        knn.Row(i, k - 1, &row[1]);
+        const vcg::Point3d p = vcg::Point3d::Construct(pos[i]);
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        double far2 = 0;
+        for (int c = 1; c < k; ++c) {
+          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(row[size_t(c)])]) - p;
+          mean += Eigen::Vector3d(q[0], q[1], q[2]);
+          far2 = std::max(far2, q.SquaredNorm());
+        }
+        mean /= double(k);  // the point itself at offset 0
+        Eigen::Matrix3d cov = mean * mean.transpose() * -double(k);
+        for (int c = 1; c < k; ++c) {
+          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(row[size_t(c)])]) - p;
+          const Eigen::Vector3d v(q[0], q[1], q[2]);
+          cov += v * v.transpose();
+        }
+        cov /= double(k);
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+        eig.computeDirect(cov, Eigen::ComputeEigenvectors);
+        const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
+        if (!(l(1) > 0) || !(far2 > 0)) continue;  // the points on one line through p, or at p
+        const double flat = 1 - l(0) / l(1);
+        const Eigen::Vector3d n = eig.eigenvectors().col(0);
+        const Eigen::Vector3d along = mean - n * n.dot(mean);
+        const double spread = (l(1) + l(2)) / 2;
+        const double offset = std::max(0.0, along.norm() - kRimNoise * std::sqrt(spread / double(k)));
+        const double rim = std::min(1.0, offset / (kRimOffset * std::sqrt(far2)));
+        s[i] = float(a * flat * (1 + rim));
+      }
+    });
+    return s;
+  }
+};
+
+}  // namespace vcg_ext
+#endif
