@@ -109,7 +109,7 @@ TEST(LodFilters, ParametersHaveThePythonNamesAndPaperDefaults) {
   EXPECT_EQ(byName.at("curvatureexponent").defaultValue, 1.0);
   EXPECT_EQ(byName.at("normalneighbors").defaultValue, 20);
   EXPECT_EQ(byName.at("graphneighbors").defaultValue, 10);
-  EXPECT_EQ(byName.at("metric").values.size(), 4);
+  EXPECT_EQ(byName.at("metric").values.size(), 5);
 }
 
 TEST(LodFilters, OutputIsACopyOfChosenVerticesAndTheInputIsUnchanged) {
