@@ -49,8 +49,8 @@ def ours_rims_first(pymeshlab, xyz, n, seed):
 
 
 def ours_surface_density(pymeshlab, xyz, n, seed):
-    """The surface-density metric (vcg_ext/surface_density.h: denser on smooth surfaces, twice so at their
-    rims, than in an even scatter), visiting the rims first, as for the Euclidean metric above."""
+    """The surface-density metric (vcg_ext/surface_density.h: denser on smooth surfaces, up to twice so at
+    their rims, than in an even scatter), visiting the rims first, as for the Euclidean metric above."""
     import geodesic_lod as gl
     return gl.poisson_lod(xyz, count=n, seed=seed, metric="surface-density", visit_order="rims").indices
 

@@ -8,7 +8,6 @@
 #include <cstring>
 #include <limits>
 #include <new>
-#include <numeric>
 #include <utility>
 #include <vector>
 #include "compact_index.h"
@@ -16,6 +15,7 @@
 #include "knn_table.h"
 #include "parallel.h"
 #include "radix_heap.h"
+#include "union_find.h"
 
 namespace vcg_ext {
 
@@ -240,43 +240,28 @@ class NeighbourGraph {
     return w[size_t(lo)];
   }
 
-  /// Number of connected components. By union-find over the edges in row
-  /// order: near points have near numbers, so its reads stay local. About
-  /// O(edges), one thread.
+  /// Number of connected components: UnionFind over the edges, on all threads. About O(edges).
   int ComponentCount() const {
-    return CountComponents(size(), [&](size_t i, auto&& edge) {
+    UnionFind sets(size());
+    ParallelFor(size(), 1024, [&](size_t i) {
       for (int e = offset[i]; e < offset[i + 1]; ++e)
-        if (To(int(i), e) < int(i)) edge(To(int(i), e));  // each edge once
+        if (To(int(i), e) < int(i)) sets.Unite(int(i), To(int(i), e));  // each edge once
     });
+    return int(sets.Count());
   }
   /// The same for the graph FromKnn(knn, k) would build, from the table: an
   /// edge joins the same two points whichever of them has the other among its
-  /// k nearest. O(n k), one thread.
+  /// k nearest. O(n k), on all threads.
   static int ComponentCount(const KnnTable<Scalar>& knn, int k) {
-    std::vector<int> row(static_cast<size_t>(k));
-    return CountComponents(knn.size(), [&](size_t i, auto&& edge) {
-      knn.Row(i, k, row.data());
-      for (int c = 0; c < k; ++c) edge(row[size_t(c)]);
+    UnionFind sets(knn.size());
+    ParallelChunks(knn.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+      std::vector<int> row(static_cast<size_t>(k));
+      for (size_t i = b; i < e; ++i) {
+        knn.Row(i, k, row.data());
+        for (int c = 0; c < k; ++c) sets.Unite(int(i), row[size_t(c)]);
+      }
     });
-  }
-
- private:
-  // forEdges(i, edge) calls edge(j) for edges (i, j), each edge at least once.
-  template <class ForEdges>
-  static int CountComponents(size_t n, const ForEdges& forEdges) {
-    std::vector<int> parent(n);
-    std::iota(parent.begin(), parent.end(), 0);
-    auto root = [&](int x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];  // path halving
-      return x;
-    };
-    int c = int(n);
-    for (size_t i = 0; i < n; ++i)
-      forEdges(i, [&](int j) {
-        const int a = root(int(i)), b = root(j);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b), --c;
-      });
-    return c;
+    return int(sets.Count());
   }
 };
 

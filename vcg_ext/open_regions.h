@@ -7,12 +7,12 @@
 // order as one front over all regions: no path between two regions avoids
 // points whose distance is already final.
 // Cost: a pass over every point's owner, then the rows of the open points
-// only (a lock-free union-find on all threads), and a counting sort.
+// only (UnionFind, on all threads), and a counting sort.
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <vector>
 #include "parallel.h"
+#include "union_find.h"
 
 namespace vcg_ext {
 
@@ -36,32 +36,17 @@ class OpenRegions {
     const std::vector<int> open = OpenPoints(owner);
     const size_t m = open.size();
     auto position = [&](int i) { return int(std::lower_bound(open.begin(), open.end(), i) - open.begin()); };
-    // Union-find over positions: a root only ever links below a lesser root,
-    // so each region's root ends as its least position, on any interleaving.
-    std::vector<std::atomic<int>> parent(m);
-    ParallelFor(m, 4096, [&](size_t p) { parent[p].store(int(p), std::memory_order_relaxed); });
-    auto find = [&](int x) {
-      for (int p; (p = parent[size_t(x)].load(std::memory_order_relaxed)) != x;) {
-        const int up = parent[size_t(p)].load(std::memory_order_relaxed);
-        if (up != p) parent[size_t(x)].compare_exchange_weak(p, up, std::memory_order_relaxed);  // halving
-        x = p;
-      }
-      return x;
-    };
+    // The least position of each region is its root (UnionFind).
+    UnionFind sets(m);
     ParallelFor(m, 1024, [&](size_t p) {
       const int i = open[p];
       for (int e = g.offset[size_t(i)]; e < g.offset[size_t(i) + 1]; ++e) {
         const int j = g.To(i, e);
-        if (j <= i || owner[size_t(j)] >= 0) continue;  // each open pair once
-        for (int a = find(int(p)), b = find(position(j)); a != b; a = find(a), b = find(b)) {
-          if (a < b) std::swap(a, b);
-          int expected = a;
-          if (parent[size_t(a)].compare_exchange_strong(expected, b, std::memory_order_relaxed)) break;
-        }
+        if (j > i && owner[size_t(j)] < 0) sets.Unite(int(p), position(j));  // each open pair once
       }
     });
     std::vector<int> root(m);
-    ParallelFor(m, 4096, [&](size_t p) { root[p] = find(int(p)); });
+    ParallelFor(m, 4096, [&](size_t p) { root[p] = sets.Find(int(p)); });
     // A counting sort by region; positions, so points, increase within each.
     std::vector<int> regionOf(m, -1);  // per root
     OpenRegions out;

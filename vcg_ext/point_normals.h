@@ -14,6 +14,7 @@
 #include <vector>
 #include <Eigen/Eigenvalues>
 #include "knn_table.h"
+#include "neighbourhood_covariance.h"
 #include "parallel.h"
 #include "prefetch.h"
 #include "progress.h"
@@ -124,17 +125,7 @@ class PointNormals {
       std::vector<int> row(size_t(std::max(k, 1)));
       for (size_t i = b; i < e; ++i) {
         if (k > 1) knn.Row(i, k - 1, &row[1]);
-        auto at = [&](int c) { return vcg::Point3d::Construct(c == 0 ? pos[i] : pos[row[size_t(c)]]); };
-        vcg::Point3d mean(0, 0, 0);
-        for (int c = 0; c < k; ++c) mean += at(c);
-        mean /= double(k);
-        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-        for (int c = 0; c < k; ++c) {
-          const vcg::Point3d d = at(c) - mean;
-          for (int a = 0; a < 3; ++a)
-            for (int b2 = 0; b2 <= a; ++b2) cov(a, b2) += d[a] * d[b2];
-        }
-        cov(0, 1) = cov(1, 0), cov(0, 2) = cov(2, 0), cov(1, 2) = cov(2, 1);
+        const Eigen::Matrix3d cov = NeighbourhoodCovariance::Of(pos, i, row.data(), k).scatter;
         // Closed-form 3x3 solver: ten times faster than the iterative one,
         // and exact enough for the smallest eigenvalue's vector of a centred fit.
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;

@@ -14,6 +14,7 @@
 #include <Eigen/Eigenvalues>
 #include <vcg/space/point3.h>
 #include "knn_table.h"
+#include "neighbourhood_covariance.h"
 #include "parallel.h"
 
 namespace vcg_ext {
@@ -44,22 +45,11 @@ class SurfaceDensity {
       std::vector<int> row(static_cast<size_t>(k));
       for (size_t i = b; i < e; ++i) {
         knn.Row(i, k - 1, &row[1]);
-        const vcg::Point3d p = vcg::Point3d::Construct(pos[i]);
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        double far2 = 0;
-        for (int c = 1; c < k; ++c) {
-          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(row[size_t(c)])]) - p;
-          mean += Eigen::Vector3d(q[0], q[1], q[2]);
-          far2 = std::max(far2, q.SquaredNorm());
-        }
-        mean /= double(k);  // the point itself at offset 0
-        Eigen::Matrix3d cov = mean * mean.transpose() * -double(k);
-        for (int c = 1; c < k; ++c) {
-          const vcg::Point3d q = vcg::Point3d::Construct(pos[size_t(row[size_t(c)])]) - p;
-          const Eigen::Vector3d v(q[0], q[1], q[2]);
-          cov += v * v.transpose();
-        }
-        cov /= double(k);
+        const NeighbourhoodCovariance nc = NeighbourhoodCovariance::Of(pos, i, row.data(), k);
+        const Eigen::Matrix3d cov = nc.scatter / double(k);
+        const vcg::Point3d p = vcg::Point3d::Construct(pos[i]), m = nc.mean - p;
+        const Eigen::Vector3d mean(m[0], m[1], m[2]);  // from the point
+        const double far2 = (vcg::Point3d::Construct(pos[size_t(row[size_t(k - 1)])]) - p).SquaredNorm();  // rows ascend
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
         eig.computeDirect(cov, Eigen::ComputeEigenvectors);
         const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
