@@ -249,20 +249,6 @@ class NeighbourGraph {
     });
     return int(sets.Count());
   }
-  /// The same for the graph FromKnn(knn, k) would build, from the table: an
-  /// edge joins the same two points whichever of them has the other among its
-  /// k nearest. O(n k), on all threads.
-  static int ComponentCount(const KnnTable<Scalar>& knn, int k) {
-    UnionFind sets(knn.size());
-    ParallelChunks(knn.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
-      std::vector<int> row(static_cast<size_t>(k));
-      for (size_t i = b; i < e; ++i) {
-        knn.Row(i, k, row.data());
-        for (int c = 0; c < k; ++c) sets.Unite(int(i), row[size_t(c)]);
-      }
-    });
-    return int(sets.Count());
-  }
 };
 
 /// Where fronts start that complete a nearest-source field (FastMarching's

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <vcg_ext/geodesic_domain.h>
 #include "graph_domain.h"
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace neighbour_graph_test {
@@ -55,10 +56,9 @@ TEST(NeighbourGraph, CountsDisconnectedParts) {
   EXPECT_EQ(GraphDomain(m, vcg_ext::Metric::Geodesic).components, 3);
 }
 
-// The domain counts the parts from the kNN table, before the graph exists:
-// the count must be the graph's, also where few neighbours leave many parts
-// joined only by one-way arcs.
-TEST(NeighbourGraph, ComponentsFromTheTableAreTheGraphs) {
+// The parts of the graph, as a breadth-first search finds them, also where
+// few neighbours leave many parts, on any number of threads.
+TEST(NeighbourGraph, ComponentCountIsTheBreadthFirstSearchs) {
   test::TMesh m;
   test::Plane(m, 20);
   test::AppendShifted(m, [](test::TMesh& b) { test::Sphere(b, 500, 0.3f); }, test::P3(0, 5, 0));
@@ -68,8 +68,22 @@ TEST(NeighbourGraph, ComponentsFromTheTableAreTheGraphs) {
   const auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 10);
   for (int k : {1, 2, 3, 10}) {
     const auto g = vcg_ext::NeighbourGraph<float>::FromKnn(vcg_ext::KnnTable<float>(knn), k);
-    const int parts = g.ComponentCount();
-    EXPECT_EQ(vcg_ext::NeighbourGraph<float>::ComponentCount(knn, k), parts) << "k = " << k;
+    std::vector<char> seen(g.size(), 0);
+    int parts = 0;
+    for (size_t s = 0; s < g.size(); ++s) {
+      if (seen[s]) continue;
+      ++parts;
+      std::vector<int> stack = {int(s)};
+      seen[s] = 1;
+      while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        for (int e = g.offset[size_t(i)]; e < g.offset[size_t(i) + 1]; ++e)
+          if (!seen[size_t(g.To(i, e))]) seen[size_t(g.To(i, e))] = 1, stack.push_back(g.To(i, e));
+      }
+    }
+    for (int threads : {1, 2, 3})
+      EXPECT_EQ(test::OnThreads(threads, [&] { return g.ComponentCount(); }), parts) << "k = " << k << ", " << threads << " threads";
     if (k == 1) EXPECT_GT(parts, 3);  // one neighbour each cannot join a whole plane
     if (k == 10) EXPECT_EQ(parts, 3);
   }

@@ -5,6 +5,7 @@
 // float x y z, faces as uchar-counted int lists; see that folder's README).
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -18,10 +19,19 @@ inline bool InCi() {
   return ci && (std::string(ci) == "true" || std::string(ci) == "1");
 }
 
-inline std::string SharedData(const std::string& name) {
-  const char* env = std::getenv("GEODESIC_LOD_SHARED_DATA");
-  return std::string(env ? env : GEODESIC_LOD_SHARED_DATA_DIR) + "/" + name;
+/// The folder GEODESIC_LOD_SHARED_DATA names, else ../shared/data beside the
+/// clone: found from the test program's own path, not compiled in, so that
+/// another clone's build can reuse this one's objects.
+inline std::string SharedDataDir() {
+  if (const char* env = std::getenv("GEODESIC_LOD_SHARED_DATA")) return env;
+  std::error_code error, absent;
+  std::filesystem::path dir = std::filesystem::read_symlink("/proc/self/exe", error).parent_path();
+  for (; !error && dir.has_relative_path(); dir = dir.parent_path())
+    if (std::filesystem::is_directory(dir / "shared" / "data", absent)) return (dir / "shared" / "data").string();
+  return "../shared/data";  // absent: the tests that need it skip, or fail in CI
 }
+
+inline std::string SharedData(const std::string& name) { return SharedDataDir() + "/" + name; }
 
 /// Reads `path` into m; false if the file is absent.
 inline bool ReadSharedPly(const std::string& path, TMesh& m) {
