@@ -85,10 +85,19 @@ class PoissonTile {
     r.neededHalo = halo.second;
     if (!r.certified) return r;
 
-    // Points that can reach a core point within r; the others never matter.
+    // Per point: whether it is the tile's own (Core) and whether it may be
+    // visited (Visit: within r of the core, and a candidate). One byte a
+    // point, read where each disk lands.
+    enum : char { Core = 1, Visit = 2 };
+    std::vector<char> flags(n);
     std::vector<uint64_t> pid(n);
-    for (size_t i = 0; i < n; ++i) pid[i] = id[size_t(d.points.vertIndex[i])];
-    std::vector<int> order, rank(n);
+    for (size_t i = 0; i < n; ++i) {
+      const size_t row = size_t(d.points.vertIndex[i]);
+      pid[i] = id[row];
+      const bool may = !p.candidate || (*p.candidate)[row] != 0;
+      flags[i] = char((core[row] ? Core : 0) | (may && toCore[i] <= radius ? Visit : 0));
+    }
+    std::vector<int> order;
     if (p.order != VisitOrder::Random) {
       std::vector<float> key =
           p.order == VisitOrder::Border
@@ -102,16 +111,15 @@ class PoissonTile {
     } else {
       order = PriorityOrder(pid, p.seed);
     }
-    for (size_t k = 0; k < n; ++k) rank[size_t(order[k])] = int(k);
-    auto mayBe = [&](int i) { return !p.candidate || (*p.candidate)[size_t(d.points.vertIndex[i])] != 0; };
-    order.erase(std::remove_if(order.begin(), order.end(),
-                               [&](int i) { return !(toCore[i] <= radius) || !mayBe(i); }),
+    order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !(flags[size_t(i)] & Visit); }),
                 order.end());
-    auto isCore = [&](int i) { return core[size_t(d.points.vertIndex[i])] != 0; };
 
     // covered: by a sample for sure (2), or only by points still open (1).
+    // A disk decides nothing for the points visited before its centre: those
+    // are covered for sure, or taken (their state no longer Out). Points never
+    // visited (not Visit) are not reported, whatever their marks.
     std::vector<char> covered(n, 0), state(n, Out);
-    std::vector<std::vector<int>> maybe(n);  // per open core point: the open points covering it
+    std::vector<std::pair<int, int>> maybe;  // (open core point, an open point covering it), in visiting order
     size_t settled = 0;
     d.WithSearch([&](auto& search) {
       PoissonDisk::InOrder(n, search, radius, order, [&](int i) { return covered[i] != 2; },
@@ -119,37 +127,40 @@ class PoissonTile {
                              if (covered[i] == 2) return;  // an earlier disk of its batch covered it
                              // A core point is a sample if nothing may cover it; a halo point's
                              // fate is its own tile's, so here it may only be one.
-                             const bool sure = isCore(i) && covered[i] == 0;
+                             const bool sure = (flags[size_t(i)] & Core) && covered[i] == 0;
                              state[i] = sure ? In : Open;
-                             for (int j : disk) {  // a disk decides nothing for earlier points
-                               if (rank[j] < rank[i] || j == i || covered[j] == 2 || !mayBe(j)) continue;
+                             for (int j : disk) {
+                               if (covered[j] == 2 || state[j] != Out || !(flags[size_t(j)] & Visit)) continue;
                                if (sure) {
                                  covered[j] = 2, ++settled;
-                                 maybe[j].clear();
-                               } else if (isCore(j)) {
+                               } else if (flags[size_t(j)] & Core) {
                                  covered[j] = 1;
-                                 maybe[j].push_back(i);
+                                 maybe.emplace_back(j, i);
                                }
                              }
                            },
                            [&] { return settled; }, progress);
     });
     for (size_t i = 0; i < n; ++i) {
-      if (!isCore(int(i))) continue;
+      if (!(flags[i] & Core)) continue;
       const size_t row = size_t(d.points.vertIndex[i]);
       r.status[row] = covered[i] == 2 ? Out : state[i];
     }
-    // Open rows and their coverers, by row.
-    std::vector<int> pointOfRow(rows, -1);
-    for (size_t i = 0; i < n; ++i) pointOfRow[size_t(d.points.vertIndex[i])] = int(i);
-    for (size_t row = 0; row < rows; ++row) {
-      const int i = pointOfRow[row];
-      if (i >= 0 && r.status[row] == Open)
-        for (int c : maybe[size_t(i)]) r.coverers.push_back(pid[size_t(c)]);
-      r.coverOffset[row + 1] = int64_t(r.coverers.size());
+    // Open rows and their coverers, by row, each row's in visiting order.
+    std::vector<std::pair<int, uint64_t>> open;  // (row, coverer's id)
+    for (const auto& m : maybe) {
+      const int row = d.points.vertIndex[size_t(m.first)];
+      if (r.status[size_t(row)] == Open) open.emplace_back(row, pid[size_t(m.second)]);
     }
+    std::stable_sort(open.begin(), open.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    r.coverers.reserve(open.size());
+    for (const auto& o : open) {
+      r.coverers.push_back(o.second);
+      ++r.coverOffset[size_t(o.first) + 1];
+    }
+    for (size_t row = 0; row < rows; ++row) r.coverOffset[row + 1] += r.coverOffset[row];
     for (size_t i = 0; i < n; ++i)
-      if (isCore(int(i)) && Inside(p.core, d.points.pos[i]) <= radius) r.band.push_back(d.points.vertIndex[i]);
+      if ((flags[i] & Core) && Inside(p.core, d.points.pos[i]) <= radius) r.band.push_back(d.points.vertIndex[i]);
     std::sort(r.band.begin(), r.band.end());
     return r;
   }

@@ -154,7 +154,7 @@ def _write_part(job: Job, tile: NodeTile, levels: list, path: str) -> dict:
     lo, hi = points.min(axis=0) - margin, points.max(axis=0) + margin
     for d in reversed(range(len(levels))):  # levels[d]: the level of depth d, coarser ones nested in it
         depth[finer_samples(dataclasses.replace(job, within=levels[d]), lo, hi, ids)] = d
-    source = job.cells.read_records(job.srcs, ids, tile.lo - margin, tile.hi + margin)
+    source = job.cells.read_records(job.srcs, ids)
     records = copc_records(source.rows)
     deep = depth >= t
     order, keys, counts = nodes_of(octree, points[deep], depth[deep])

@@ -177,9 +177,9 @@ def seams(d: Optional[tiles.Decision]):
 
 @give_back
 def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path: Optional[str],
-               ids_path: Optional[str] = None, box: Optional[tiles.Box] = None) -> Optional[dict]:
+               ids_path: Optional[str] = None) -> Optional[dict]:
     """A Dask task: the tile's samples (its own and the settled open ones) written in the input's order (path
-    None: not written; else the tile's `box` is given), and with `ids_path` their ids for the next level."""
+    None: not written), and with `ids_path` their ids for the next level."""
     ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
         tmp = f"{ids_path}.partial-{os.getpid()}.npy"
@@ -191,8 +191,7 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
         return {"file": None, "count": int(len(ids))}
     if len(ids) == 0:
         return {"file": None, "count": 0}
-    outer = box.outer(job.cloud)
-    source = job.cells.read_records(job.srcs, ids, outer.lo, outer.hi)
+    source = job.cells.read_records(job.srcs, ids)
     point_files.write_all(source, [(path, np.arange(len(ids)))])
     xyz = point_files.coordinates(source)
     return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
@@ -555,7 +554,7 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
     id_names = [None if ids_dir is None else str(_ids_file(ids_dir, k)) for k in range(len(boxes))]
     ticks.expect(len(boxes))
     start = time.perf_counter()
-    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, boxes, pure=False)
+    written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, pure=False)
     for _ in as_completed(written):
         ticks()
     results = client.gather(written)

@@ -107,7 +107,7 @@ def test_a_stale_run_folder_is_swept_by_the_next_run(cloud, client, tmp_path):
     (out / "run_7").mkdir()  # as a run stopped by SIGKILL leaves it, recorded in the index
     (out / "run_7" / ".geodesic-lod-0123abcd.partial").write_bytes(b"half")
     (out / "run_7" / dist.CELLS).mkdir()  # the input's cells, being written
-    (out / "run_7" / dist.CELLS / "c0000000_p0000001.records.npy.partial-99.npy").write_bytes(b"half")
+    (out / "run_7" / dist.CELLS / "p0000001.records.npy.partial-99.npy").write_bytes(b"half")
     (out / "run_7" / dist.CELLS / "c0000000_p0000000.blocks.npy").write_bytes(b"whole")
     (out / dist.INDEX).write_text(json.dumps({**index, "owned": index["owned"] + ["run_7"]}))
     again = dist.lod_files([str(cloud[0])], out, radius=RADIUS, client=client, tile_points=6000, threads=1)

@@ -102,7 +102,7 @@ def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, pi
         ids = want[2][rng.random(len(want[2])) < 0.3]
         if not len(ids):
             continue
-        assert cells.read_records(files, ids, a, b).rows.array.tobytes() == every_record(files)[ids].tobytes()
+        assert cells.read_records(files, ids).rows.array.tobytes() == every_record(files)[ids].tobytes()
         checked += 1
     assert checked >= 4
 
@@ -159,9 +159,9 @@ def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
     job = dist.Job(files, cloud, radius, 0, domain, 1, tiles.first_halo(radius, tiles.spacing_of(cloud, total)), cells)
     decisions = [dist.decide_tile(job, b) for b in boxes]
     settled = tiles.settle([d.seams() for d in decisions if d is not None], 0)
-    for k, (d, b) in enumerate(zip(decisions, boxes)):
+    for k, d in enumerate(decisions):
         owned = np.empty(0, np.uint64) if d is None else settled[np.isin(settled, d.open_ids)]
-        dist.write_tile(job, d, owned, str(tmp_path / f"tile_{k:05d}.laz"), None, b)
+        dist.write_tile(job, d, owned, str(tmp_path / f"tile_{k:05d}.laz"))
     monkeypatch.undo()
     got = [laspy.read(str(path)).points.array for path in sorted(tmp_path.glob("tile_*.laz"))]
     got = np.concatenate(got)
@@ -182,11 +182,10 @@ def test_records_come_back_in_id_order_for_every_format(tmp_path, kind):
     cells = split_whole(srcs, tmp_path / "cells")
     _, _, records = every_row(paths)
     rng = np.random.default_rng(3)
-    everywhere = (np.full(3, -np.inf), np.full(3, np.inf))
     for ids in (np.sort(rng.permutation(len(records))[:700]),  # from every file
                 np.arange(len(records))[-40:],                 # the last file's
                 np.array([2 * len(records) // 3])):
-        got = cells.read_records(srcs, ids.astype(np.uint64), *everywhere)
+        got = cells.read_records(srcs, ids.astype(np.uint64))
         rows = got.rows.array if kind == "laz" else np.asarray(got.rows)
         assert rows.tobytes() == records[ids].tobytes()
         assert got.kind == point_files.format_of(paths[0])
@@ -196,7 +195,7 @@ def test_records_read_from_several_laz_files_write_as_one(tmp_path):
     paths = split_cloud(tmp_path / "in", "laz")
     cells = split_whole(one_cloud(paths), tmp_path / "cells")
     ids = np.sort(np.random.default_rng(4).choice(4500, 900, replace=False))
-    source = cells.read_records(one_cloud(paths), ids.astype(np.uint64), np.full(3, -np.inf), np.full(3, np.inf))
+    source = cells.read_records(one_cloud(paths), ids.astype(np.uint64))
     point_files.write_all(source, [(tmp_path / "out.laz", np.arange(len(ids)))])
     out = laspy.read(str(tmp_path / "out.laz"))
     assert np.array_equal(out.gps_time, ids)  # write_parts: a record's gps_time is its id
