@@ -2,8 +2,8 @@
 a grid of LAZ files, sampled by geodesic_lod.distributed on a local cluster of 1 and of 2 workers with
 a memory limit each; time, peak memory per worker, points per second, the halo's share of the points
 read and the time of each phase (the split decodes each record once). Beside them, one process on the
-points of the job's tile of median count (read beforehand, one thread): the rate a worker is measured
-against; and the split alone on one worker, by turns with and without Dask's default MALLOC_TRIM_THRESHOLD_
+points of the job's tile of median count (read beforehand, one thread), run after each job and after the
+split's runs: the median is the rate a worker is measured against; and the split alone on one worker, by turns with and without Dask's default MALLOC_TRIM_THRESHOLD_
 for its workers (ours start without it). Writes docs/cluster_scale.json.
 
 Also writes docs/cluster_scale.md: the table, and a projection to 10^9 and 10^10 points from the
@@ -100,7 +100,7 @@ def run(folder, out, workers, memory, tile_points, radius):
 
 def one_process(folder, tile, radius):
     """One tile's core points (`tile`, [lo, hi] as the index gives it) sampled by one process on one thread,
-    the points in memory beforehand: its points per second."""
+    the points in memory beforehand: its points and seconds."""
     import geodesic_lod as gl
     from geodesic_lod import cloud_files, tiles
     paths = cloud_files.expand_inputs([str(folder)])
@@ -112,8 +112,16 @@ def one_process(folder, tile, radius):
     points = points[box.core_mask(points, cloud)]
     t = time.perf_counter()
     gl.poisson_lod(points, radius=radius, threads=1)
-    seconds = time.perf_counter() - t
-    return {"points": len(points), "seconds": round(seconds, 1), "points_per_second": round(len(points) / seconds)}
+    return len(points), time.perf_counter() - t
+
+
+def reference(runs):
+    """The single-process rate from `runs` of one_process (this machine's speed drifts by 10-30% over a
+    job's minutes, so it is measured after each job and the median taken)."""
+    seconds = sorted(t for _, t in runs)
+    median = seconds[len(seconds) // 2]
+    return {"points": runs[0][0], "seconds": round(median, 1), "runs_s": [round(t, 1) for _, t in runs],
+            "points_per_second": round(runs[0][0] / median)}
 
 
 def main():
@@ -131,13 +139,16 @@ def main():
     write_grid(folder, a.points, a.files_per_side)
     print(f"data: {folder} ({time.perf_counter() - t:.0f} s)")
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
-    rows = [run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius)
-            for w in a.workers.split(",")]
+    rows, singles = [], []
+    for w in a.workers.split(","):  # each job followed by one process on the first job's median tile
+        rows.append(run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius))
+        singles.append(one_process(folder, rows[0]["median_tile"], radius))
     # The split with workers as Dask's nannies start them by default (distributed.nanny.pre-spawn-environ).
     splits = split_seconds(folder, pathlib.Path(a.data) / "cells", a.worker_memory, a.tile_points,
                            [None, str(DASK_TRIM)], a.split_repeats) if a.split_repeats else {}
-    single = one_process(folder, rows[0].pop("median_tile"), radius)
-    for r in rows[1:]:
+    singles.append(one_process(folder, rows[0]["median_tile"], radius))
+    single = reference(singles)
+    for r in rows:
         r.pop("median_tile")
     for r in rows:  # a worker's rate against one process's on a tile of the same size
         r["one_process"] = single
@@ -180,7 +191,8 @@ def report(rows):
     n = best["points"]
     single = best["one_process"]
     lines += ["", f"One process on one tile's {single['points']:,} points (the job's tile of median count, read "
-              f"beforehand, one thread) took {single['seconds']} s, {single['points_per_second']:,} points/s: the rate each worker's "
+              f"beforehand, one thread) took {single['seconds']} s, {single['points_per_second']:,} points/s (the median of "
+              f"{', '.join(map(str, single['runs_s']))} s, run after each job and after the split's runs): the rate each worker's "
               "share is measured against. Each input record is decoded once, in the split; the cells it writes take "
               f"{best['partition_bytes'] / 1e9:.1f} GB."]
     one = min(rows, key=lambda r: r["workers"])

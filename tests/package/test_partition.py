@@ -191,6 +191,15 @@ def test_records_come_back_in_id_order_for_every_format(tmp_path, kind):
         assert got.kind == point_files.format_of(paths[0])
 
 
+def test_an_id_beyond_the_input_is_named_not_read(tmp_path):
+    paths = split_cloud(tmp_path / "in", "laz")
+    srcs = one_cloud(paths)
+    cells = split_whole(srcs, tmp_path / "cells")
+    total = sum(s.count for s in srcs)
+    with pytest.raises(RuntimeError, match=f"sample {total} is in no piece"):
+        cells.read_records(srcs, np.array([0, total], np.uint64))
+
+
 def test_records_read_from_several_laz_files_write_as_one(tmp_path):
     paths = split_cloud(tmp_path / "in", "laz")
     cells = split_whole(one_cloud(paths), tmp_path / "cells")
