@@ -5,9 +5,10 @@ every tile, level, count-search run and writing task then reads instead of the f
 Without it each tile decodes every file its halo touches, for every run and again to write: on a grid
 of LAZ files each record was decoded about ten times. Here one task per piece of a file (at most
 `piece_points` records) decodes it and writes each cell's share; a tile reads the cells its region
-overlaps, memory-mapped, and the writing takes its samples' records from their pieces by id. The cells use the tiles' own rule (``tiles.Box.core_mask``: lo <= x < hi, open
-on the cloud's sides), so a cell holds exactly the points of the tile with its box, and any region's
-points come out as ``cloud_files.read_region`` gives them.
+overlaps, memory-mapped, and the writing takes its samples' records from their pieces by id. The cells
+use the tiles' own rule (``tiles.Box.core_mask``: lo <= x < hi, open on the cloud's sides), so a cell
+holds exactly the points of the tile with its box, and any region's points come out as
+``cloud_files.read_region`` gives them.
 """
 from __future__ import annotations
 
@@ -293,18 +294,14 @@ class Partition:
         ids = np.sort(np.asarray(ids, dtype=np.uint64))
         firsts = np.asarray(self.firsts, dtype=np.uint64)
         piece = np.searchsorted(firsts, ids, side="right") - 1  # ids of a piece follow its first
-        cuts = np.flatnonzero(np.diff(piece)) + 1
-        records = []
-        for run in np.split(np.arange(len(ids)), cuts) if len(ids) else []:
-            p = int(piece[run[0]])
+        parts = []
+        for p in np.unique(piece) if len(ids) else [0]:  # no ids: none of piece 0's records, for their type
+            mine = ids[piece == p]
             held = None if p < 0 else np.load(_records_name(self.folder, p), mmap_mode="r")
-            rows = (ids[run] - firsts[max(p, 0)]).astype(np.int64)
-            if held is None or rows[-1] >= len(held):
-                raise RuntimeError(f"a tile's sample {int(ids[run[-1]])} is in no piece of the job's input")
-            records.append(held[rows])
-        if not records:
-            return cloud_files.records_source(srcs, np.load(_records_name(self.folder, 0), mmap_mode="r")[:0])
-        return cloud_files.records_source(srcs, np.concatenate(records))
+            if held is None or (len(mine) and mine[-1] - firsts[p] >= len(held)):
+                raise RuntimeError(f"a tile's sample {int(mine[-1])} is in no piece of the job's input")
+            parts.append(held[(mine - firsts[p]).astype(np.int64)])
+        return cloud_files.records_source(srcs, np.concatenate(parts))
 
 
 def _span(rows: np.ndarray):
