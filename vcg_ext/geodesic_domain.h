@@ -45,6 +45,9 @@ class GeodesicDomain {
     int graphNeighbours = 10;         ///< k of the neighbour graph
     bool useInputNormals = true;     ///< keep the input's valid normals
     bool keepReach = false;          ///< fill `reach` (a tile checks its halo with it)
+    /// Give estimated normals consistent signs. Sampling never reads the signs
+    /// (eq. 1 and the orders take |n_i . n_j|); only normals a caller outputs need them.
+    bool orientNormals = true;
   };
 
   /// Numbered in the cells' Morton order, near points at near numbers
@@ -152,13 +155,19 @@ class GeodesicDomain {
       // it, when the table has shrunk to what the graph and the walk read (at
       // the peak, the walk's queue and levels would add about 20 bytes a point).
       if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
-      if (nr.estimated) progress(55, 100, "Orienting normals");
-      // The walk takes one thread: what the graph needs of the table is found meanwhile.
       std::vector<bool> oneWay;
-      PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, [&] {
+      auto findOneWay = [&] {
         if (!graph) return;
         oneWay = NeighbourGraph<Scalar>::OneWayArcs(knn, p.graphNeighbours, progress.Sub(55, 75));
-      });
+      };
+      if (p.orientNormals) {
+        if (nr.estimated) progress(55, 100, "Orienting normals");
+        // The walk takes one thread: what the graph needs of the table is found meanwhile.
+        PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, findOneWay);
+      } else {
+        nr.fittedOfKept.clear();  // only the walk reads them
+        findOneWay();
+      }
       d.normal = std::move(nr.normal);
       d.estimatedNormals = nr.estimated;
       // Its weights come from Lengths(), as the searches need them.

@@ -40,6 +40,7 @@ Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, co
 Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress) {
   Domain::Param dp = domain;
   dp.keepReach = true;
+  dp.orientNormals = false;  // a tile's output is the input's records: nothing reads the signs
   dp.mode = vcg_ext::GeodesicMode::PointGraph;
   return Domain::Build(std::move(ps), {}, dp, progress);
 }

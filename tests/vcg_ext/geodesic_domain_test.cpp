@@ -4,7 +4,8 @@
 // set; in Mesh mode the vertices in no triangle are left out (counted in
 // `leftOut`) and never sampled; its border is the edges of one triangle;
 // PointOfVertex maps every vertex back to its point, -1 for the left-out and
-// the deleted ones.
+// the deleted ones; without orientNormals the estimated normals keep the
+// fits' signs and every sample is the same.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <set>
@@ -163,6 +164,27 @@ TEST(GeodesicDomain, LeftOutVerticesAreNeverSampled) {
   const auto r = vcg_ext::MeshLod<Poisson>(m, p);  // Auto: a mesh's geodesics
   ASSERT_TRUE(r.meshGeodesics);
   for (int v : r.vertIndex) EXPECT_LT(v, 400);
+}
+
+TEST(GeodesicDomain, UnorientedNormalsDifferOnlyInSignAndChangeNoSample) {
+  test::TMesh m;
+  test::Sphere(m, 3000);
+  Domain::Param oriented = Mode(GeodesicMode::PointGraph), unoriented = oriented;
+  unoriented.orientNormals = false;
+  const Domain a = Domain::FromMesh(m, oriented), b = Domain::FromMesh(m, unoriented);
+  ASSERT_EQ(a.size(), b.size());
+  size_t flipped = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_TRUE(a.normal[i] == b.normal[i] || a.normal[i] == -b.normal[i]) << i;
+    flipped += a.normal[i] != b.normal[i];
+    EXPECT_GT(a.normal[i].dot(vcg::Point3f::Construct(a.points.pos[i])), 0.f) << i;  // outward
+  }
+  EXPECT_GT(flipped, 0u);  // the walk did not run on b: some fit points inward
+  EXPECT_EQ(a.curvature, b.curvature);
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param p;
+  p.radius = 0.1;
+  EXPECT_EQ(Poisson::Compute(a, p).vertIndex, Poisson::Compute(b, p).vertIndex);
 }
 
 TEST(GeodesicDomain, PointOfVertexMapsBackAndMarksTheMissing) {
