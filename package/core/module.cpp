@@ -14,6 +14,7 @@
 #endif
 #include <vcg_ext/sample_counts.h>
 #include "array_input.h"
+#include "block_keys.h"
 #include "call_support.h"
 #include "height_field_bindings.h"
 #include "tile_bindings.h"
@@ -305,6 +306,7 @@ NB_MODULE(_core, m) {
   m.def("fps_on", &FpsOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
   m.def("pyramid_on", &PyramidOn, "domain"_a, "param"_a, "threads"_a.none(), "progress"_a.none());
   BindTiles(m);
+  BindBlockKeys(m);
   BindHeightField(m);
   m.def("normal_variation", &NormalVariation, "points"_a, "normals"_a.none(), "param"_a, "threads"_a.none(),
         "progress"_a.none());

@@ -47,6 +47,25 @@ def test_a_cell_holds_the_points_of_the_tile_with_its_box():
         assert np.array_equal(cell == k, box.core_mask(xyz, cloud))
 
 
+@pytest.mark.parametrize("hi", [[4.0, 2.0, 1.0], [4.0, 2.0, 0.0]])  # the second: a flat cloud
+def test_a_points_key_counts_the_block_edges_at_or_below_it(hi):
+    rng = np.random.default_rng(7)
+    grid = partition.Grid(np.zeros(3), np.array(hi), (5, 3, 2))
+    edges = [grid.edges(a) for a in range(3)]
+    xyz = rng.uniform(-0.5, 4.5, (30000, 3))
+    for a in range(3):  # on an edge, a rounding below one, far beyond the box
+        on = rng.choice(edges[a], 3000)
+        xyz[a * 9000:a * 9000 + 3000, a] = on
+        xyz[a * 9000 + 3000:a * 9000 + 6000, a] = np.nextafter(on, -np.inf)
+        xyz[a * 9000 + 6000:a * 9000 + 6010, a] = [-1e300, 1e300, -1e9, 1e9, 0, -0.0, hi[a], 4.5, 1e-300, -1e-300]
+    fine = [np.searchsorted(edges[a], xyz[:, a], side="right") for a in range(3)]
+    b = partition.BLOCKS
+    cell = (fine[0] // b * 3 + fine[1] // b) * 2 + fine[2] // b
+    block = (fine[0] % b * b + fine[1] % b) * b + fine[2] % b
+    assert np.array_equal(grid.key_of(xyz), cell * b ** 3 + block)
+    assert np.array_equal(grid.key_of(xyz[:0]), np.empty(0, np.int64))
+
+
 def check_regions(rng, xyz, index, found, times):
     """For random regions: the index of every point of xyz in a region is among found(lo, hi)."""
     for _ in range(times):
