@@ -248,6 +248,18 @@ def read(path) -> tuple:
     return source, records, xyz(records, source.header)
 
 
+def integers(records: np.ndarray) -> np.ndarray:
+    """The X, Y, Z integers of records (a structured array of a point format) as (n, 3) int32: a view of
+    them where they lie side by side, as in every LAS point format."""
+    fields = [records.dtype.fields[c] for c in "XYZ"]
+    at = fields[0][1]
+    if records.flags.c_contiguous and [f[1] - at for f in fields] == [0, 4, 8] and all(
+            f[0] == np.dtype("<i4") for f in fields):
+        return np.ndarray((len(records), 3), np.dtype("<i4"), buffer=records, offset=at,
+                          strides=(records.dtype.itemsize, 4))
+    return np.column_stack([records[c] for c in "XYZ"])
+
+
 def xyz(records, header) -> np.ndarray:
     """Scaled and offset coordinates of records, (n, 3) float64."""
     out = np.empty((len(records), 3))

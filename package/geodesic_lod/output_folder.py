@@ -26,7 +26,7 @@ INDEX_PARTIAL = re.compile(r"\.index\.json\.partial-\d+")  # an index being writ
 # input's cells (partition.py), and files being written (point_files' temporary names).
 OWN_FILE = re.compile(r"(tile_\d{5,}\.(las|laz|ply|npy)|\.geodesic-lod-[0-9a-f]+\.partial"
                       r"|tile_\d{5,}\.npy\.partial-\d+\.npy"
-                      r"|(c\d{7,}_p\d{7,}\.(xyz|ids|normals|blocks)|p\d{7,}\.records)\.npy(\.partial-\d+\.npy)?"
+                      r"|(c\d{7,}_p\d{7,}\.(xyz|ixyz|rows|normals|blocks)|p\d{7,}\.records)\.npy(\.partial-\d+\.npy)?"
                       r"|\.?read_[0-9a-f]{40}\.npy(\.\d+\.\d+)?)")
 OWN_FOLDER = re.compile(r"(level_[0-9.]+(pct)?|\.levels|\.cells|reads|\d+)")
 

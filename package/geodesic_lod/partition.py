@@ -1,5 +1,5 @@
 """A cluster job's input decoded once: the files cut into the cells of a grid, each cell's points kept in
-a work folder as plain arrays (coordinates, ids, normals), and each piece's records as decoded, which
+a work folder as plain arrays (coordinates, rows, normals), and each piece's records as decoded, which
 every tile, level, count-search run and writing task then reads instead of the files.
 
 Without it each tile decodes every file its halo touches, for every run and again to write: on a grid
@@ -121,9 +121,10 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
     """A Dask task: decodes one piece, writes its records as they come (a sample's record is then found by
     its id alone) and each cell's share of its points, block by block, each block in id order (``blocks``:
-    where each block starts, and the end). Returns the id of its first record, whether its points carry
-    normals, per cell holding points (count, lowest corner, highest corner, points per block), and the
-    bytes written."""
+    where each block starts, and the end): their rows in the piece and their coordinates, a LAS file's as
+    its integers (``Scaling`` gives the same floats as decoding). Returns the id of its first record, the
+    piece's scaling (None: coordinates kept as floats), whether its points carry normals, per cell holding
+    points (count, lowest corner, highest corner, points per block), and the bytes written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
@@ -131,34 +132,63 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
         records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
         xyz, normals = las_files.xyz(records, header), None
+        scaling = Scaling(tuple(float(v) for v in header.scales), tuple(float(v) for v in header.offsets))
+        kept = las_files.integers(records)
     else:
         src = point_files.read(s.path)
         cloud_files.check_finite(s.path, src.points)
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
+        scaling, kept = None, xyz
     records = np.ascontiguousarray(records)
     _save(_records_name(folder, number), records)
     written = records.nbytes
     key = grid.key_of(xyz)
     order, key = _by_key(key)  # by cell, then block, then id
-    xyz = _take_rows(xyz, order)
-    ids = np.uint64(s.first_id + first) + order.astype(np.uint64)
+    kept = np.take(kept, order, axis=0) if scaling is not None else _take_rows(kept, order)  # a view: gathered
+    rows = order.astype(np.uint32 if len(order) <= 1 << 32 else np.uint64)
     normals = None if normals is None else _take_rows(normals, order)
     cell = key // BLOCKS ** 3
     cuts = np.concatenate([[0], np.flatnonzero(np.diff(cell)) + 1, [len(cell)]]) if len(cell) else [0]
     out: dict = {}
     for a, b in zip(cuts[:-1], cuts[1:]):
         c = int(cell[a])
-        arrays = {"xyz": xyz[a:b], "ids": ids[a:b],
+        arrays = {_coordinates(scaling): kept[a:b], "rows": rows[a:b],
                   "blocks": np.searchsorted(key[a:b] % BLOCKS ** 3, np.arange(BLOCKS ** 3 + 1)).astype(np.int64)}
         if normals is not None:
             arrays["normals"] = normals[a:b]
         for what, array in arrays.items():
             _save(_name(folder, c, number, what), np.ascontiguousarray(array))
             written += array.nbytes
-        columns = [xyz[a:b, k] for k in range(3)]  # a column's min is several times faster than min(axis=0)
-        out[c] = (int(b - a), np.array([v.min() for v in columns]), np.array([v.max() for v in columns]),
-                  np.diff(arrays["blocks"]))
-    return {"first": int(s.first_id + first), "normals": normals is not None, "cells": out, "bytes": written}
+        columns = [kept[a:b, k] for k in range(3)]  # a column's min is several times faster than min(axis=0)
+        lo, hi = [np.array([v.min() for v in columns]), np.array([v.max() for v in columns])]
+        if scaling is not None:  # scaling is monotonic: the extremes' images, in either order
+            lo, hi = scaling.apply(lo[None]), scaling.apply(hi[None])
+            lo, hi = np.minimum(lo, hi)[0], np.maximum(lo, hi)[0]
+        out[c] = (int(b - a), lo, hi, np.diff(arrays["blocks"]))
+    return {"first": int(s.first_id + first), "scaling": scaling, "normals": normals is not None, "cells": out,
+            "bytes": written}
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """A LAS file's coordinates from its integers: X * scale + offset per axis, as ``las_files.xyz`` computes
+    them (the same floats)."""
+    scales: tuple
+    offsets: tuple
+
+    def apply(self, ints: np.ndarray) -> np.ndarray:
+        """(n, 3) float64 coordinates of (n, 3) integers."""
+        out = np.empty(ints.shape)
+        for a, (s, o) in enumerate(zip(self.scales, self.offsets)):
+            column = out[:, a]
+            np.multiply(ints[:, a], np.float64(s), out=column)
+            column += np.float64(o)
+        return out
+
+
+def _coordinates(scaling: Optional[Scaling]) -> str:
+    """What a cell's share keeps its coordinates as: integers to scale, or floats."""
+    return "xyz" if scaling is None else "ixyz"
 
 
 def _by_key(key: np.ndarray) -> tuple:
@@ -209,6 +239,8 @@ class Partition:
         Per cell holding points, the points in each of its blocks (BLOCKS^3, numbered as ``Grid.key_of``).
     firsts : list of int
         Per piece, the id of its first record (increasing).
+    scalings : list of Scaling or None
+        Per piece, how its coordinates come from the integers kept (None: kept as floats).
     normals : bool
         Whether every point carries a normal.
     pieces, bytes : int
@@ -222,6 +254,7 @@ class Partition:
     bounds: dict = field(default_factory=dict)
     block_counts: dict = field(default_factory=dict)
     firsts: list = field(default_factory=list)
+    scalings: list = field(default_factory=list)
     normals: bool = False
     pieces: int = 0
     bytes: int = 0
@@ -246,11 +279,11 @@ class Partition:
 
     def cell_xyz(self, cell: int) -> list:
         """The coordinates of a cell's points, a piece's share at a time."""
-        return self._load(cell, "xyz")
+        return [self._xyz(cell, p, slice(None)) for p in self.cells.get(cell, [])]
 
     def cell_ids(self, cell: int) -> list:
         """The ids of a cell's points, a piece's share at a time (as cell_xyz's)."""
-        return self._load(cell, "ids")
+        return [self._ids(cell, p, slice(None)) for p in self.cells.get(cell, [])]
 
     def _rows_in(self, lo: np.ndarray, hi: np.ndarray):
         """(cell, piece number, rows of its share in the blocks that may hold points within [lo, hi])."""
@@ -266,17 +299,27 @@ class Partition:
     def _part(self, cell: int, piece: int, what: str, rows: np.ndarray) -> np.ndarray:
         return np.load(_name(self.folder, cell, piece, what), mmap_mode="r")[rows]
 
+    def _xyz(self, cell: int, piece: int, rows) -> np.ndarray:
+        """The coordinates of `rows` of a piece's share of a cell."""
+        scaling = self.scalings[piece]
+        kept = self._part(cell, piece, _coordinates(scaling), rows)
+        return np.asarray(kept) if scaling is None else scaling.apply(kept)
+
+    def _ids(self, cell: int, piece: int, rows) -> np.ndarray:
+        """The ids of `rows` of a piece's share of a cell: its first's plus their rows in the piece."""
+        return np.uint64(self.firsts[piece]) + self._part(cell, piece, "rows", rows).astype(np.uint64)
+
     def read_region(self, lo: np.ndarray, hi: np.ndarray) -> tuple:
         """Points within [lo, hi], in id order: (points, normals or None, ids), as cloud_files.read_region."""
         pts, nrm, ids = [], [], []
         for c, p, rows in self._rows_in(lo, hi):
             rows = _span(rows)
-            x = self._part(c, p, "xyz", rows)
+            x = self._xyz(c, p, rows)
             inside = tiles.within(x, lo, hi)
             if not inside.all():
                 x, rows = x[inside], _rows(rows)[inside]
             pts.append(x)
-            ids.append(self._part(c, p, "ids", rows))
+            ids.append(self._ids(c, p, rows))
             if self.normals:
                 nrm.append(self._part(c, p, "normals", rows))
         if not pts:
@@ -351,6 +394,7 @@ def collect(folder, grid: Grid, done: Sequence[dict]) -> Partition:
     p = Partition(str(folder), grid, normals=True, pieces=len(done))
     for number, piece in enumerate(done):
         p.firsts.append(piece["first"])
+        p.scalings.append(piece["scaling"])
         p.normals &= piece["normals"]
         p.bytes += piece["bytes"]
         for c, (n, lo, hi, blocks) in piece["cells"].items():

@@ -156,3 +156,19 @@ def test_a_piece_of_a_copc_file_decodes_as_its_rows(tmp_path, piece_points):
 def test_every_shared_lidar_file_decodes_piece_by_piece(name):
     for piece_points in (1000, 30000):
         pieces_decode_the_whole_file(corpus_file(name), piece_points)
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+def test_a_files_integers_scale_to_its_coordinates(name):
+    """las_files.integers, which the cluster's cells keep, scaled as partition.Scaling does, gives the floats
+    decoding gives; on every shared file, and on records that are not side by side."""
+    from geodesic_lod import las_files, partition
+    path = corpus_file(name)
+    src = las_files.open_source(path)
+    records = np.concatenate([c.array for _, c in las_files.chunks(path)])
+    want = np.column_stack([records[c] for c in "XYZ"])
+    scaling = partition.Scaling(tuple(src.header.scales), tuple(src.header.offsets))
+    for part in (records, records[::3]):
+        got = las_files.integers(part)
+        assert got.dtype == np.int32 and np.array_equal(got, want[:len(part)] if part is records else want[::3])
+        assert np.array_equal(scaling.apply(got), las_files.xyz(part, src.header))

@@ -109,7 +109,16 @@ def test_the_histogram_counts_the_points_between_the_grids_edges(files, tmp_path
 def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, piece_points, shape):
     lo, hi = np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)
     cells = split_all(files, partition.Grid(lo, hi, shape), tmp_path / "cells", piece_points)
-    assert sum(n for n, _, _ in cells.bounds.values()) == sum(s.count for s in files)
+    every, _, every_id = cloud_files.read_region(files, lo - 1, hi + 1)
+    assert np.array_equal(every_id, np.arange(len(every)))
+    cell = cells.grid.cell_of(every)
+    for c, (n, low, high) in cells.bounds.items():  # a LAS file's kept as integers, scaled on reading
+        mine = every[cell == c]
+        assert n == len(mine) and np.array_equal(low, mine.min(axis=0)) and np.array_equal(high, mine.max(axis=0))
+        ids = np.concatenate(cells.cell_ids(c)).astype(np.int64)
+        assert np.array_equal(np.sort(ids), np.flatnonzero(cell == c))
+        assert np.array_equal(np.concatenate(cells.cell_xyz(c)), every[ids])
+    assert sum(n for n, _, _ in cells.bounds.values()) == len(every) == sum(s.count for s in files)
     rng = np.random.default_rng(3)
     checked = 0
     for _ in range(8):
