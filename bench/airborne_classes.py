@@ -89,6 +89,9 @@ METHODS = {"ours (defaults)": ours,
            "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
 
 
+EVERY_POINT = "every point (the input itself)"
+
+
 def by_class(classes, kept, error):
     """Per group present: its points, the share of them kept, its mean error, its share of the error sum."""
     out = {}
@@ -126,6 +129,11 @@ def main():
     rows = []
     for tile, name in FILES.items():
         xyz, classes = load(name)
+        # The floor: every point kept, each point's error is the scatter of its 8 nearest about their plane.
+        every = np.arange(len(xyz))
+        for group, g in by_class(classes, every, plane_fit_error(xyz, xyz)).items():
+            rows.append(dict(tile=tile, rate=1.0, method=EVERY_POINT, seed=0, samples=len(xyz), group=group,
+                             seconds=0.0, **g))
         for rate in RATES:
             n = int(round(rate * len(xyz)))
             for method, run in METHODS.items():

@@ -147,8 +147,9 @@ def plot_against_vertices(rows, panels, measures, path, title):
 
 def plot_classes(rows, path, reference="MeshLab point cloud simplification"):
     """Each class's mean error over the reference method's, per tile and rate, a bar per method."""
-    panels = list(dict.fromkeys((r["tile"], r["rate"]) for r in rows))
-    methods = [m for m in dict.fromkeys(r["method"] for r in rows) if m != reference]
+    panels = list(dict.fromkeys((r["tile"], r["rate"]) for r in rows if r["method"] == reference))
+    methods = [m for m in dict.fromkeys(r["method"] for r in rows if (r["tile"], r["rate"]) in panels)
+               if m != reference]
     fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4), squeeze=False)
     at = {(r["tile"], r["rate"], r["method"], r["group"]): r["mean_error"] for r in rows}
     for ax, (tile, rate) in zip(axes[0], panels):
