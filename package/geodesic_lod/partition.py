@@ -172,7 +172,13 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
 @dataclass(frozen=True)
 class Scaling:
     """A LAS file's coordinates from its integers: X * scale + offset per axis, as ``las_files.xyz`` computes
-    them (the same floats)."""
+    them (the same floats).
+
+    Attributes
+    ----------
+    scales, offsets : tuple of 3 floats
+        The file header's, per axis.
+    """
     scales: tuple
     offsets: tuple
 
