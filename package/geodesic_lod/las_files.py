@@ -260,14 +260,21 @@ def integers(records: np.ndarray) -> np.ndarray:
     return np.column_stack([records[c] for c in "XYZ"])
 
 
-def xyz(records, header) -> np.ndarray:
-    """Scaled and offset coordinates of records, (n, 3) float64."""
-    out = np.empty((len(records), 3))
-    for a, (c, s, o) in enumerate(zip("XYZ", header.scales, header.offsets)):
+def scaled(ints: np.ndarray, scales, offsets) -> np.ndarray:
+    """(n, 3) float64 coordinates of (n, 3) X, Y, Z integers: X * scale + offset per axis, in float64 as
+    laspy computes them."""
+    out = np.empty((len(ints), 3))
+    for a, (s, o) in enumerate(zip(scales, offsets)):
         column = out[:, a]  # written in place: a third of the time of stacking converted columns
-        np.multiply(records[c], np.float64(s), out=column)
+        np.multiply(ints[:, a], np.float64(s), out=column)
         column += np.float64(o)
     return out
+
+
+def xyz(records, header) -> np.ndarray:
+    """Scaled and offset coordinates of records (a structured array or a laspy.PackedPointRecord), (n, 3)
+    float64."""
+    return scaled(integers(getattr(records, "array", records)), header.scales, header.offsets)
 
 
 def write(f: BinaryIO, source: LasSource, array: np.ndarray, compress: bool) -> None:

@@ -131,9 +131,9 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         header = las_files.open_source(s.path).header
         parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
         records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
-        xyz, normals = las_files.xyz(records, header), None
         scaling = Scaling(tuple(float(v) for v in header.scales), tuple(float(v) for v in header.offsets))
         kept = las_files.integers(records)
+        xyz, normals = scaling.apply(kept), None
     else:
         src = point_files.read(s.path)
         cloud_files.check_finite(s.path, src.points)
@@ -171,8 +171,8 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
 
 @dataclass(frozen=True)
 class Scaling:
-    """A LAS file's coordinates from its integers: X * scale + offset per axis, as ``las_files.xyz`` computes
-    them (the same floats).
+    """A LAS file's coordinates from its integers: X * scale + offset per axis (``las_files.scaled``, as
+    ``las_files.xyz`` computes them).
 
     Attributes
     ----------
@@ -184,12 +184,7 @@ class Scaling:
 
     def apply(self, ints: np.ndarray) -> np.ndarray:
         """(n, 3) float64 coordinates of (n, 3) integers."""
-        out = np.empty(ints.shape)
-        for a, (s, o) in enumerate(zip(self.scales, self.offsets)):
-            column = out[:, a]
-            np.multiply(ints[:, a], np.float64(s), out=column)
-            column += np.float64(o)
-        return out
+        return las_files.scaled(ints, self.scales, self.offsets)
 
 
 def _coordinates(scaling: Optional[Scaling]) -> str:

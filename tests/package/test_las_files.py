@@ -161,14 +161,20 @@ def test_every_shared_lidar_file_decodes_piece_by_piece(name):
 @pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
 def test_a_files_integers_scale_to_its_coordinates(name):
     """las_files.integers, which the cluster's cells keep, scaled as partition.Scaling does, gives the floats
-    decoding gives; on every shared file, and on records that are not side by side."""
+    laspy gives (so does las_files.xyz); on every shared file, and on records that are not side by side."""
+    import laspy
     from geodesic_lod import las_files, partition
     path = corpus_file(name)
     src = las_files.open_source(path)
     records = np.concatenate([c.array for _, c in las_files.chunks(path)])
     want = np.column_stack([records[c] for c in "XYZ"])
+    las = laspy.read(path)
+    floats = np.column_stack([np.asarray(las.x), np.asarray(las.y), np.asarray(las.z)])
     scaling = partition.Scaling(tuple(src.header.scales), tuple(src.header.offsets))
-    for part in (records, records[::3]):
+    for part, rows in ((records, slice(None)), (records[::3], slice(None, None, 3))):
         got = las_files.integers(part)
-        assert got.dtype == np.int32 and np.array_equal(got, want[:len(part)] if part is records else want[::3])
-        assert np.array_equal(scaling.apply(got), las_files.xyz(part, src.header))
+        assert got.dtype == np.int32 and np.array_equal(got, want[rows])
+        assert np.array_equal(scaling.apply(got), floats[rows])
+        assert np.array_equal(las_files.xyz(part, src.header), floats[rows])
+    packed = laspy.PackedPointRecord(records, src.header.point_format)
+    assert np.array_equal(las_files.xyz(packed, src.header), floats)
