@@ -22,7 +22,8 @@ import time
 import dask
 import laspy
 import numpy as np
-from dask.distributed import Client
+from dask.distributed import Client, get_task_stream
+from dask.utils import key_split
 
 from geodesic_lod import cloud_files, partition, tiles
 from geodesic_lod import distributed as dist
@@ -81,10 +82,22 @@ def split_seconds(folder, scratch, memory, tile_points, trim, repeats):
     return out
 
 
+def compute_seconds(stream) -> dict:
+    """Per kind of task (its key's prefix): how many ran and the seconds they computed, summed over workers."""
+    out = {}
+    for task in stream:
+        kind = out.setdefault(key_split(task["key"]), {"tasks": 0, "seconds": 0.0})
+        kind["tasks"] += 1
+        kind["seconds"] += sum(s["stop"] - s["start"] for s in task["startstops"] if s["action"] == "compute")
+    return {k: {"tasks": v["tasks"], "seconds": round(v["seconds"], 1)} for k, v in out.items()}
+
+
 def run(folder, out, workers, memory, tile_points, radius):
     with cluster_with(workers, memory) as cluster, Client(cluster) as client:
         t = time.perf_counter()
-        index = dist.lod_files([str(folder)], out, radius=radius, tile_points=tile_points, client=client, threads=1)
+        with get_task_stream(client) as stream:
+            index = dist.lod_files([str(folder)], out, radius=radius, tile_points=tile_points, client=client,
+                                   threads=1)
         seconds = time.perf_counter() - t
         peaks = sorted(client.run(peak_rss_mb).values())  # local workers start with our sys.path
     shutil.rmtree(out)
@@ -95,7 +108,8 @@ def run(folder, out, workers, memory, tile_points, radius):
             "worker_peak_mb": [round(p) for p in peaks], "memory_limit": memory,
             "halo_share": round(read / index["points"] - 1, 3), "open_points": index["open_points"],
             "phase_seconds": {"split": index["partition"]["seconds"], **index["seconds"]},
-            "partition_bytes": index["partition"]["bytes"], "radius": radius}
+            "partition_bytes": index["partition"]["bytes"], "radius": radius,
+            "compute_seconds": compute_seconds(stream.data)}
 
 
 def one_process(folder, tile, radius):
@@ -172,6 +186,24 @@ COLUMNS = [
     ("split / tiles / seams / writing (s)", lambda r: " / ".join(str(r["phase_seconds"][k])
                                                                  for k in ("split", "tiles", "seams", "writing")))]
 
+def scaling_lines(one, two):
+    """Why 2 workers are not twice as fast, phase by phase: the tasks' compute time summed over the workers
+    (more with 2: the tasks slow each other down) and the share of the phase the workers spent computing
+    (below 100%: a worker waited)."""
+    if "compute_seconds" not in one or "compute_seconds" not in two:
+        return []
+    out = ["", "| phase | its tasks | compute, 1 worker (s) | compute, 2 workers (s) | 2 workers' compute / 1's | "
+           "workers computing, 2 workers |", "|---|---|---|---|---|---|"]
+    for phase, task in (("split", "split"), ("tiles", "decide_tile"), ("writing", "write_tile")):
+        c1, c2 = one["compute_seconds"].get(task), two["compute_seconds"].get(task)
+        if not c1 or not c2:
+            continue
+        busy = c2["seconds"] / (2 * two["phase_seconds"][phase])
+        out.append(f"| {phase} | {c2['tasks']} `{task}` | {c1['seconds']} | {c2['seconds']} | "
+                   f"{c2['seconds'] / c1['seconds']:.2f} | {100 * busy:.0f}% |")
+    return out
+
+
 # The single-process footprint the projection compares with: bench/array_memory.py's bytes per point.
 ARRAY_MEMORY = DOCS / "array_memory.json"
 
@@ -202,9 +234,10 @@ def report(rows):
                   f"for each point read against one process's {1e6 / single['points_per_second']:.2f} us on its "
                   f"tile; the split adds {1e6 * ph['split'] / n:.2f} us and the writing "
                   f"{1e6 * ph['writing'] / n:.2f} us a point of the input."]
-    by_workers = {r["workers"]: r["seconds"] for r in rows}
+    by_workers = {r["workers"]: r for r in rows}
     if 1 in by_workers and 2 in by_workers:
-        lines += ["", f"2 workers took {by_workers[1] / by_workers[2]:.2f}x less time than 1."]
+        lines += ["", f"2 workers took {by_workers[1]['seconds'] / by_workers[2]['seconds']:.2f}x less time than 1."]
+        lines += scaling_lines(by_workers[1], by_workers[2])
     splits = rows[0].get("split_seconds_by_trim")
     if splits:
         trim = next(k for k in splits if k != "unset")

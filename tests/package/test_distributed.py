@@ -405,6 +405,18 @@ def test_our_local_clusters_workers_keep_the_allocators_own_trimming(client):
         assert e["OMP_NUM_THREADS"] == "1"
 
 
+def test_our_local_clusters_spend_no_core_on_watching_themselves(client):
+    """The workers' statistical profiler (a look at the running task's stack every 10 ms) and the event loops'
+    health checks (every 20 ms in the scheduler, each nanny and each worker) take an eighth of a core beside
+    two workers' tasks (docs/dask_overhead.json): our clusters' servers run neither that often."""
+    shown = client.run(lambda dask_worker: ("profile" in dask_worker.periodic_callbacks,
+                                            dask_worker._tick_interval))
+    assert len(shown) == 2
+    for profiled, tick in shown.values():
+        assert not profiled and tick >= 1.0
+    assert client.run_on_scheduler(lambda dask_scheduler: dask_scheduler._tick_interval) >= 1.0
+
+
 def test_our_local_clusters_workers_leave_ctrl_c_to_their_caller(client):
     """A terminal's Ctrl-C signals the workers with the command; they leave the stop to the command."""
     blocked = client.run(lambda: signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, []))
