@@ -1,5 +1,5 @@
-"""Speed on a busy machine: the Poisson LOD of the bunny's raw range scans (normals given, an exact
-count of 10%) in the three front ends (the filter in pymeshlab, the Python API, the command), each
+"""Speed on a busy machine: the Poisson LOD of the bunny's raw range scans (normals estimated: the file
+has none, and the zero normals pymeshlab gives the API count as none; an exact count of 10%) in the three front ends (the filter in pymeshlab, the Python API, the command), each
 on all threads and on one thread, while 0, 1 and 4 other processes keep the cores busy.
 
 Every run is a fresh process, the two thread settings interleaved, so both meet the same load. The
