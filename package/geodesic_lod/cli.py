@@ -123,7 +123,7 @@ class _Version(argparse.Action):
 
 def _on_cluster(args) -> bool:
     one = args.input[0]
-    return bool(args.workers or args.scheduler or len(args.input) > 1 or pathlib.Path(one).is_dir()
+    return bool(args.workers is not None or args.scheduler or len(args.input) > 1 or pathlib.Path(one).is_dir()
                 or any(c in one for c in "*?["))
 
 

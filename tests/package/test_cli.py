@@ -153,6 +153,9 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--count", "9"], "not allowed with"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--seed", "-1"], "seed must be from 0"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--threads", "0"], "threads must be at least 1"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "0"], "--workers must be at least 1, got 0"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "-1"],
+     "--workers must be at least 1, got -1"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
