@@ -100,8 +100,8 @@ def parser() -> argparse.ArgumentParser:
                    "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
     dask.add_argument("--tile-points", type=int, default=tile_points.DEFAULT, help="points per tile, at most "
                       "(default: %(default)s)")
-    dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB "
-                      "(default: %(default)s, a share of this machine's)")
+    dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB, "
+                      "or 0 for none (default: %(default)s, a share of this machine's)")
     return p
 
 
@@ -125,6 +125,22 @@ def _on_cluster(args) -> bool:
     one = args.input[0]
     return bool(args.workers is not None or args.scheduler or len(args.input) > 1 or pathlib.Path(one).is_dir()
                 or any(c in one for c in "*?["))
+
+
+def _worker_memory(text: str):
+    """--worker-memory as LocalCluster takes it: 'auto', or bytes (0: no limit)."""
+    from dask.utils import parse_bytes
+    if text == "auto":
+        return text
+    try:
+        size = parse_bytes(text)
+    except (ValueError, TypeError, OverflowError):
+        size = -1
+    if size == 0 and any(c in "123456789" for c in text):  # '0.5' is no byte, not half the memory
+        size = -1
+    if not 0 <= size < 2 ** 63:
+        raise ValueError(f"--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got {text!r}")
+    return size
 
 
 def _run_on_cluster(args, request: dict) -> int:
@@ -155,6 +171,8 @@ def _run_on_cluster(args, request: dict) -> int:
     except ModuleNotFoundError:
         raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
                          "pip install '.[dask]')") from None
+    if args.scheduler is None:
+        args.worker_memory = _worker_memory(args.worker_memory)
     from .cloud_files import expand_inputs
     from .output_folder import OutputFolder
     if copc:  # checked before a cluster starts

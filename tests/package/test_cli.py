@@ -156,6 +156,12 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "0"], "--workers must be at least 1, got 0"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "-1"],
      "--workers must be at least 1, got -1"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "lots"],
+     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got 'lots'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory=-5GB"],
+     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '-5GB'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "0.5"],
+     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '0.5'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
