@@ -171,6 +171,7 @@ def _run_on_cluster(args, request: dict) -> int:
     except ModuleNotFoundError:
         raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
                          "pip install '.[dask]')") from None
+    tile_points.checked(args.tile_points, "--tile-points")  # before a cluster starts
     if args.scheduler is None:
         args.worker_memory = _worker_memory(args.worker_memory)
     from .cloud_files import expand_inputs

@@ -162,6 +162,8 @@ BAD = [
      "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '-5GB'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "0.5"],
      "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '0.5'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--tile-points", "10"],
+     "--tile-points must be a whole number of at least 1000, got 10"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
