@@ -98,10 +98,9 @@ def parser() -> argparse.ArgumentParser:
     dask.add_argument("--scheduler", help="an existing cluster's scheduler, such as tcp://10.0.0.5:8786")
     p.add_argument("--tolerance", type=float, help="with --count, --rate or --levels, a Poisson set within this "
                    "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
-    dask.add_argument("--tile-points", type=int, default=tile_points.DEFAULT, help="points per tile, at most "
-                      "(default: %(default)s)")
-    dask.add_argument("--worker-memory", default="auto", help="memory limit per local worker, such as 3GB, "
-                      "or 0 for none (default: %(default)s, a share of this machine's)")
+    dask.add_argument("--tile-points", type=int, help=f"points per tile, at most (default: {tile_points.DEFAULT})")
+    dask.add_argument("--worker-memory", help="memory limit per worker of the cluster the command starts, such "
+                      "as 3GB, or 0 for none (default: auto, a share of this machine's)")
     return p
 
 
@@ -171,9 +170,14 @@ def _run_on_cluster(args, request: dict) -> int:
     except ModuleNotFoundError:
         raise ValueError("a cluster run needs Dask: pip install 'geodesic-lod[dask]' (from a checkout: "
                          "pip install '.[dask]')") from None
+    if args.tile_points is None:
+        args.tile_points = tile_points.DEFAULT
     tile_points.checked(args.tile_points, "--tile-points")  # before a cluster starts
+    if args.scheduler and args.worker_memory is not None:
+        raise ValueError("--worker-memory goes with the cluster the command starts: an existing cluster's workers "
+                         "keep their own limits")
     if args.scheduler is None:
-        args.worker_memory = _worker_memory(args.worker_memory)
+        args.worker_memory = _worker_memory(args.worker_memory or "auto")
     from .cloud_files import expand_inputs
     from .output_folder import OutputFolder
     if copc:  # checked before a cluster starts
@@ -421,6 +425,10 @@ def main(argv=None) -> int:
             _note_a_fraction(args, request)
             if _on_cluster(args):
                 return _run_on_cluster(args, request)
+            for flag, given in (("--tile-points", args.tile_points), ("--worker-memory", args.worker_memory)):
+                if given is not None:
+                    raise ValueError(f"{flag} goes with a cluster run (--workers, --scheduler, several files or a "
+                                     "folder)")
             if "copc" in request:
                 bar = _Bar(args.quiet, "sampling")
                 summary = _copc(args, bar if bar.bar is not None else None)

@@ -164,6 +164,12 @@ BAD = [
      "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '0.5'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--tile-points", "10"],
      "--tile-points must be a whole number of at least 1000, got 10"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--tile-points", "5000"],
+     "--tile-points goes with a cluster run"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--worker-memory", "2GB"],
+     "--worker-memory goes with a cluster run"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--scheduler", "tcp://127.0.0.1:9",
+                "--worker-memory", "2GB"], "--worker-memory goes with the cluster the command starts"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
