@@ -100,7 +100,7 @@ def parser() -> argparse.ArgumentParser:
                    "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
     dask.add_argument("--tile-points", type=int, help=f"points per tile, at most (default: {tile_points.DEFAULT})")
     dask.add_argument("--worker-memory", help="memory limit per worker of the cluster the command starts, such "
-                      "as 3GB, or 0 for none (default: auto, a share of this machine's)")
+                      "as 3GB or 0.25 (a share of this machine's), or 0 for none (default: auto, an equal share)")
     return p
 
 
@@ -124,22 +124,6 @@ def _on_cluster(args) -> bool:
     one = args.input[0]
     return bool(args.workers is not None or args.scheduler or len(args.input) > 1 or pathlib.Path(one).is_dir()
                 or any(c in one for c in "*?["))
-
-
-def _worker_memory(text: str):
-    """--worker-memory as LocalCluster takes it: 'auto', or bytes (0: no limit)."""
-    from dask.utils import parse_bytes
-    if text == "auto":
-        return text
-    try:
-        size = parse_bytes(text)
-    except (ValueError, TypeError, OverflowError):
-        size = -1
-    if size == 0 and any(c in "123456789" for c in text):  # '0.5' is no byte, not half the memory
-        size = -1
-    if not 0 <= size < 2 ** 63:
-        raise ValueError(f"--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got {text!r}")
-    return size
 
 
 def _run_on_cluster(args, request: dict) -> int:
@@ -177,7 +161,7 @@ def _run_on_cluster(args, request: dict) -> int:
         raise ValueError("--worker-memory goes with the cluster the command starts: an existing cluster's workers "
                          "keep their own limits")
     if args.scheduler is None:
-        args.worker_memory = _worker_memory(args.worker_memory or "auto")
+        args.worker_memory = distributed.memory_limit_of(args.worker_memory or "auto", "--worker-memory")
     from .cloud_files import expand_inputs
     from .output_folder import OutputFolder
     if copc:  # checked before a cluster starts

@@ -211,13 +211,46 @@ def domain_fields(metric: str, adaptivity: float) -> dict:
 QUIET = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
 
 
+def memory_limit_of(value, name: str = "memory_limit"):
+    """A worker's memory limit as LocalCluster takes it: 'auto', a size such as '3GB' or a number of bytes (0:
+    no limit), or a share of this machine's memory above 0 and at most 1. InputError naming it as `name`
+    otherwise."""
+    import numbers
+    from dask.utils import parse_bytes
+    if value == "auto":
+        return value
+    size = -1
+    if isinstance(value, str):
+        try:
+            size = parse_bytes(value)
+        except (ValueError, TypeError, OverflowError):
+            pass
+        try:
+            share = float(value)
+        except ValueError:
+            share = 0.0
+        if "." in value and 0 < share <= 1:  # '0.5': half, as the number 0.5 (parse_bytes: 0 bytes)
+            return share
+    elif isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        size = int(value)
+    elif isinstance(value, numbers.Real) and not isinstance(value, bool) and 0 < value <= 1:
+        return float(value)
+    if not 0 <= size < 2 ** 63:
+        raise InputError(f"{name} must be a size such as '3GB', a number of bytes (0: no limit), a share of this "
+                         f"machine's memory from 0 to 1, or 'auto'; got {value!r}")
+    return size
+
+
 def local_cluster(workers: int, memory_limit="auto"):
     """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
     127.0.0.1 only (its dashboard too, which shows no profile), without Dask's MALLOC_TRIM_THRESHOLD_ unless
     the environment sets it (``task_memory``). Its processes do not see Ctrl-C: a terminal signals them with the caller, which stops
-    the job and closes the cluster. Ctrl-C while it starts stops it once started."""
+    the job and closes the cluster. Ctrl-C while it starts stops it once started. `memory_limit` per worker:
+    see ``memory_limit_of``. InputError for a bad size, before anything starts."""
     import dask
     from dask.distributed import LocalCluster
+    workers = arrays.whole_number(workers, "workers", 1)
+    memory_limit = memory_limit_of(memory_limit)
     if USERS_TRIM is None:
         os.environ.pop(TRIM, None)  # left by an earlier cluster's nanny: the workers would inherit it
     cluster = None

@@ -157,11 +157,14 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "-1"],
      "--workers must be at least 1, got -1"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "lots"],
-     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got 'lots'"),
+     "--worker-memory must be a size such as '3GB', a number of bytes (0: no limit), a share of this machine's "
+     "memory from 0 to 1, or 'auto'; got 'lots'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory=-5GB"],
-     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '-5GB'"),
-    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "0.5"],
-     "--worker-memory must be a size such as 3GB, 0 (no limit) or auto, got '0.5'"),
+     "--worker-memory must be a size such as '3GB', a number of bytes (0: no limit), a share of this machine's "
+     "memory from 0 to 1, or 'auto'; got '-5GB'"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--worker-memory", "1.5."],
+     "--worker-memory must be a size such as '3GB', a number of bytes (0: no limit), a share of this machine's "
+     "memory from 0 to 1, or 'auto'; got '1.5.'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--workers", "1", "--tile-points", "10"],
      "--tile-points must be a whole number of at least 1000, got 10"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--tile-points", "5000"],

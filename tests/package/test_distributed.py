@@ -429,6 +429,26 @@ def worker_processes():
     return {p.pid for p in psutil.Process().children(recursive=True) if "spawn_main" in " ".join(p.cmdline())}
 
 
+@pytest.mark.parametrize("workers, memory, problem", [
+    (0, "auto", "workers must be at least 1, got 0"),
+    (1.5, "auto", "workers must be an integer"),
+    (1, "lots", "memory_limit must be a size such as '3GB', a number of bytes (0: no limit), a share of this "
+                "machine's memory from 0 to 1, or 'auto'; got 'lots'"),
+    (1, "-5GB", "got '-5GB'"),
+    (1, -1, "got -1"),
+    (1, 1.5, "got 1.5"),
+    (1, True, "got True"),
+])
+def test_a_local_cluster_of_bad_sizes_is_refused_before_it_starts(workers, memory, problem):
+    """No cluster without workers (a job on it would wait for ever), nor of a memory limit Dask cannot take
+    (a negative one failed the workers' start with tracebacks)."""
+    before = worker_processes()
+    with pytest.raises(ValueError) as e:
+        dist.local_cluster(workers, memory)
+    assert problem in str(e.value)
+    assert worker_processes() == before
+
+
 def test_ctrl_c_while_a_local_cluster_starts_stops_it_once_started():
     before = worker_processes()  # the module's cluster's
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))  # it takes seconds to start
