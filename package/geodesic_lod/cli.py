@@ -100,7 +100,7 @@ def parser() -> argparse.ArgumentParser:
                    "percentage of the count, untrimmed (default: 0 on one machine, an exact count; 1 on a cluster)")
     dask.add_argument("--tile-points", type=int, help=f"points per tile, at most (default: {tile_points.DEFAULT})")
     dask.add_argument("--worker-memory", help="memory limit per worker of the cluster the command starts, such "
-                      "as 3GB or 0.25 (a share of this machine's), or 0 for none (default: auto, an equal share)")
+                      "as 3GB or 0.25 (a share of this machine's), or 0 for none (default: auto, Dask's share for one thread)")
     return p
 
 
