@@ -5,7 +5,7 @@ the event loops' health checked every second rather than every 20 ms), `--repeat
 the time, and the CPU seconds of the tasks' threads, of the workers' other threads (event loop, decoding)
 and of the calling process (scheduler, nannies, client). Writes docs/dask_overhead.json.
 
-usage: bench/dask_overhead.py [--points 4000000] [--repeats 3] [--data DIR]
+usage: bench/dask_overhead.py [--points 4000000] [--repeats 4] [--data DIR]
 """
 import argparse
 import os
@@ -72,7 +72,7 @@ def one_job(folder, out, points: int, quiet: bool) -> dict:
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--points", type=int, default=4_000_000)
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=4)
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-cluster"))
     a = ap.parse_args()
     folder = pathlib.Path(a.data) / f"scan_{a.points}"

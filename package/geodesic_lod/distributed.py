@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import numbers
 import os
 import pathlib
 import time
@@ -215,7 +216,6 @@ def memory_limit_of(value, name: str = "memory_limit"):
     """A worker's memory limit as LocalCluster takes it: 'auto', a size such as '3GB' or a number of bytes (0:
     no limit), or a share of this machine's memory above 0 and at most 1. InputError naming it as `name`
     otherwise."""
-    import numbers
     from dask.utils import parse_bytes
     if value == "auto":
         return value
