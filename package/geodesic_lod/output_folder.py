@@ -38,6 +38,8 @@ class OutputFolder:
         point_files.check_named(path)
         self.path = pathlib.Path(path)
         out = self.path
+        if any(point_files.same_file(out, p) for p in inputs):
+            raise PointFileError(out, point_files.IS_AN_INPUT)
         if out.is_symlink() and not out.is_dir():
             raise PointFileError(out, "is a link to no folder")
         if out.exists() and not out.is_dir():

@@ -93,8 +93,8 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
             raise PointFileError(out, f"the name is longer than its folder allows ({_name_max(folder)} bytes)")
         if out.is_dir():
             raise PointFileError(out, "is a folder: give a file name")
-        if any(_same_file(out, p) for p in inputs):
-            raise PointFileError(out, "is an input: choose another output name (the input is never modified)")
+        if any(same_file(out, p) for p in inputs):
+            raise PointFileError(out, IS_AN_INPUT)
         key = os.path.abspath(out)
         if key in seen:
             raise PointFileError(out, "would be written twice: give each output its own name")
@@ -110,7 +110,10 @@ def _name_max(folder) -> int:
         return 255
 
 
-def _same_file(a, b) -> bool:
+IS_AN_INPUT = "is an input: choose another output name (the input is never modified)"
+
+
+def same_file(a, b) -> bool:
     """Whether a and b are one file: the same path, a link to it or a hard link."""
     a, b = pathlib.Path(a), pathlib.Path(b)
     if a.exists() and b.exists():

@@ -95,6 +95,21 @@ def test_a_path_that_cannot_be_a_folder_is_refused(tmp_path, what, problem):
 
 
 @pytest.mark.parametrize("through_a_link", [False, True])
+def test_an_input_given_as_the_output_folder_is_named_an_input(tmp_path, through_a_link):
+    # A careless "-o scan.laz" on a cluster run: say that it is the input, not merely not a folder.
+    scan = tmp_path / "scan.laz"
+    scan.write_bytes(b"the user's scan")
+    given = scan
+    if through_a_link:
+        given = tmp_path / "link.laz"
+        given.symlink_to(scan)
+    before = snapshot(tmp_path)
+    problem = refused(given, [str(scan)])
+    assert "is an input" in problem, problem
+    assert snapshot(tmp_path) == before
+
+
+@pytest.mark.parametrize("through_a_link", [False, True])
 def test_a_folder_holding_an_input_is_refused(tmp_path, through_a_link):
     # Sampling a LOD's own tile again into its folder: the commit would remove the input.
     out = own_folder(tmp_path / "lod")
