@@ -333,7 +333,8 @@ TEXTS = {
         Points per tile, at most (but where one block of the cells holds more), at least
         {tile_points.MINIMUM}. Default {tile_points.DEFAULT:,}.
     client : dask.distributed.Client
-        The cluster (see ``local_cluster``).
+        The cluster (see ``local_cluster``). A cluster with no worker yet is waited for, as Dask waits:
+        workers may join later.
     threads : int, optional
         Threads per task (default: all the worker machine's cores).
     progress : callable, optional

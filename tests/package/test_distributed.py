@@ -186,16 +186,23 @@ def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
             time.sleep(0.2)
         address = json.loads(scheduler_file.read_text())["address"]
         assert address.startswith("tcp://127.0.0.1:")
+        # The command first, as a user may start it before the workers: it says what it waits for.
+        command = subprocess.Popen(COMMAND + [str(folder / "part*.laz"), "-o", str(tmp_path / "lod"), "--radius",
+                                              str(RADIUS), "--scheduler", address, "--tile-points", "5000",
+                                              "--threads", "1", "--seed", "4"], stderr=subprocess.PIPE, text=True)
+        procs.append(command)
+        first = ""
+        while line := command.stderr.readline():  # the dashboard's line first
+            first += line
+            if "worker" in line:
+                break
+        assert "has no worker yet" in first and address in first, first
         for _ in range(2):
             procs.append(subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--host", "127.0.0.1",
                                            "--no-dashboard", "--no-nanny"], stderr=subprocess.DEVNULL))
-        with Client(address, timeout="30s") as c:
-            c.wait_for_workers(2, timeout=60)
-        r = subprocess.run(COMMAND + [str(folder / "part*.laz"), "-o", str(tmp_path / "lod"), "--radius",
-                                      str(RADIUS), "--scheduler", address, "--tile-points", "5000", "--threads", "1",
-                                      "--seed", "4"], capture_output=True, text=True, timeout=300)
-        assert r.returncode == 0, r.stderr
-        assert "tiles, radius 0.5" in r.stderr
+        err = command.stderr.read()
+        assert command.wait(300) == 0, first + err
+        assert "tiles, radius 0.5" in err
         check_equal(tmp_path / "lod", points, records, 4)
     finally:
         # Workers first: a worker whose scheduler is gone keeps trying to reach it well past SIGTERM.
