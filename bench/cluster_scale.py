@@ -2,9 +2,11 @@
 a grid of LAZ files, sampled by geodesic_lod.distributed on a local cluster of 1 and of 2 workers with
 a memory limit each; time, peak memory per worker, points per second, the halo's share of the points
 read and the time of each phase (the split decodes each record once). Beside them, one process on the
-points of the job's tile of median count (read beforehand, one thread), run after each job and after the
-split's runs: the median is the rate a worker is measured against; and the split alone on one worker, by turns with and without Dask's default MALLOC_TRIM_THRESHOLD_
-for its workers (ours start without it). Writes docs/cluster_scale.json.
+points of a spread of the job's tiles (every tile of the field's rugged and smooth parts costs differently
+a point; each tile read beforehand, one thread), run after each job and after the split's runs: the
+median of those rates is the rate a worker is measured against; and the split alone on one worker, by
+turns with and without Dask's default MALLOC_TRIM_THRESHOLD_ for its workers (ours start without it).
+Writes docs/cluster_scale.json.
 
 Also writes docs/cluster_scale.md: the table, and a projection to 10^9 and 10^10 points from the
 measured rates (--report rewrites it from the JSON alone).
@@ -102,8 +104,8 @@ def run(folder, out, workers, memory, tile_points, radius):
         peaks = sorted(client.run(peak_rss_mb).values())  # local workers start with our sys.path
     shutil.rmtree(out)
     read = sum(t["points_read"] for t in index["tiles"])
-    counts = sorted(index["tiles"], key=lambda t: t["count"])
-    return {"median_tile": counts[len(counts) // 2]["tile"], "workers": workers, "points": index["points"], "samples": index["samples"], "tiles": len(index["tiles"]),
+    spread = index["tiles"][::max(1, len(index["tiles"]) // SPREAD)]
+    return {"spread_tiles": [t["tile"] for t in spread], "workers": workers, "points": index["points"], "samples": index["samples"], "tiles": len(index["tiles"]),
             "seconds": round(seconds, 1), "points_per_second": round(index["points"] / seconds),
             "worker_peak_mb": [round(p) for p in peaks], "memory_limit": memory,
             "halo_share": round(read / index["points"] - 1, 3), "open_points": index["open_points"],
@@ -112,30 +114,36 @@ def run(folder, out, workers, memory, tile_points, radius):
             "compute_seconds": compute_seconds(stream.data)}
 
 
-def one_process(folder, tile, radius):
-    """One tile's core points (`tile`, [lo, hi] as the index gives it) sampled by one process on one thread,
-    the points in memory beforehand: its points and seconds."""
+def one_process(folder, tiles_, radius):
+    """Each tile's core points (`tiles_`, [lo, hi] as the index gives them) sampled by one process on one
+    thread, the points in memory beforehand: per tile, its points and seconds."""
     import geodesic_lod as gl
     from geodesic_lod import cloud_files, tiles
     paths = cloud_files.expand_inputs([str(folder)])
     srcs = cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
     cloud = tiles.Box(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0))
-    box = tiles.Box(*map(np.array, tile))
-    outer = box.outer(cloud)
-    points, _, _ = cloud_files.read_region(srcs, outer.lo, outer.hi)
-    points = points[box.core_mask(points, cloud)]
-    t = time.perf_counter()
-    gl.poisson_lod(points, radius=radius, threads=1)
-    return len(points), time.perf_counter() - t
+    runs = []
+    for tile in tiles_:
+        box = tiles.Box(*map(np.array, tile))
+        outer = box.outer(cloud)
+        points, _, _ = cloud_files.read_region(srcs, outer.lo, outer.hi)
+        points = points[box.core_mask(points, cloud)]
+        t = time.perf_counter()
+        gl.poisson_lod(points, radius=radius, threads=1)
+        runs.append((len(points), time.perf_counter() - t))
+    return runs
 
 
-def reference(runs):
-    """The single-process rate from `runs` of one_process (this machine's speed drifts by 10-30% over a
-    job's minutes, so it is measured after each job and the median taken)."""
-    seconds = sorted(t for _, t in runs)
-    median = seconds[len(seconds) // 2]
-    return {"points": runs[0][0], "seconds": round(median, 1), "runs_s": [round(t, 1) for _, t in runs],
-            "points_per_second": round(runs[0][0] / median)}
+def reference(measurements):
+    """The single-process rate from `measurements`, each one_process's runs over the spread of tiles (this
+    machine's speed drifts by 10-30% over a job's minutes, so it is measured after each job and the median
+    taken): points over seconds of each measurement, and the range of a point's cost over the tiles."""
+    rates = sorted(sum(n for n, _ in runs) / sum(t for _, t in runs) for runs in measurements)
+    per_point = [1e6 * t / n for runs in measurements for n, t in runs]
+    return {"tiles": len(measurements[0]), "points": sum(n for n, _ in measurements[0]),
+            "seconds_per_measurement": [round(sum(t for _, t in runs), 1) for runs in measurements],
+            "points_per_second": round(rates[len(rates) // 2]),
+            "us_per_point_range": [round(min(per_point), 2), round(max(per_point), 2)]}
 
 
 def main():
@@ -154,16 +162,16 @@ def main():
     print(f"data: {folder} ({time.perf_counter() - t:.0f} s)")
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
     rows, singles = [], []
-    for w in a.workers.split(","):  # each job followed by one process on the first job's median tile
+    for w in a.workers.split(","):  # each job followed by one process on the first job's spread of tiles
         rows.append(run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius))
-        singles.append(one_process(folder, rows[0]["median_tile"], radius))
+        singles.append(one_process(folder, rows[0]["spread_tiles"], radius))
     # The split with workers as Dask's nannies start them by default (distributed.nanny.pre-spawn-environ).
     splits = split_seconds(folder, pathlib.Path(a.data) / "cells", a.worker_memory, a.tile_points,
                            [None, str(DASK_TRIM)], a.split_repeats) if a.split_repeats else {}
-    singles.append(one_process(folder, rows[0]["median_tile"], radius))
+    singles.append(one_process(folder, rows[0]["spread_tiles"], radius))
     single = reference(singles)
     for r in rows:
-        r.pop("median_tile")
+        r.pop("spread_tiles")
     for r in rows:  # a worker's rate against one process's on a tile of the same size
         r["one_process"] = single
         r["worker_share"] = round(r["points_per_second"] / r["workers"] / single["points_per_second"], 3)
@@ -172,6 +180,8 @@ def main():
     publish("cluster_scale", rows, COLUMNS)
     report(rows)
 
+
+SPREAD = 6  # tiles one process samples for the reference rate, evenly along the tiles' order
 
 DASK_TRIM = dask.config.get(f"distributed.nanny.pre-spawn-environ.{dist.TRIM}")
 
@@ -222,17 +232,19 @@ def report(rows):
     lines += ["| " + " | ".join(cell(r) for _, cell in COLUMNS) + " |" for r in rows]
     n = best["points"]
     single = best["one_process"]
-    lines += ["", f"One process on one tile's {single['points']:,} points (the job's tile of median count, read "
-              f"beforehand, one thread) took {single['seconds']} s, {single['points_per_second']:,} points/s (the median of "
-              f"{', '.join(map(str, single['runs_s']))} s, run after each job and after the split's runs): the rate each worker's "
-              "share is measured against. Each input record is decoded once, in the split; the cells it writes take "
-              f"{best['partition_bytes'] / 1e9:.1f} GB."]
+    lines += ["", f"One process on {single['tiles']} of the job's tiles, evenly along their order "
+              f"({single['points']:,} points; each tile read beforehand, one thread), took "
+              f"{', '.join(map(str, single['seconds_per_measurement']))} s, run after each job and after the split's "
+              f"runs: the median rate, {single['points_per_second']:,} points/s, is the rate each worker's share is "
+              f"measured against. A point cost {single['us_per_point_range'][0]}-{single['us_per_point_range'][1]} us "
+              "from tile to tile (the height field is rugged in places, smooth in others). Each input record is "
+              f"decoded once, in the split; the cells it writes take {best['partition_bytes'] / 1e9:.1f} GB."]
     one = min(rows, key=lambda r: r["workers"])
     if one["workers"] == 1:  # where one worker's time goes, per input point
         ph = one["phase_seconds"]
         lines += ["", f"Per point, one worker's tiles take {1e6 * ph['tiles'] / (n * (1 + one['halo_share'])):.2f} us "
-                  f"for each point read against one process's {1e6 / single['points_per_second']:.2f} us on its "
-                  f"tile; the split adds {1e6 * ph['split'] / n:.2f} us and the writing "
+                  f"for each point read against one process's {1e6 / single['points_per_second']:.2f} us on the "
+                  f"spread of tiles; the split adds {1e6 * ph['split'] / n:.2f} us and the writing "
                   f"{1e6 * ph['writing'] / n:.2f} us a point of the input."]
     by_workers = {r["workers"]: r for r in rows}
     if 1 in by_workers and 2 in by_workers:
