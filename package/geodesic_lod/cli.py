@@ -78,7 +78,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--visit-order", choices=list(arrays.VISIT_ORDERS), help="Poisson-disk: which point of a "
                    "neighbourhood a disk keeps: random (the paper's), prominence (points standing out of the "
                    "scan's scatter first) or rims (points at the rim of their surroundings, such as roof edges, "
-                   f"first (default: {arrays.DEFAULT_VISIT_ORDER})")
+                   f"first) (default: {arrays.DEFAULT_VISIT_ORDER})")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in; surface-density, with --visit-order rims, "
                         "for airborne LiDAR (default: %(default)s)")
