@@ -6,14 +6,19 @@
 // two threads takes several times one thread's (docs/busy_machine.md). These
 // workers spin a few microseconds (a loop's next batch usually follows that
 // soon), then sleep until woken; a loop's caller takes rows until none is
-// left and waits only for workers that have started. The thread count is OpenMP's
+// left and waits only for workers that have started. The workers run off the
+// core their caller is on (Linux): with no core idle the kernel wakes a thread
+// on its waker's core, and a loop's two threads then shared one core while
+// another process had the other. The thread count is OpenMP's
 // (omp_get_max_threads: OMP_NUM_THREADS, or what the host set), one without
-// OpenMP. Cost: a wake-up per loop, microseconds.
+// OpenMP. Cost: a wake-up per loop, microseconds; a system call per worker
+// when the caller has moved to another core.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdio>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -22,6 +27,10 @@
 #include <thread>
 #include <vector>
 #include <unistd.h>
+#ifdef __linux__
+#include <pthread.h>
+#include <sched.h>
+#endif
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -102,6 +111,7 @@ class ThreadTeam {
     }
     const int asked = threads;
     threads = Grow(threads);
+    PlaceWorkers();
     std::vector<std::exception_ptr> error(static_cast<size_t>(asked));
     auto guarded = [&](int t) {
       try {
@@ -138,18 +148,70 @@ class ThreadTeam {
       if (e) std::rethrow_exception(e);
   }
 
+  /// The core the calling thread was on when its current or last loop began
+  /// (-1 where that is not known): the workers avoid it (AvoidsCallerCpu)
+  /// while the machine is not oversubscribed.
+  int CallerCpu() const { return callerCpu_; }
+
+  /// Whether other work leaves no core partly free: `runnable` tasks on the
+  /// machine, `ours` of them this team's threads, `cores` the caller may use.
+  static bool Oversubscribed(int runnable, int ours, int cores) { return runnable - ours >= cores; }
+  /// Whether the workers now avoid the caller's core (CallerCpu).
+  bool AvoidsCallerCpu() const { return placedFor_ >= 0; }
+#ifdef __linux__
+  /// The tasks runnable on the whole machine now (/proc/loadavg's fourth
+  /// field), 0 if unknown; replaceable, for tests.
+  static inline int (*runnableTasks)() = [] {
+    FILE* f = std::fopen("/proc/loadavg", "r");
+    if (!f) return 0;
+    double a, b, c;
+    int running = 0, total = 0;
+    if (std::fscanf(f, "%lf %lf %lf %d/%d", &a, &b, &c, &running, &total) != 5) running = 0;
+    std::fclose(f);
+    return running;
+  };
+#endif
+
  private:
   // The workers for `threads` in all (the caller is one); fewer if the system refuses a thread.
   int Grow(int threads) {
     while (int(workers_.size()) + 1 < threads) {
       try {
         workers_.emplace_back([this, w = int(workers_.size()) + 1] { Work(w); });
+        placedFor_ = -1;  // the new worker may run anywhere its caller may
       } catch (const std::system_error&) {
         break;
       }
     }
     return std::min(threads, int(workers_.size()) + 1);
   }
+
+  // While other work leaves a core partly free, each worker may run on the
+  // cores the caller may but the one the caller is on: the kernel puts a woken
+  // worker on its waker's core when none is idle, and beside one busy process
+  // a loop's two threads often shared one core while the other process had
+  // the other. Where every core is oversubscribed the kernel's own placement
+  // did better, and the workers may run anywhere the caller may.
+  void PlaceWorkers() {
+#ifdef __linux__
+    callerCpu_ = sched_getcpu();
+    if (callerCpu_ < 0 || workers_.empty()) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= nextLook_) {  // the machine's load, looked at every few milliseconds
+      if (pthread_getaffinity_np(pthread_self(), sizeof callers_, &callers_) != 0) return;
+      oversubscribed_ = Oversubscribed(runnableTasks(), int(workers_.size()) + 1, CPU_COUNT(&callers_));
+      nextLook_ = now + std::chrono::milliseconds(kLookMilliseconds);
+      placedFor_ = -1;  // the caller's own cores may have changed
+    }
+    const int avoid = oversubscribed_ || !CPU_ISSET(callerCpu_, &callers_) || CPU_COUNT(&callers_) < 2 ? -2 : callerCpu_;
+    if (avoid == placedFor_) return;
+    cpu_set_t allowed = callers_;
+    if (avoid >= 0) CPU_CLR(avoid, &allowed);
+    for (std::thread& w : workers_) pthread_setaffinity_np(w.native_handle(), sizeof allowed, &allowed);
+    placedFor_ = avoid;
+#endif
+  }
+
 
   // Spins briefly on `ready`, then sleeps on `cv` until it holds.
   template <class Ready>
@@ -203,6 +265,7 @@ class ThreadTeam {
     new (&done_) std::condition_variable;
     pending_ = 0;
     size_ = 1;
+    placedFor_ = -1;
     pid_ = getpid();
   }
 
@@ -216,6 +279,13 @@ class ThreadTeam {
   bool optional_ = false, closed_ = false;  // helpers optional; and job(0) has returned (under m_)
   std::function<void(int)> job_;
   bool stop_ = false;
+  int callerCpu_ = -1, placedFor_ = -1;  // the caller's core at the last loop; the one the workers avoid (-2: none)
+#ifdef __linux__
+  static constexpr int kLookMilliseconds = 10;
+  std::chrono::steady_clock::time_point nextLook_{};
+  bool oversubscribed_ = false;
+  cpu_set_t callers_;  // the cores the caller may use
+#endif
   pid_t pid_ = getpid();
 };
 

@@ -3,7 +3,8 @@
 // serial pass on the caller, too), however short the loops; a nested
 // loop runs on its caller alone; an exception or a stop request ends the loop
 // and is rethrown; progress comes from the calling thread only; each calling
-// thread has its own team; waiting workers leave the cores to others.
+// thread has its own team; waiting workers leave the cores to others; a
+// worker runs off the core its caller is on, where the caller may use another.
 #include <gtest/gtest.h>
 #include <atomic>
 #include <chrono>
@@ -14,6 +15,10 @@
 #include <thread>
 #include <vector>
 #include <vcg_ext/parallel.h>
+#ifdef __linux__
+#include <pthread.h>
+#include <sched.h>
+#endif
 #include "on_threads.h"
 
 namespace parallel_test {
@@ -200,5 +205,58 @@ TEST(Parallel, AThreadWaitingForAnotherLeavesTheProcessorToOthers) {
     EXPECT_LT(busy, 0.1) << "processor seconds used in 0.8 s of waiting";
   });
 }
+
+#ifdef __linux__
+// On a busy machine the kernel wakes a worker on its caller's core, where the
+// two then share one core: while other work leaves a core partly free, each
+// worker may run anywhere the caller may but where the caller is when the
+// loop starts; where every core is oversubscribed, anywhere the caller may.
+TEST(Parallel, AWorkerRunsOffTheCoreItsCallerIsOnUnlessEveryCoreIsOversubscribed) {
+  EXPECT_FALSE(vcg_ext::ThreadTeam::Oversubscribed(3, 2, 2));  // beside one busy process on two cores
+  EXPECT_TRUE(vcg_ext::ThreadTeam::Oversubscribed(6, 2, 2));   // beside four
+  EXPECT_FALSE(vcg_ext::ThreadTeam::Oversubscribed(2, 2, 2));  // alone
+  cpu_set_t callers;
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof callers, &callers), 0);
+  const auto machine = vcg_ext::ThreadTeam::runnableTasks;
+  for (const int others : {0, 1, 100}) {  // runnable tasks besides the team's 3 threads
+    static int runnable;
+    runnable = others + 3;
+    vcg_ext::ThreadTeam::runnableTasks = [] { return runnable; };
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // the team looks at the load every few ms
+    const bool avoid = CPU_COUNT(&callers) > 1 && others < CPU_COUNT(&callers);
+    OnThreads(3, [&] {
+      for (int loop = 0; loop < 100; ++loop) {  // the caller may move between loops
+        std::mutex m;
+        std::vector<std::pair<int, cpu_set_t>> seen;  // per worker: its core, its allowed cores
+        int callerCpu = -2;
+        bool avoids = false;
+        vcg_ext::ThreadTeam::Mine().Run(3, [&](int t) {
+          if (t == 0) {
+            callerCpu = vcg_ext::ThreadTeam::Mine().CallerCpu();
+            avoids = vcg_ext::ThreadTeam::Mine().AvoidsCallerCpu();
+            return;
+          }
+          cpu_set_t mine;
+          ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof mine, &mine), 0);
+          std::lock_guard<std::mutex> lock(m);
+          seen.emplace_back(sched_getcpu(), mine);
+        });
+        ASSERT_GE(callerCpu, 0);
+        ASSERT_EQ(seen.size(), 2u);
+        EXPECT_EQ(avoids, avoid) << others << " others, loop " << loop;
+        for (const auto& w : seen) {
+          cpu_set_t expected = callers;
+          if (avoid) {
+            CPU_CLR(callerCpu, &expected);
+            EXPECT_NE(w.first, callerCpu) << others << " others, loop " << loop;
+          }
+          EXPECT_TRUE(CPU_EQUAL(&w.second, &expected)) << others << " others, loop " << loop;
+        }
+      }
+    });
+  }
+  vcg_ext::ThreadTeam::runnableTasks = machine;
+}
+#endif
 
 }  // namespace parallel_test
