@@ -198,10 +198,11 @@ class ThreadTeam {
     if (callerCpu_ < 0 || workers_.empty()) return;
     const auto now = std::chrono::steady_clock::now();
     if (now >= nextLook_) {  // the machine's load, looked at every few milliseconds
-      if (pthread_getaffinity_np(pthread_self(), sizeof callers_, &callers_) != 0) return;
+      cpu_set_t callers;
+      if (pthread_getaffinity_np(pthread_self(), sizeof callers, &callers) != 0) return;
+      if (!CPU_EQUAL(&callers, &callers_)) callers_ = callers, placedFor_ = -1;  // the host moved the caller
       oversubscribed_ = Oversubscribed(runnableTasks(), int(workers_.size()) + 1, CPU_COUNT(&callers_));
       nextLook_ = now + std::chrono::milliseconds(kLookMilliseconds);
-      placedFor_ = -1;  // the caller's own cores may have changed
     }
     const int avoid = oversubscribed_ || !CPU_ISSET(callerCpu_, &callers_) || CPU_COUNT(&callers_) < 2 ? -2 : callerCpu_;
     if (avoid == placedFor_) return;
@@ -284,7 +285,7 @@ class ThreadTeam {
   static constexpr int kLookMilliseconds = 10;
   std::chrono::steady_clock::time_point nextLook_{};
   bool oversubscribed_ = false;
-  cpu_set_t callers_;  // the cores the caller may use
+  cpu_set_t callers_{};  // the cores the caller may use
 #endif
   pid_t pid_ = getpid();
 };
