@@ -6,10 +6,11 @@
 // two threads takes several times one thread's (docs/busy_machine.md). These
 // workers spin a few microseconds (a loop's next batch usually follows that
 // soon), then sleep until woken; a loop's caller takes rows until none is
-// left and waits only for workers that have started. The workers run off the
-// core their caller is on (Linux): with no core idle the kernel wakes a thread
-// on its waker's core, and a loop's two threads then shared one core while
-// another process had the other. The thread count is OpenMP's
+// left and waits only for workers that have started. While other work leaves
+// a core partly free, the workers run off the core their caller is on (Linux):
+// with no core idle the kernel wakes a thread on its waker's core, and a
+// loop's two threads then shared one core while another process had the
+// other. The thread count is OpenMP's
 // (omp_get_max_threads: OMP_NUM_THREADS, or what the host set), one without
 // OpenMP. Cost: a wake-up per loop, microseconds; a system call per worker
 // when the caller has moved to another core.
@@ -213,7 +214,6 @@ class ThreadTeam {
 #endif
   }
 
-
   // Spins briefly on `ready`, then sleeps on `cv` until it holds.
   template <class Ready>
   void Await(Ready ready, std::condition_variable& cv) {
@@ -280,7 +280,8 @@ class ThreadTeam {
   bool optional_ = false, closed_ = false;  // helpers optional; and job(0) has returned (under m_)
   std::function<void(int)> job_;
   bool stop_ = false;
-  int callerCpu_ = -1, placedFor_ = -1;  // the caller's core at the last loop; the one the workers avoid (-2: none)
+  int callerCpu_ = -1;  // the caller's core at the last loop
+  int placedFor_ = -1;  // the core the workers avoid; -2: none; -1: their cores not set since they changed
 #ifdef __linux__
   static constexpr int kLookMilliseconds = 10;
   std::chrono::steady_clock::time_point nextLook_{};

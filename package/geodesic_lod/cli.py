@@ -185,7 +185,7 @@ def _run_on_cluster(args, request: dict) -> int:
             args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
         if not args.quiet:
             print(f"{PROG}: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
-        if not client.scheduler_info()["workers"]:  # workers may join later: say what the run waits for, whatever --quiet says
+        if not client.scheduler_info()["workers"]:  # workers may join later: say so, whatever --quiet says
             print(f"{PROG}: the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)",
                   file=sys.stderr, flush=True)
             client.wait_for_workers(1)
