@@ -89,15 +89,27 @@ class CellGrid {
   /// cells sharing their keys: farther away, so never wrongly certified).
   template <class F>
   void ForBlock(const Cell& c, int ring, F&& f) const {
-    const size_t centre = size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
-    for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
-      for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
-        for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
-          if (x < 0 || y < 0 || z < 0) continue;
-          const uint64_t k = Key({x, y, z});
-          const size_t at = Seek(k, centre);
-          if (at < key_.size() && key_[at] == k) f(start_[at], start_[at + 1]);
-        }
+    ForBlockCells(c, ring, [&](size_t at) { f(start_[at], start_[at + 1]); });
+  }
+
+  /// Some of the grid's points, in cell order, with each cell's range: what
+  /// ForEachBall may read in place of all of them.
+  struct Subset {
+    std::vector<vcg::Point3d> pos;
+    std::vector<int> start;  ///< per cell, its first position in `pos`; one past the end last
+  };
+  /// The points of `sorted` (InCellOrder) whose rank r in cell order has keep(r). O(n).
+  template <class Keep>
+  Subset SubsetOf(const std::vector<vcg::Point3d>& sorted, Keep&& keep) const {
+    Subset s;
+    s.start.reserve(start_.size());
+    for (size_t c = 0; c + 1 < start_.size(); ++c) {
+      s.start.push_back(int(s.pos.size()));
+      for (int r = start_[c]; r < start_[c + 1]; ++r)
+        if (keep(size_t(r))) s.pos.push_back(sorted[size_t(r)]);
+    }
+    s.start.push_back(int(s.pos.size()));
+    return s;
   }
 
   /// The points of `pos` (the points the grid holds) in cell order, what
@@ -112,18 +124,22 @@ class CellGrid {
   /// most the cell side) of it, q their offset from it. A cell's 27 neighbour
   /// ranges are looked up once for all its points (a lookup per point was
   /// most of the cost on small cells). `sorted`: InCellOrder(pos).
+  /// With `from`, the balls hold only its points (still around every point).
   template <class F>
-  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f) const {
+  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f, const Subset* from = nullptr) const {
+    const std::vector<vcg::Point3d>& read = from ? from->pos : sorted;
+    const std::vector<int>& at = from ? from->start : start_;
     ParallelFor(key_.size(), 16, [&](size_t c) {
       std::array<std::pair<int, int>, 27> ranges;
       int m = 0;
-      ForBlock(CellOf(sorted[size_t(start_[c])]), 1, [&](int begin, int end) { ranges[size_t(m++)] = {begin, end}; });
+      ForBlockCells(CellOf(sorted[size_t(start_[c])]), 1,
+                    [&](size_t b) { ranges[size_t(m++)] = {at[b], at[b + 1]}; });
       for (int r = start_[c]; r < start_[c + 1]; ++r) {
         const vcg::Point3d p = sorted[size_t(r)];
         f(size_t(r), [&](double r2, auto&& g) {
           for (int k = 0; k < m; ++k)
             for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
-              const vcg::Point3d q = sorted[size_t(t)] - p;
+              const vcg::Point3d q = read[size_t(t)] - p;
               if (q.SquaredNorm() <= r2) g(q);
             }
         });
@@ -162,6 +178,19 @@ class CellGrid {
   }
 
  private:
+  // Calls f(cell number) for the non-empty cells within `ring` cells of c.
+  template <class F>
+  void ForBlockCells(const Cell& c, int ring, F&& f) const {
+    const size_t centre = size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
+    for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
+      for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
+        for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
+          if (x < 0 || y < 0 || z < 0) continue;
+          const uint64_t k = Key({x, y, z});
+          const size_t at = Seek(k, centre);
+          if (at < key_.size() && key_[at] == k) f(at);
+        }
+  }
   // The first cell whose key is at least k, searched outwards from cell
   // `from` in doubling steps: a block's cells mostly lie near its centre's in
   // Morton order, where the keys are in the cache.

@@ -82,12 +82,12 @@ class GeodesicPoissonLod {
             ? KeyFirstOrder(BorderOrder<Scalar>::Compute(d.points.pos, scale, noise),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
-            ? KeyFirstOrder(
-                  Prominence<Scalar>::Compute(d.points.pos, d.normal, scale,
-                                              Prominence<Scalar>::SmoothingRadius(d.points.pos, d.points.vertIndex,
-                                                                                  scale),
-                                              noise),
-                  d.points.vertIndex, seed)
+            ? KeyFirstOrder(Prominence<Scalar>::Compute(
+                                d.points.pos, d.normal, d.points.vertIndex,
+                                Prominence<Scalar>::Scale::Of(
+                                    Prominence<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
+                                noise),
+                            d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);
     if (within.empty()) return order;

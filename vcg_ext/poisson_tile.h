@@ -47,9 +47,9 @@ class PoissonTile {
     /// Per input row: whether it may become a sample (nullptr: every row). Nested
     /// levels pass a finer level's samples: core and halo alike, as settled.
     const std::vector<char>* candidate = nullptr;
-    /// A key order (Border: BorderOrder; Prominence: Prominence, its smoothing
-    /// radius from the whole cloud's cell side, `keyCellSide`: SurfaceCellSide
-    /// of its points in id order, as Prominence::SmoothingRadius takes them)
+    /// A key order (Border: BorderOrder; Prominence: Prominence, its scales
+    /// from the whole cloud's cell side, `keyCellSide`: SurfaceCellSide of its
+    /// points in id order, as Prominence::CellSide takes them)
     /// at `keyScale` less `keyNoise` standard errors: as GeodesicPoissonLod's
     /// order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
@@ -102,9 +102,8 @@ class PoissonTile {
       std::vector<float> key =
           p.order == VisitOrder::Border
               ? BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise)
-              : Prominence<Scalar>::Compute(d.points.pos, d.normal, p.keyScale,
-                                            Prominence<Scalar>::SmoothingRadiusOf(p.keyCellSide, p.keyScale),
-                                            p.keyNoise);
+              : Prominence<Scalar>::Compute(d.points.pos, d.normal, pid,
+                                            Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];

@@ -5,11 +5,12 @@
 // smoothing radius s of it (the point with its noise averaged out) and the
 // mean of the points within R. Poisson-disk sampling that visits the most prominent
 // points first keeps the peaks, ridges and valley floors a disk would
-// otherwise cut, with the same separation and coverage as any order. Cost
-// O(n m) for m points in the 27 cells of side R around a point, on all
-// threads. The sums over the points within R are exact (ExactMoments), so a
-// point's value is the same on any thread count and in any subset holding its
-// R-ball (a cluster's tile, poisson_tile.h).
+// otherwise cut, with the same separation and coverage as any order. A ball
+// holding more than kBallPoints has its mean taken over a share of its points
+// chosen by their ids, about kBallPoints, so the cost does not grow with R
+// (coarse levels): O(n kBallPoints), on all threads. The sums are
+// exact (ExactMoments), so a point's value is the same on any thread count
+// and in any subset holding its R-ball (a cluster's tile, poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "cell_grid.h"
 #include "exact_moments.h"
 #include "parallel.h"
+#include "priority_order.h"
 
 namespace vcg_ext {
 
@@ -32,12 +34,42 @@ class Prominence {
   static constexpr double kSmoothing = 0.3;
   static constexpr double kSmoothingPoints = 10;
 
-  /// The smoothing radius s at scale R for points spaced like `pos`. O(n) and small.
-  /// The points are taken in the order of their ids (input indices): the same
-  /// subsample in any numbering of them (a domain's, a cluster's).
-  static double SmoothingRadius(const std::vector<Coord>& pos, const std::vector<int>& id, double R) {
+  /// Each ball's mean reads about this many of its points, at most.
+  static constexpr double kBallPoints = 64;
+
+  /// The radii and the share of the points a run reads.
+  struct Scale {
+    double R = 0;         ///< the scale
+    double s = 0;         ///< the smoothing radius, at most R
+    double farShare = 1;  ///< of the points within R, the share (by id) their mean reads
+    double nearShare = 1;  ///< of the points within s, the share (by id) their mean reads
+
+    /// At scale R for points spaced like `cellSide` (CellSide: a cell of that
+    /// side holds about one point).
+    static Scale Of(double cellSide, double R) {
+      Scale sc;
+      sc.R = R;
+      // A cell of side cellSide holds one point: a ball of radius cellSide sqrt(m / pi) holds about m.
+      const double spacing = cellSide * std::sqrt(kSmoothingPoints / M_PI);
+      sc.s = std::max(kSmoothing * R, std::min(spacing, R));
+      sc.farShare = ShareOf(cellSide, sc.R);
+      sc.nearShare = ShareOf(cellSide, sc.s);
+      return sc;
+    }
+  };
+
+  /// Of the points within `radius`, the share that holds about kBallPoints.
+  static double ShareOf(double cellSide, double radius) {
+    const double ball = M_PI * radius * radius / (cellSide * cellSide);
+    return cellSide > 0 && ball > kBallPoints ? kBallPoints / ball : 1;
+  }
+
+  /// CellGrid::SurfaceCellSide(pos, 1) of the points taken in the order of
+  /// their ids (input indices): the same subsample in any numbering of them
+  /// (a domain's, a cluster's, which measures it over all its tiles). O(n) and small.
+  static double CellSide(const std::vector<Coord>& pos, const std::vector<int>& id) {
     const size_t n = pos.size();
-    if (n < 2) return kSmoothing * R;
+    if (n < 2) return 0;
     int top = 0;
     for (int v : id) top = std::max(top, v);
     std::vector<int> at(size_t(top) + 1, -1);  // point by id
@@ -47,41 +79,68 @@ class Prominence {
     sub.reserve(m);
     for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
       if (at[v] >= 0 && rank++ == CellGrid<Scalar>::SubsampleIndex(sub.size(), n)) sub.push_back(pos[size_t(at[v])]);
-    return SmoothingRadiusOf(CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1), R);
+    return CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1);
   }
-  /// The same from the points' SurfaceCellSide(pos, 1) (a cluster's, over all its tiles).
-  static double SmoothingRadiusOf(double cellSide, double R) {
-    // A cell of side cellSide holds one point: a ball of radius cellSide sqrt(m / pi) holds about m.
-    const double spacing = cellSide * std::sqrt(kSmoothingPoints / M_PI);
-    return std::max(kSmoothing * R, std::min(spacing, R));
+
+  /// Whether a ball's mean reads the point of this id, at share `share`.
+  static bool Read(uint64_t id, double share) {
+    return share >= 1 || double(Mix64(id ^ 0x70726f6d696e656eULL) >> 11) < share * 0x1p53;
   }
 
   /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
   /// units of R, less `noise` standard errors of the smoothed position along
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
-  /// points, only a shape that stands out of that scatter comes first.
+  /// points, only a shape that stands out of that scatter comes first. `id`:
+  /// the points' ids, which choose the share of the points within R read.
+  template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
-                                    double R, double s, double noise) {
+                                    const std::vector<Id>& id, const Scale& scale, double noise) {
+    const double R = scale.R, s = std::min(scale.s, scale.R);
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
-    const CellGrid<Scalar> grid(pos, R);
-    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
-    const double near2 = s * s, far2 = R * R;
-    grid.ForEachBall(sorted, [&](size_t r, auto&& ball) {
-      const int i = grid.Point(r);
+    auto value = [&](int i, const ExactMoments& nearBall, const Eigen::Vector3d& farMean) {
       const Eigen::Vector3d n = Eigen::Vector3d(normal[size_t(i)][0], normal[size_t(i)][1], normal[size_t(i)][2]);
-      ExactMoments nearBall(R);
-      ExactSums farBall(R);
-      ball(far2, [&](const vcg::Point3d& q) {
-        farBall.Add(q);
-        if (q.SquaredNorm() <= near2) nearBall.Add(q);
-      });
-      const double nNear = double(nearBall.Count()), nFar = double(farBall.Count());
+      const double nNear = double(nearBall.Count());
       const Eigen::Vector3d mean = nearBall.Sum() / nNear;
       const double sxx = n.dot(nearBall.Outer() * n);  // the sum of (q . n)^2 over the near points
       const double sigma = std::sqrt(std::max(0.0, sxx / nNear - mean.dot(n) * mean.dot(n)));
-      const Eigen::Vector3d gap = mean - farBall.Sum() / nFar;  // both hold the point itself
+      const Eigen::Vector3d gap = mean - farMean;  // both hold the point itself
       out[size_t(i)] = float(std::max(0.0, std::abs(gap.dot(n)) - noise * sigma / std::sqrt(nNear)) / R);
+    };
+    // Calls f(point, ball, read itself) for every point, its balls on a grid of
+    // side `side` holding the share `share` of the points (by id).
+    auto pass = [&](double side, double share, auto&& f) {
+      const CellGrid<Scalar> grid(pos, side);
+      const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
+      auto read = [&](size_t r) { return Read(uint64_t(id[size_t(grid.Point(r))]), share); };
+      const bool every = share >= 1;
+      const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, read);
+      grid.ForEachBall(
+          sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || read(r)); }, every ? nullptr : &part);
+    };
+    // Reading every point of both balls, one pass finds them; reading a share,
+    // the mean within R first, then the points within s on a grid of side s.
+    const bool all = scale.farShare >= 1;  // and then nearShare too: s <= R
+    std::vector<Eigen::Vector3d> farMean(all ? 0 : pos.size());
+    pass(R, scale.farShare, [&](int i, auto&& ball, bool itself) {
+      ExactSums farBall(R);
+      ExactMoments nearBall(R);
+      ball(R * R, [&](const vcg::Point3d& q) {
+        farBall.Add(q);
+        if (all && q.SquaredNorm() <= s * s) nearBall.Add(q);
+      });
+      const double nFar = double(farBall.Count() + (itself ? 0 : 1));  // the point itself
+      if (all)
+        value(i, nearBall, farBall.Sum() / nFar);
+      else
+        farMean[size_t(i)] = farBall.Sum() / nFar;
+    });
+    if (all) return out;
+    pass(s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
+      ExactMoments nearBall(R);
+      ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(q); });
+      if (!itself) nearBall.Add(vcg::Point3d(0, 0, 0));  // the point itself
+      value(i, nearBall, farMean[size_t(i)]);
     });
     return out;
   }

@@ -1,6 +1,7 @@
 // vcg_ext/cell_grid.h: the cell order is a permutation with each cell's points
 // contiguous, and a block of cells holds every point nearer than its margin,
-// also with a far outlier (whose cell shares keys modulo 2^21).
+// also with a far outlier (whose cell shares keys modulo 2^21); a ball holds
+// the points, or a subset's points, within its radius.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <random>
@@ -54,6 +55,37 @@ TEST(CellGrid, ABlockHoldsEveryPointNearerThanItsMargin) {
         const double margin = grid.Margin(pos[q], c, ring);
         for (size_t j = 0; j < pos.size(); ++j)
           if (vcg::Distance(pos[q], pos[j]) < margin) EXPECT_EQ(block.count(int(j)), 1u) << q << " " << j;
+      }
+    }
+  }
+}
+
+// A ball is every point within its radius; with a subset, every point of the
+// subset within it, and each point still gets its ball.
+TEST(CellGrid, ABallHoldsThePointsOrTheSubsetsPointsWithinItsRadius) {
+  for (bool outlier : {false, true}) {
+    const std::vector<Coord> pos = Cloud(2000, outlier);
+    const double h = 0.06;
+    Grid grid(pos, h);
+    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
+    auto kept = [&](size_t r) { return grid.Point(r) % 3 == 0; };
+    const Grid::Subset subset = grid.SubsetOf(sorted, kept);
+    for (const Grid::Subset* from : {static_cast<const Grid::Subset*>(nullptr), &subset}) {
+      std::vector<size_t> found(pos.size(), 0), seen(pos.size(), 0);
+      grid.ForEachBall(
+          sorted,
+          [&](size_t r, auto&& ball) {
+            const int i = grid.Point(r);
+            ++seen[size_t(i)];
+            ball(h * h, [&](const vcg::Point3d&) { ++found[size_t(i)]; });
+          },
+          from);
+      for (size_t i = 0; i < pos.size(); i += 5) {
+        size_t expected = 0;
+        for (size_t j = 0; j < pos.size(); ++j)
+          expected += (from == nullptr || j % 3 == 0) && vcg::SquaredDistance(pos[i], pos[j]) <= h * h;
+        EXPECT_EQ(seen[i], 1u);
+        EXPECT_EQ(found[i], expected) << i;
       }
     }
   }

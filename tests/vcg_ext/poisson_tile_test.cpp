@@ -92,10 +92,10 @@ TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, 
 
 // Two tiles, each widening its halo until certified, settled at the seam in
 // the visiting order, against the whole cloud's samples in that order.
-void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order) {
+void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radius = 0.09) {
   const auto cloud = Cloud();
   Tile::Param p;
-  p.radius = 0.09;
+  p.radius = radius;
   p.seed = 5;
   Whole::Param whole;
   whole.domain = Graph(false);
@@ -172,6 +172,14 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirst) {
 // cloud's point spacing, and each rank's normal exact in the halo.
 TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPointsFirst) {
   ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Prominence);
+}
+
+// At a scale whose balls hold more than Prominence::kBallPoints, the mean within
+// R reads a share of them chosen by id: the same share in a tile as in the whole.
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPointsFirstAtACoarseScale) {
+  using P = vcg_ext::Prominence<double>;
+  ASSERT_LT(P::Scale::Of(vcg_ext::CellGrid<double>::SurfaceCellSide(Cloud(), 1), 0.16).farShare, 0.7);
+  ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Prominence, 0.16);
 }
 
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {

@@ -44,13 +44,13 @@ int Nearest(const Domain& d, float x, float y) {
 
 TEST(Prominence, APeakStandsOutAtItsScaleAndAPlaneDoesNot) {
   const Domain d = PeakDomain();
-  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 0);
+  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0);
   const int peak = Nearest(d, 0.3f, 0.3f), flat = Nearest(d, 0.1f, 0.9f);
   EXPECT_EQ(std::max_element(p.begin(), p.end()) - p.begin(), peak);
   EXPECT_LT(p[size_t(flat)], 0.01f * p[size_t(peak)]);
   // At a scale far wider than the peak, the broad hill's top stands out too.
   const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
-  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, 0.25, 0.075, 0);
+  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.25, 0.075}, 0);
   EXPECT_GT(wide[size_t(hill)], wide[size_t(side)]);
 }
 
@@ -68,12 +68,40 @@ TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
       if (d.points.pos[i][0] < 0.15f && d.points.pos[i][1] > 0.5f) ++flat, zero += p[i] == 0;
     return double(zero) / double(flat);
   };
-  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 0);
-  const std::vector<float> discounted = Prominence::Compute(d.points.pos, d.normal, 0.1, 0.03, 2);
+  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0);
+  const std::vector<float> discounted = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 2);
   EXPECT_LT(flatShare(raw), 0.01);
   EXPECT_GT(flatShare(discounted), 0.5);
   EXPECT_GT(discounted[size_t(peak)], 0.5f * raw[size_t(peak)]);
   EXPECT_EQ(std::max_element(discounted.begin(), discounted.end()) - discounted.begin(), peak);
+}
+
+// At a scale whose ball holds thousands of points the mean within R reads a
+// share of them, chosen by id: the hill still stands out, the values stay near
+// those of every point read, and they do not depend on how the points are numbered.
+TEST(Prominence, AtACoarseScaleAShareOfTheBallByIdGivesTheSameShape) {
+  const Domain d = PeakDomain(121);
+  const double cellSide = Prominence::CellSide(d.points.pos, d.points.vertIndex);
+  const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25);
+  ASSERT_LT(coarse.farShare, 0.05);  // about 64 of some 2,800 points within R
+  ASSERT_LT(coarse.nearShare, 0.5);  // and of some 250 within s
+  Prominence::Scale every = coarse;
+  every.farShare = 1;
+  const std::vector<float> share = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 0);
+  const std::vector<float> all = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, every, 0);
+  const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
+  EXPECT_GT(share[size_t(hill)], share[size_t(side)]);
+  EXPECT_NE(share, all);
+  const float top = *std::max_element(all.begin(), all.end());
+  double off = 0;
+  for (size_t i = 0; i < all.size(); ++i) off += std::abs(share[i] - all[i]);
+  EXPECT_LT(off / double(all.size()), 0.05 * top);  // a share's mean, off by its standard error
+  // The same points numbered backwards: each id keeps its value.
+  std::vector<vcg::Point3<test::TMesh::ScalarType>> pos(d.points.pos.rbegin(), d.points.pos.rend());
+  std::vector<vcg::Point3f> normal(d.normal.rbegin(), d.normal.rend());
+  std::vector<int> id(d.points.vertIndex.rbegin(), d.points.vertIndex.rend());
+  const std::vector<float> backwards = test::OnThreads(1, [&] { return Prominence::Compute(pos, normal, id, coarse, 0); });
+  for (size_t i = 0; i < all.size(); ++i) ASSERT_EQ(backwards[all.size() - 1 - i], share[i]) << i;
 }
 
 TEST(Prominence, PoissonByProminenceKeepsThePeakSeparatesAndCovers) {
