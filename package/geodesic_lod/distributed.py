@@ -502,7 +502,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         folders = [level_folder(item) for item in items]
     else:
         if size["radius"] is not None:
-            targets = [("radius", _radius(size["radius"], cloud))]
+            targets = [("radius", _radius(size["radius"], cloud.lo, cloud.hi))]  # checked before anything is written
         elif size["count"] is not None:
             targets = [("count", arrays.whole_number(size["count"], "count", 1, total, " (the number of points)"))]
         else:
@@ -513,6 +513,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     try:
         cells = partition.make(client, srcs, partition.Grid(cloud.lo, cloud.hi, shape), run_dir / CELLS,
                                tile_points, ticks)
+        if size["radius"] is not None:  # a share of the points' own diagonal, as on one machine
+            targets = [("radius", _radius(size["radius"], *cells.points_box()))]
         boxes = tiles.balanced(cloud, [cells.grid.edges(a) for a in range(3)], cells.histogram(), tile_points)
         made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing,
                        total, run_dir, ticks)
@@ -618,5 +620,6 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
     return entry
 
 
-def _radius(radius, cloud: tiles.Box) -> float:
-    return arrays.radius_from(radius, lambda: np.linalg.norm(cloud.hi - cloud.lo))
+def _radius(radius, lo: np.ndarray, hi: np.ndarray) -> float:
+    """A radius given as a length or as a share of the diagonal of the box [lo, hi]."""
+    return arrays.radius_from(radius, lambda: np.linalg.norm(hi - lo))

@@ -266,6 +266,13 @@ class Partition:
         return {"pieces": self.pieces, "cells": len(self.cells), "bytes": self.bytes,
                 "seconds": round(self.seconds, 3)}
 
+    def points_box(self) -> tuple:
+        """(lo, hi): the bounds of the points themselves (headers' may be looser)."""
+        if not self.bounds:
+            return np.zeros(3), np.zeros(3)
+        los, his = zip(*[(lo, hi) for _, lo, hi in self.bounds.values()])
+        return np.min(los, axis=0), np.max(his, axis=0)
+
     def histogram(self) -> np.ndarray:
         """The points per block over the whole grid, shape ``shape * BLOCKS``: element (i, j, k) counts the
         points between inner edges i - 1 and i of ``Grid.edges(0)``, j - 1 and j of axis 1, k - 1 and k of 2."""

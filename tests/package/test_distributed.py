@@ -4,7 +4,9 @@ middle; records bit-identical; files that cannot go together refused naming the 
 import json
 import os
 import pathlib
+import shutil
 import signal
+import struct
 import subprocess
 import sys
 import threading
@@ -85,6 +87,25 @@ def test_any_tiling_gives_the_single_machine_samples(cloud, client, tmp_path, ti
                            client=client, threads=1)
     assert len(index["tiles"]) >= min(8, 24000 // tile_points)
     check_equal(tmp_path / "lod", points, records, seed)
+
+
+def test_a_radius_in_percent_is_of_the_points_diagonal_not_the_headers(cloud, client, tmp_path):
+    """LAS headers' bounds may be looser than their points (rounded, or left from an earlier edit): a radius
+    given as a share of the diagonal is of the points' own, as on one machine, for the same samples."""
+    folder, points, records = cloud
+    loose = tmp_path / "loose"
+    shutil.copytree(folder, loose)
+    with open(loose / "part0.laz", "r+b") as f:  # the header's max X, Y, Z (bytes 179-226, max before min)
+        f.seek(179)
+        bounds = list(struct.unpack("<6d", f.read(48)))
+        bounds[4] += 2.0
+        f.seek(179)
+        f.write(struct.pack("<6d", *bounds))
+    assert laspy.read(str(loose / "part0.laz")).header.maxs[2] > points[:, 2].max() + 1
+    whole = gl.poisson_lod(points, radius="2%", seed=0)
+    index = dist.lod_files([str(loose)], tmp_path / "lod", radius="2%", tile_points=6000, client=client, threads=1)
+    assert index["radius"] == whole.radius
+    assert sorted(output_records(tmp_path / "lod")[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
 
 
 @pytest.mark.parametrize("size", [{"count": 2000}, {"rate": 5}])
