@@ -7,9 +7,10 @@
 // Poisson-disk sampling that visits the largest first puts its samples on
 // those rims, which random order may leave up to a radius from any sample
 // (roof edges in airborne scans, docs/airborne_classes.md), with the same
-// separation and coverage as any order. Cost O(n m) for m points in the 27
-// cells of side R around a point, on all threads. The sums over the points
-// within R are exact (ExactMoments), so a point's value is the same on any
+// separation and coverage as any order. A ball holding more than kBallPoints
+// is averaged over a share of its points chosen by id (ball_share.h), so the
+// cost stays O(n kBallPoints) at coarse scales, on all threads. The sums over
+// the points are exact (ExactMoments), so a point's value is the same on any
 // thread count and in any subset holding its R-ball (a cluster's tile,
 // poisson_tile.h).
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <vector>
 #include <Eigen/Eigenvalues>
 #include <vcg/space/point3.h>
+#include "ball_share.h"
 #include "cell_grid.h"
 #include "exact_moments.h"
 #include "parallel.h"
@@ -28,32 +30,50 @@ class BorderOrder {
  public:
   typedef vcg::Point3<Scalar> Coord;
 
+  /// A ball's moments read about this many of its points, at most: more than
+  /// prominence.h's, since the discount below grows as the points read fall.
+  static constexpr double kBallPoints = 256;
+
+  /// Of the points within R, the share (by id) a ball's moments read, for
+  /// points spaced like `cellSide` (BallShare::CellSide; 0: every point).
+  static double ShareOf(double cellSide, double R) { return BallShare<Scalar>::Of(cellSide, R, kBallPoints); }
+
   /// Per point, its offset from the mean of the points within R > 0, along
   /// their fitted plane, in units of R, less `noise` standard errors of that
   /// mean (at least 0): where the points scatter evenly around it, a point
-  /// is not a rim, and random order decides among such points.
-  static std::vector<float> Compute(const std::vector<Coord>& pos, double R, double noise) {
+  /// is not a rim, and random order decides among such points. `id`: the
+  /// points' ids, which choose the share `share` of a ball's points read.
+  template <class Id>
+  static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<Id>& id, double R, double noise,
+                                    double share = 1) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const CellGrid<Scalar> grid(pos, R);
     const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
+    auto reads = [&](size_t r) { return BallShare<Scalar>::Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
+    const bool every = share >= 1;
+    const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, reads);
     const double far2 = R * R;
-    grid.ForEachBall(sorted, [&](size_t r, auto&& within) {
-      const int i = grid.Point(r);
-      ExactMoments ball(R);
-      within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
-      const size_t m = ball.Count();
-      if (m < 3) return;  // no plane to lie at the rim of
-      const Eigen::Vector3d mean = ball.Sum() / double(m);
-      const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-      const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
-      const Eigen::Vector3d along = mean - n * n.dot(mean);
-      // The spread of the points along the plane, per axis: the two larger eigenvalues.
-      const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
-      out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
-    });
+    grid.ForEachBall(
+        sorted,
+        [&](size_t r, auto&& within) {
+          const int i = grid.Point(r);
+          ExactMoments ball(R);
+          within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
+          if (!every && !reads(r)) ball.Add(vcg::Point3d(0, 0, 0));  // the point itself
+          const size_t m = ball.Count();
+          if (m < 3) return;  // no plane to lie at the rim of
+          const Eigen::Vector3d mean = ball.Sum() / double(m);
+          const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+          eig.computeDirect(cov, Eigen::ComputeEigenvectors);
+          const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
+          const Eigen::Vector3d along = mean - n * n.dot(mean);
+          // The spread of the points along the plane, per axis: the two larger eigenvalues.
+          const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
+          out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
+        },
+        every ? nullptr : &part);
     return out;
   }
 };

@@ -79,13 +79,16 @@ class GeodesicPoissonLod {
     if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
         visit == VisitOrder::Border
-            ? KeyFirstOrder(BorderOrder<Scalar>::Compute(d.points.pos, scale, noise),
+            ? KeyFirstOrder(BorderOrder<Scalar>::Compute(
+                                d.points.pos, d.points.vertIndex, scale, noise,
+                                BorderOrder<Scalar>::ShareOf(
+                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale)),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
             ? KeyFirstOrder(Prominence<Scalar>::Compute(
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
-                                    Prominence<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
+                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
                                 noise),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);

@@ -47,9 +47,10 @@ class PoissonTile {
     /// Per input row: whether it may become a sample (nullptr: every row). Nested
     /// levels pass a finer level's samples: core and halo alike, as settled.
     const std::vector<char>* candidate = nullptr;
-    /// A key order (Border: BorderOrder; Prominence: Prominence, its scales
-    /// from the whole cloud's cell side, `keyCellSide`: SurfaceCellSide of its
-    /// points in id order, as Prominence::CellSide takes them)
+    /// A key order (Border: BorderOrder; Prominence: Prominence), the share of
+    /// a ball it reads (and the prominence's smoothing radius) from the whole
+    /// cloud's cell side, `keyCellSide`: SurfaceCellSide of its points in id
+    /// order, as BallShare::CellSide takes them,
     /// at `keyScale` less `keyNoise` standard errors: as GeodesicPoissonLod's
     /// order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
@@ -101,7 +102,8 @@ class PoissonTile {
     if (p.order != VisitOrder::Random) {
       std::vector<float> key =
           p.order == VisitOrder::Border
-              ? BorderOrder<Scalar>::Compute(d.points.pos, p.keyScale, p.keyNoise)
+              ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
+                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale))
               : Prominence<Scalar>::Compute(d.points.pos, d.normal, pid,
                                             Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise);
       order = KeyFirstOrder(key, pid, p.seed);

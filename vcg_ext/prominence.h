@@ -17,10 +17,10 @@
 #include <vector>
 #include <Eigen/Core>
 #include <vcg/space/point3.h>
+#include "ball_share.h"
 #include "cell_grid.h"
 #include "exact_moments.h"
 #include "parallel.h"
-#include "priority_order.h"
 
 namespace vcg_ext {
 
@@ -44,48 +44,19 @@ class Prominence {
     double farShare = 1;  ///< of the points within R, the share (by id) their mean reads
     double nearShare = 1;  ///< of the points within s, the share (by id) their mean reads
 
-    /// At scale R for points spaced like `cellSide` (CellSide: a cell of that
-    /// side holds about one point).
+    /// At scale R for points spaced like `cellSide` (BallShare::CellSide: a
+    /// cell of that side holds about one point).
     static Scale Of(double cellSide, double R) {
       Scale sc;
       sc.R = R;
       // A cell of side cellSide holds one point: a ball of radius cellSide sqrt(m / pi) holds about m.
       const double spacing = cellSide * std::sqrt(kSmoothingPoints / M_PI);
       sc.s = std::max(kSmoothing * R, std::min(spacing, R));
-      sc.farShare = ShareOf(cellSide, sc.R);
-      sc.nearShare = ShareOf(cellSide, sc.s);
+      sc.farShare = BallShare<Scalar>::Of(cellSide, sc.R, kBallPoints);
+      sc.nearShare = BallShare<Scalar>::Of(cellSide, sc.s, kBallPoints);
       return sc;
     }
   };
-
-  /// Of the points within `radius`, the share that holds about kBallPoints.
-  static double ShareOf(double cellSide, double radius) {
-    const double ball = M_PI * radius * radius / (cellSide * cellSide);
-    return cellSide > 0 && ball > kBallPoints ? kBallPoints / ball : 1;
-  }
-
-  /// CellGrid::SurfaceCellSide(pos, 1) of the points taken in the order of
-  /// their ids (input indices): the same subsample in any numbering of them
-  /// (a domain's, a cluster's, which measures it over all its tiles). O(n) and small.
-  static double CellSide(const std::vector<Coord>& pos, const std::vector<int>& id) {
-    const size_t n = pos.size();
-    if (n < 2) return 0;
-    int top = 0;
-    for (int v : id) top = std::max(top, v);
-    std::vector<int> at(size_t(top) + 1, -1);  // point by id
-    for (size_t i = 0; i < n; ++i) at[size_t(id[i])] = int(i);
-    const size_t m = CellGrid<Scalar>::SubsampleSize(n);
-    std::vector<Coord> sub;
-    sub.reserve(m);
-    for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
-      if (at[v] >= 0 && rank++ == CellGrid<Scalar>::SubsampleIndex(sub.size(), n)) sub.push_back(pos[size_t(at[v])]);
-    return CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1);
-  }
-
-  /// Whether a ball's mean reads the point of this id, at share `share`.
-  static bool Read(uint64_t id, double share) {
-    return share >= 1 || double(Mix64(id ^ 0x70726f6d696e656eULL) >> 11) < share * 0x1p53;
-  }
 
   /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
   /// units of R, less `noise` standard errors of the smoothed position along
@@ -112,7 +83,7 @@ class Prominence {
     auto pass = [&](double side, double share, auto&& f) {
       const CellGrid<Scalar> grid(pos, side);
       const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
-      auto read = [&](size_t r) { return Read(uint64_t(id[size_t(grid.Point(r))]), share); };
+      auto read = [&](size_t r) { return BallShare<Scalar>::Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
       const bool every = share >= 1;
       const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, read);
       grid.ForEachBall(

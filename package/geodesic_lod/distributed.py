@@ -436,11 +436,11 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
 
 
 def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
-    """The visiting order of every level but its scale: with 'prominence', the whole cloud's point spacing,
+    """The visiting order of every level but its scale: with a key order, the whole cloud's point spacing,
     measured on the points one machine measures it on (a pass over the cells)."""
     noise = _core.PoissonParam().noise_of(arrays.VISIT_ORDERS[kind]) if kind != "random" else 0.0
     cell_side = 0.0
-    if kind == "prominence":
+    if kind != "random":
         ids = _core.cell_side_subsample(total)
         keys = sorted(cells.cells)
         parts = client.gather(client.map(_subsample_of_cell, [cells] * len(keys), keys, [ids] * len(keys),

@@ -190,8 +190,8 @@ class Order:
         The standard errors discounted from each key (``PoissonParam.border_noise`` or
         ``prominence_noise``).
     cell_side : float
-        With 'prominence': the whole cloud's point spacing (``_core.cell_side``), which sets the smoothing
-        radius.
+        With a key order: the whole cloud's point spacing (``_core.cell_side``), which sets the share of a
+        large ball's points the keys read and the prominence's smoothing radius.
     keyed : bool
         A key order (not random).
     """

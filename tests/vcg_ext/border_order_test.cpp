@@ -41,7 +41,7 @@ bool OnARim(const Domain& d, int i, float within) {
 TEST(BorderOrder, TheRoofsEdgesLieAtTheRimAndTheirInsidesDoNot) {
   const Domain d = Roofs();
   // R between the grid's distances: no point lies on the ball's sphere, where roundings decide.
-  const std::vector<float> b = Border::Compute(d.points.pos, 0.11, 0);
+  const std::vector<float> b = Border::Compute(d.points.pos, d.points.vertIndex, 0.11, 0);
   size_t rim = 0, inside = 0;
   for (size_t i = 0; i < d.size(); ++i) {
     if (OnARim(d, int(i), 0.01f)) {
@@ -59,7 +59,8 @@ TEST(BorderOrder, TheRoofsEdgesLieAtTheRimAndTheirInsidesDoNot) {
 
 TEST(BorderOrder, AnEvenScatterIsDiscountedAndTheRimIsNot) {
   const Domain d = Roofs(0.01f);
-  const std::vector<float> raw = Border::Compute(d.points.pos, 0.1, 0), discounted = Border::Compute(d.points.pos, 0.1, 3);
+  const std::vector<float> raw = Border::Compute(d.points.pos, d.points.vertIndex, 0.1, 0),
+                           discounted = Border::Compute(d.points.pos, d.points.vertIndex, 0.1, 3);
   size_t inside = 0, rawZero = 0, zero = 0, rim = 0, rimKept = 0;
   for (size_t i = 0; i < d.size(); ++i) {
     if (!OnARim(d, int(i), 0.12f)) ++inside, rawZero += raw[i] == 0, zero += discounted[i] == 0;
@@ -68,6 +69,25 @@ TEST(BorderOrder, AnEvenScatterIsDiscountedAndTheRimIsNot) {
   EXPECT_LT(double(rawZero) / double(inside), 0.01);
   EXPECT_GT(double(zero) / double(inside), 0.9);
   EXPECT_GT(double(rimKept) / double(rim), 0.9);
+}
+
+// A ball of thousands of points read through a share of them chosen by id: the
+// roofs' edges still lie at the rim, and each id keeps its value in any numbering.
+TEST(BorderOrder, AtACoarseScaleAShareOfTheBallByIdFindsTheSameRims) {
+  const Domain d = Roofs();
+  const double R = 0.35, cellSide = vcg_ext::BallShare<test::TMesh::ScalarType>::CellSide(d.points.pos, d.points.vertIndex);
+  const double share = Border::ShareOf(cellSide, R);
+  ASSERT_LT(share, 0.5);  // about 256 of some 600 points within R
+  const std::vector<float> b = Border::Compute(d.points.pos, d.points.vertIndex, R, 0, share);
+  EXPECT_NE(b, Border::Compute(d.points.pos, d.points.vertIndex, R, 0));
+  for (size_t i = 0; i < d.size(); ++i) {
+    const auto& p = d.points.pos[i];
+    if (std::min({p[0], 1 - p[0], p[1], 1 - p[1]}) < 0.01f) EXPECT_GT(b[i], 0.2f) << i;  // the outer edges
+  }
+  const std::vector<vcg::Point3<test::TMesh::ScalarType>> pos(d.points.pos.rbegin(), d.points.pos.rend());
+  const std::vector<int> id(d.points.vertIndex.rbegin(), d.points.vertIndex.rend());
+  const std::vector<float> backwards = test::OnThreads(1, [&] { return Border::Compute(pos, id, R, 0, share); });
+  for (size_t i = 0; i < b.size(); ++i) ASSERT_EQ(backwards[b.size() - 1 - i], b[i]) << i;
 }
 
 TEST(BorderOrder, PoissonByTheRimPutsSamplesOnItSeparatesAndCovers) {

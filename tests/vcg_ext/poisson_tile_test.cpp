@@ -92,7 +92,7 @@ TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, 
 
 // Two tiles, each widening its halo until certified, settled at the seam in
 // the visiting order, against the whole cloud's samples in that order.
-void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radius = 0.09) {
+void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radius = 0.09, size_t atLeast = 20) {
   const auto cloud = Cloud();
   Tile::Param p;
   p.radius = radius;
@@ -107,7 +107,7 @@ void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radi
   p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);  // the whole cloud's, in id order
   const auto w = Whole::Compute(DomainOf(cloud, Graph(false)), whole);
   const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
-  ASSERT_GT(expected.size(), 20u);
+  ASSERT_GT(expected.size(), atLeast);
 
   // Each tile decides its core, widening the halo until it is certified.
   std::vector<int8_t> status(cloud.size(), Tile::Out);
@@ -180,6 +180,13 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPoints
   using P = vcg_ext::Prominence<double>;
   ASSERT_LT(P::Scale::Of(vcg_ext::CellGrid<double>::SurfaceCellSide(Cloud(), 1), 0.16).farShare, 0.7);
   ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Prominence, 0.16);
+}
+
+// The rims at a scale whose balls hold more than BorderOrder::kBallPoints: the same.
+TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirstAtACoarseScale) {
+  using B = vcg_ext::BorderOrder<double>;
+  ASSERT_LT(B::ShareOf(vcg_ext::CellGrid<double>::SurfaceCellSide(Cloud(), 1), 0.3), 0.9);
+  ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Border, 0.3, 6);
 }
 
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {

@@ -81,7 +81,7 @@ TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
 // those of every point read, and they do not depend on how the points are numbered.
 TEST(Prominence, AtACoarseScaleAShareOfTheBallByIdGivesTheSameShape) {
   const Domain d = PeakDomain(121);
-  const double cellSide = Prominence::CellSide(d.points.pos, d.points.vertIndex);
+  const double cellSide = vcg_ext::BallShare<test::TMesh::ScalarType>::CellSide(d.points.pos, d.points.vertIndex);
   const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25);
   ASSERT_LT(coarse.farShare, 0.05);  // about 64 of some 2,800 points within R
   ASSERT_LT(coarse.nearShare, 0.5);  // and of some 250 within s

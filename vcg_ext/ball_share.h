@@ -1,0 +1,57 @@
+#ifndef VCG_EXT_BALL_SHARE_H
+#define VCG_EXT_BALL_SHARE_H
+// A share of the points within a ball, chosen by their ids. The key orders
+// (prominence.h, border_order.h) average a ball holding many points over such
+// a share, so their cost stays that of a small ball at any scale (coarse
+// levels), and a point's value is still the same in any subset holding its
+// ball (a cluster's tile): the share depends on ids alone. O(1) a point;
+// CellSide O(n) and small.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+#include <vcg/space/point3.h>
+#include "cell_grid.h"
+#include "priority_order.h"
+
+namespace vcg_ext {
+
+template <class Scalar>
+class BallShare {
+ public:
+  typedef vcg::Point3<Scalar> Coord;
+
+  /// Of the points within `radius`, the share that holds about `points` of
+  /// them (1 for a smaller ball), for points spaced like `cellSide` (a cell of
+  /// that side holds about one: CellSide).
+  static double Of(double cellSide, double radius, double points) {
+    const double ball = M_PI * radius * radius / (cellSide * cellSide);
+    return cellSide > 0 && ball > points ? points / ball : 1;
+  }
+
+  /// Whether a ball's average reads the point of this id, at share `share`.
+  static bool Reads(uint64_t id, double share) {
+    return share >= 1 || double(Mix64(id ^ 0x70726f6d696e656eULL) >> 11) < share * 0x1p53;
+  }
+
+  /// CellGrid::SurfaceCellSide(pos, 1) of the points taken in the order of
+  /// their ids (input indices): the same subsample in any numbering of them
+  /// (a domain's, a cluster's, which measures it over all its tiles).
+  static double CellSide(const std::vector<Coord>& pos, const std::vector<int>& id) {
+    const size_t n = pos.size();
+    if (n < 2) return 0;
+    int top = 0;
+    for (int v : id) top = std::max(top, v);
+    std::vector<int> at(size_t(top) + 1, -1);  // point by id
+    for (size_t i = 0; i < n; ++i) at[size_t(id[i])] = int(i);
+    const size_t m = CellGrid<Scalar>::SubsampleSize(n);
+    std::vector<Coord> sub;
+    sub.reserve(m);
+    for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
+      if (at[v] >= 0 && rank++ == CellGrid<Scalar>::SubsampleIndex(sub.size(), n)) sub.push_back(pos[size_t(at[v])]);
+    return CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1);
+  }
+};
+
+}  // namespace vcg_ext
+#endif
