@@ -91,7 +91,7 @@ class Prominence {
     };
     // Reading every point of both balls, one pass finds them; reading a share,
     // the mean within R first, then the points within s on a grid of side s.
-    const bool all = scale.farShare >= 1;  // and then nearShare too: s <= R
+    const bool all = scale.farShare >= 1 && scale.nearShare >= 1;  // Scale::Of: the first gives the second
     std::vector<Eigen::Vector3d> farMean(all ? 0 : pos.size());
     pass(R, scale.farShare, [&](int i, auto&& ball, bool itself) {
       ExactSums farBall(R);
