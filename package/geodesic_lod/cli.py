@@ -183,8 +183,9 @@ def _run_on_cluster(args, request: dict) -> int:
             cluster = distributed.local_cluster(workers, args.worker_memory)
             client = Client(cluster)
             args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
-        if not args.quiet:
-            print(f"{PROG}: Dask dashboard at {client.dashboard_link}", file=sys.stderr)
+        link = None if args.quiet else distributed.dashboard_link(client)
+        if link:
+            print(f"{PROG}: Dask dashboard at {link}", file=sys.stderr)
         if not client.scheduler_info()["workers"]:  # workers may join later: say so, whatever --quiet says
             print(f"{PROG}: the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)",
                   file=sys.stderr, flush=True)

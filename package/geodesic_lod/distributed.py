@@ -435,6 +435,26 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
     return core_diagonal.core_diagonal(run_pass, total, cloud.lo, cloud.hi)
 
 
+def _serves_dashboard(dask_scheduler) -> bool:
+    """On the scheduler: whether its web server answers the dashboard's page with the dashboard (Dask names a
+    'dashboard' service with --no-dashboard too, and without bokeh the page says bokeh is missing)."""
+    from distributed.http.scheduler.missing_bokeh import MissingBokeh
+    from tornado.httputil import HTTPServerRequest, RequestStartLine
+    from tornado.web import ErrorHandler
+    page = HTTPServerRequest(start_line=RequestStartLine("GET", "/status", "HTTP/1.0"))  # no Host needed
+    found = dask_scheduler.http_application.find_handler(page).handler_class
+    return not issubclass(found, (ErrorHandler, MissingBokeh))
+
+
+def dashboard_link(client) -> Optional[str]:
+    """The link to the cluster's dashboard, or None where its scheduler serves none."""
+    try:
+        serves = client.run_on_scheduler(_serves_dashboard)
+    except Exception:  # another version of Dask or Tornado on the scheduler: take its word for it
+        serves = True
+    return client.dashboard_link if serves else None
+
+
 def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
     """The visiting order of every level but its scale: with a key order, the whole cloud's point spacing,
     measured on the points one machine measures it on (a pass over the cells)."""

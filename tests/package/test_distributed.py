@@ -213,11 +213,12 @@ def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
                                               "--threads", "1", "--seed", "4"], stderr=subprocess.PIPE, text=True)
         procs.append(command)
         first = ""
-        while line := command.stderr.readline():  # the dashboard's line first
+        while line := command.stderr.readline():
             first += line
             if "worker" in line:
                 break
         assert "has no worker yet" in first and address in first, first
+        assert "dashboard" not in first, first  # the scheduler serves none: no link that answers 404
         for _ in range(2):
             procs.append(subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--host", "127.0.0.1",
                                            "--no-dashboard", "--no-nanny"], stderr=subprocess.DEVNULL))
@@ -234,6 +235,17 @@ def test_the_command_on_a_scheduler_and_workers_of_our_own(cloud, tmp_path):
                 p.wait(20)
             except subprocess.TimeoutExpired:
                 p.kill()
+
+
+def test_the_dashboard_link_is_given_only_where_the_scheduler_serves_the_dashboard():
+    from types import SimpleNamespace
+    from distributed.http.scheduler.missing_bokeh import MissingBokeh
+    from tornado.web import Application, RequestHandler
+
+    class Page(RequestHandler):
+        pass
+    for routes, serves in (([(r"/status", Page)], True), ([(r"/status", MissingBokeh)], False), ([], False)):
+        assert dist._serves_dashboard(SimpleNamespace(http_application=Application(routes))) == serves, routes
 
 
 def test_a_worker_killed_in_the_middle_changes_nothing(cloud, tmp_path):
