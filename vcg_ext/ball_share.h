@@ -5,7 +5,7 @@
 // a share, so their cost stays that of a small ball at any scale (coarse
 // levels), and a point's value is still the same in any subset holding its
 // ball (a cluster's tile): the share depends on ids alone. O(1) a point;
-// CellSide O(n) and small.
+// CellSide O(n) and small; ForEachBall O(n) besides what each ball reads.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -32,6 +32,22 @@ class BallShare {
   /// Whether a ball's average reads the point of this id, at share `share`.
   static bool Reads(uint64_t id, double share) {
     return share >= 1 || double(Mix64(id ^ 0x70726f6d696e656eULL) >> 11) < share * 0x1p53;
+  }
+
+  /// For every point of `pos` (ids `id`), on all threads: f(i, ball, itself)
+  /// for point i, where ball(r2, g) calls g(q) for the points of the share
+  /// `share` within sqrt(r2) (at most `side`) of it, q their offset, and
+  /// `itself` tells whether the share holds the point. O(n) besides the balls.
+  template <class Id, class F>
+  static void ForEachBall(const std::vector<Coord>& pos, const std::vector<Id>& id, double side, double share,
+                          F&& f) {
+    const CellGrid<Scalar> grid(pos, side);
+    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
+    auto reads = [&](size_t r) { return Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
+    const bool every = share >= 1;
+    const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, reads);
+    grid.ForEachBall(
+        sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || reads(r)); }, every ? nullptr : &part);
   }
 
   /// CellGrid::SurfaceCellSide(pos, 1) of the points taken in the order of

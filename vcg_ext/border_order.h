@@ -19,7 +19,6 @@
 #include <Eigen/Eigenvalues>
 #include <vcg/space/point3.h>
 #include "ball_share.h"
-#include "cell_grid.h"
 #include "exact_moments.h"
 #include "parallel.h"
 
@@ -48,32 +47,23 @@ class BorderOrder {
                                     double share = 1) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
-    const CellGrid<Scalar> grid(pos, R);
-    const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
-    auto reads = [&](size_t r) { return BallShare<Scalar>::Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
-    const bool every = share >= 1;
-    const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, reads);
     const double far2 = R * R;
-    grid.ForEachBall(
-        sorted,
-        [&](size_t r, auto&& within) {
-          const int i = grid.Point(r);
-          ExactMoments ball(R);
-          within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
-          if (!every && !reads(r)) ball.Add(vcg::Point3d(0, 0, 0));  // the point itself
-          const size_t m = ball.Count();
-          if (m < 3) return;  // no plane to lie at the rim of
-          const Eigen::Vector3d mean = ball.Sum() / double(m);
-          const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
-          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-          eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-          const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
-          const Eigen::Vector3d along = mean - n * n.dot(mean);
-          // The spread of the points along the plane, per axis: the two larger eigenvalues.
-          const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
-          out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
-        },
-        every ? nullptr : &part);
+    BallShare<Scalar>::ForEachBall(pos, id, R, share, [&](int i, auto&& within, bool itself) {
+      ExactMoments ball(R);
+      within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
+      if (!itself) ball.Add(vcg::Point3d(0, 0, 0));  // the point itself
+      const size_t m = ball.Count();
+      if (m < 3) return;  // no plane to lie at the rim of
+      const Eigen::Vector3d mean = ball.Sum() / double(m);
+      const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(cov, Eigen::ComputeEigenvectors);
+      const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
+      const Eigen::Vector3d along = mean - n * n.dot(mean);
+      // The spread of the points along the plane, per axis: the two larger eigenvalues.
+      const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
+      out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
+    });
     return out;
   }
 };

@@ -18,7 +18,6 @@
 #include <Eigen/Core>
 #include <vcg/space/point3.h>
 #include "ball_share.h"
-#include "cell_grid.h"
 #include "exact_moments.h"
 #include "parallel.h"
 
@@ -78,22 +77,11 @@ class Prominence {
       const Eigen::Vector3d gap = mean - farMean;  // both hold the point itself
       out[size_t(i)] = float(std::max(0.0, std::abs(gap.dot(n)) - noise * sigma / std::sqrt(nNear)) / R);
     };
-    // Calls f(point, ball, read itself) for every point, its balls on a grid of
-    // side `side` holding the share `share` of the points (by id).
-    auto pass = [&](double side, double share, auto&& f) {
-      const CellGrid<Scalar> grid(pos, side);
-      const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
-      auto read = [&](size_t r) { return BallShare<Scalar>::Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
-      const bool every = share >= 1;
-      const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, read);
-      grid.ForEachBall(
-          sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || read(r)); }, every ? nullptr : &part);
-    };
     // Reading every point of both balls, one pass finds them; reading a share,
     // the mean within R first, then the points within s on a grid of side s.
     const bool all = scale.farShare >= 1 && scale.nearShare >= 1;  // Scale::Of: the first gives the second
     std::vector<Eigen::Vector3d> farMean(all ? 0 : pos.size());
-    pass(R, scale.farShare, [&](int i, auto&& ball, bool itself) {
+    BallShare<Scalar>::ForEachBall(pos, id, R, scale.farShare, [&](int i, auto&& ball, bool itself) {
       ExactSums farBall(R);
       ExactMoments nearBall(R);
       ball(R * R, [&](const vcg::Point3d& q) {
@@ -107,7 +95,7 @@ class Prominence {
         farMean[size_t(i)] = farBall.Sum() / nFar;
     });
     if (all) return out;
-    pass(s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
+    BallShare<Scalar>::ForEachBall(pos, id, s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
       ExactMoments nearBall(R);
       ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(q); });
       if (!itself) nearBall.Add(vcg::Point3d(0, 0, 0));  // the point itself
