@@ -95,7 +95,7 @@ def test_a_radius_in_percent_is_of_the_points_diagonal_not_the_headers(cloud, cl
     folder, points, records = cloud
     loose = tmp_path / "loose"
     shutil.copytree(folder, loose)
-    with open(loose / "part0.laz", "r+b") as f:  # the header's max X, Y, Z (bytes 179-226, max before min)
+    with open(loose / "part0.laz", "r+b") as f:  # bytes 179-226: max X, min X, max Y, min Y, max Z, min Z
         f.seek(179)
         bounds = list(struct.unpack("<6d", f.read(48)))
         bounds[4] += 2.0
