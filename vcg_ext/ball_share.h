@@ -38,16 +38,18 @@ class BallShare {
   /// for point i, where ball(r2, g) calls g(q) for the points of the share
   /// `share` within sqrt(r2) (at most `side`) of it, q their offset, and
   /// `itself` tells whether the share holds the point. O(n) besides the balls.
+  /// `progress` hears of the points done, `what` they are done for.
   template <class Id, class F>
   static void ForEachBall(const std::vector<Coord>& pos, const std::vector<Id>& id, double side, double share,
-                          F&& f) {
+                          F&& f, Progress progress = Progress(nullptr), const char* what = "") {
     const CellGrid<Scalar> grid(pos, side);
     const std::vector<vcg::Point3d> sorted = grid.InCellOrder(pos);
     auto reads = [&](size_t r) { return Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
     const bool every = share >= 1;
     const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, reads);
     grid.ForEachBall(
-        sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || reads(r)); }, every ? nullptr : &part);
+        sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || reads(r)); }, every ? nullptr : &part,
+        progress, what);
   }
 
   /// CellGrid::SurfaceCellSide(pos, 1) of the points taken in the order of

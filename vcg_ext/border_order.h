@@ -32,6 +32,8 @@ class BorderOrder {
   /// A ball's moments read about this many of its points, at most: more than
   /// prominence.h's, since the discount below grows as the points read fall.
   static constexpr double kBallPoints = 256;
+  /// What its progress reports say it does.
+  static constexpr const char* kWhat = "Ordering the points by their rims";
 
   /// Of the points within R, the share (by id) a ball's moments read, for
   /// points spaced like `cellSide` (BallShare::CellSide; 0: every point).
@@ -42,9 +44,10 @@ class BorderOrder {
   /// mean (at least 0): where the points scatter evenly around it, a point
   /// is not a rim, and random order decides among such points. `id`: the
   /// points' ids, which choose the share `share` of a ball's points read.
+  /// `progress` may stop it (vcg_ext::Cancelled).
   template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<Id>& id, double R, double noise,
-                                    double share = 1) {
+                                    double share = 1, Progress progress = Progress(nullptr)) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const double far2 = R * R;
@@ -63,7 +66,7 @@ class BorderOrder {
       // The spread of the points along the plane, per axis: the two larger eigenvalues.
       const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
       out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
-    });
+    }, progress, kWhat);
     return out;
   }
 };

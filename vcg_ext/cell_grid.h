@@ -7,6 +7,7 @@
 // some cell's block, not a coarser grid for everyone).
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <vector>
 #include <vcg/space/box3.h>
 #include <vcg/space/index/kdtree/kdtree.h>
+#include "parallel.h"
 #include "radix_sort.h"
 
 namespace vcg_ext {
@@ -125,10 +127,16 @@ class CellGrid {
   /// ranges are looked up once for all its points (a lookup per point was
   /// most of the cost on small cells). `sorted`: InCellOrder(pos).
   /// With `from`, the balls hold only its points (still around every point).
+  /// `progress` hears of the points done (and may stop the loop) from the
+  /// calling thread.
   template <class F>
-  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f, const Subset* from = nullptr) const {
+  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f, const Subset* from = nullptr,
+                   Progress progress = Progress(nullptr), const char* what = "") const {
     const std::vector<vcg::Point3d>& read = from ? from->pos : sorted;
     const std::vector<int>& at = from ? from->start : start_;
+    const size_t n = sorted.size();
+    std::atomic<size_t> finished{0};
+    progress(0, n, what);
     ParallelFor(key_.size(), 16, [&](size_t c) {
       std::array<std::pair<int, int>, 27> ranges;
       int m = 0;
@@ -144,7 +152,11 @@ class CellGrid {
             }
         });
       }
+      const size_t done = size_t(start_[c + 1] - start_[c]);
+      const size_t total = finished.fetch_add(done, std::memory_order_relaxed) + done;
+      if (ThreadIndex() == 0) progress(total, n, what);
     });
+    progress(n, n, what);
   }
 
   /// A cell side holding about `perCell` points of a surface sampled like

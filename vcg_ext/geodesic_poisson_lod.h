@@ -73,23 +73,25 @@ class GeodesicPoissonLod {
   /// with VisitOrder::Prominence first by their prominence at `scale`, with
   /// VisitOrder::Border by their offset from the rim of their surroundings
   /// (noise < 0: the order's default discount); a mesh's border points
-  /// before the rest (BorderFirst).
+  /// before the rest (BorderFirst). A key order reports to `progress`.
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
-                                        VisitOrder visit = VisitOrder::Random, double scale = 0, double noise = -1) {
+                                        VisitOrder visit = VisitOrder::Random, double scale = 0, double noise = -1,
+                                        Progress progress = Progress(nullptr)) {
     if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
         visit == VisitOrder::Border
             ? KeyFirstOrder(BorderOrder<Scalar>::Compute(
                                 d.points.pos, d.points.vertIndex, scale, noise,
                                 BorderOrder<Scalar>::ShareOf(
-                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale)),
+                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
+                                progress),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
             ? KeyFirstOrder(Prominence<Scalar>::Compute(
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
                                     BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
-                                noise),
+                                noise, progress),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);
@@ -128,7 +130,9 @@ class GeodesicPoissonLod {
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
                                     VisitOrder visit = VisitOrder::Random, double noise = -1) {
     CheckRadius(radius);
-    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise);
+    const int ordering = OrderPercent(visit);
+    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, progress.Sub(0, ordering));
+    progress = progress.Sub(ordering, 100);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -150,7 +154,10 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     // One order for every run of the search: a key order at that guess's scale.
-    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p));
+    const int ordering = OrderPercent(p.order);
+    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p),
+                                                 progress.Sub(0, ordering));
+    progress = progress.Sub(ordering, 100);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;

@@ -100,12 +100,15 @@ class PoissonTile {
     }
     std::vector<int> order;
     if (p.order != VisitOrder::Random) {
+      const Progress ordering = progress.Sub(0, OrderPercent(p.order));
+      progress = progress.Sub(OrderPercent(p.order), 100);
       std::vector<float> key =
           p.order == VisitOrder::Border
               ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
-                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale))
+                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering)
               : Prominence<Scalar>::Compute(d.points.pos, d.normal, pid,
-                                            Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise);
+                                            Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise,
+                                            ordering);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];

@@ -35,6 +35,8 @@ class Prominence {
 
   /// Each ball's mean reads about this many of its points, at most.
   static constexpr double kBallPoints = 64;
+  /// What its progress reports say it does.
+  static constexpr const char* kWhat = "Ordering the points by prominence";
 
   /// The radii and the share of the points a run reads.
   struct Scale {
@@ -62,9 +64,11 @@ class Prominence {
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
   /// points, only a shape that stands out of that scatter comes first. `id`:
   /// the points' ids, which choose the share of the points within R read.
+  /// `progress` may stop it (vcg_ext::Cancelled).
   template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
-                                    const std::vector<Id>& id, const Scale& scale, double noise) {
+                                    const std::vector<Id>& id, const Scale& scale, double noise,
+                                    Progress progress = Progress(nullptr)) {
     const double R = scale.R, s = std::min(scale.s, scale.R);
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
@@ -93,14 +97,14 @@ class Prominence {
         value(i, nearBall, farBall.Sum() / nFar);
       else
         farMean[size_t(i)] = farBall.Sum() / nFar;
-    });
+    }, all ? progress : progress.Sub(0, 50), kWhat);
     if (all) return out;
     BallShare<Scalar>::ForEachBall(pos, id, s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
       ExactMoments nearBall(R);
       ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(q); });
       if (!itself) nearBall.Add(vcg::Point3d(0, 0, 0));  // the point itself
       value(i, nearBall, farMean[size_t(i)]);
-    });
+    }, progress.Sub(50, 100), kWhat);
     return out;
   }
 };

@@ -375,4 +375,30 @@ TEST(GeodesicPoissonLod, ACountIsMetExactlyInEveryVisitingOrder) {
   }
 }
 
+// The label of the first progress report, and how many came, of a run stopped at its first.
+const char* firstLabel;
+int reports;
+bool StopAtOnce(int, const char* what) {
+  if (reports++ == 0) firstLabel = what;
+  return false;
+}
+
+TEST(GeodesicPoissonLod, AKeyOrderReportsProgressSoAStopRequestEndsItBeforeTheDisks) {
+  test::TMesh m;
+  test::HeightField(m, 60, [](float x, float y) { return 0.2f * std::sin(5 * x) * std::cos(4 * y); });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  for (vcg_ext::VisitOrder order : {vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
+    const std::string label = order == vcg_ext::VisitOrder::Border ? vcg_ext::BorderOrder<Scalar>::kWhat
+                                                                   : vcg_ext::Prominence<Scalar>::kWhat;
+    for (Poisson::Param p : {Radius(0.05), Count(200)}) {
+      p.order = order;
+      reports = 0;
+      firstLabel = "";
+      EXPECT_THROW(Poisson::Compute(d, p, vcg_ext::Progress(StopAtOnce)), vcg_ext::Cancelled);
+      EXPECT_EQ(reports, 1);
+      EXPECT_EQ(firstLabel, label) << int(order) << " " << p.sampleNum;
+    }
+  }
+}
+
 }  // namespace geodesic_poisson_lod_test
