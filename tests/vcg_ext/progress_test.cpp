@@ -1,9 +1,11 @@
 // vcg_ext/progress.h: Sub maps a stage's 0..100 onto its [lo, hi] of the
 // caller's callback, nested Subs within their parent's range; a stage reports
-// at most once per percent; a callback returning false throws
+// once per percent, and while a percent stands still again every
+// kQuietSeconds, so that a stop request is heard; a callback returning false throws
 // vcg_ext::Cancelled; without a callback nothing is reported or thrown.
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <chrono>
 #include <vector>
 #include <vcg_ext/progress.h>
 
@@ -67,6 +69,27 @@ TEST(Progress, ReportsAtMostOncePerPercent) {
   p(7, 10, "again");
   p(7, 10, "again");
   EXPECT_EQ(reported, std::vector<int>{70});
+}
+
+TEST(Progress, AStageStuckOnOnePercentStillHearsTheCallbackEveryQuietInterval) {
+  // A long step within one percent (a count search's first run) must not leave a stop request unheard.
+  typedef std::chrono::steady_clock Clock;
+  static std::vector<Clock::time_point> heard;
+  heard.clear();
+  vcg_ext::Progress p([](int, const char*) {
+    heard.push_back(Clock::now());
+    return true;
+  });
+  const Clock::time_point end = Clock::now() + std::chrono::seconds(5);
+  size_t calls = 0;
+  while (heard.size() < 4 && Clock::now() < end) {
+    p(1, 1000, "one percent");  // 0.1%: the same percent every time
+    ++calls;
+  }
+  ASSERT_EQ(heard.size(), 4u);
+  EXPECT_GT(calls, 100 * heard.size());  // not on every call
+  for (size_t k = 1; k < heard.size(); ++k)  // less a millisecond: the callback reads its clock after Progress
+    EXPECT_GE(std::chrono::duration<double>(heard[k] - heard[k - 1]).count(), vcg_ext::Progress::kQuietSeconds - 1e-3);
 }
 
 TEST(Progress, ACallbackReturningFalseThrowsCancelled) {
