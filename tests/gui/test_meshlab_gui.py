@@ -58,11 +58,21 @@ def gui(tmp_path):
     home.mkdir()
     env = dict(session.env, HOME=str(home), XDG_CONFIG_HOME=str(home / ".config"))
     inp, name = model(tmp_path)
-    proc = subprocess.Popen([str(MESHLAB), str(inp)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    log = SHOTS / "meshlab.log"  # MeshLab's own output, which tells why a window never came
+    with open(log, "wb") as out:
+        proc = subprocess.Popen([str(MESHLAB), str(inp)], env=env, stdout=out, stderr=subprocess.STDOUT)
+    session.alive = lambda: _running(proc, log)
     yield session, inp, name
     proc.terminate()
     proc.wait(timeout=20)
     session.close()
+
+
+def _running(proc, log):
+    """Raises, with the end of its output, if MeshLab has exited."""
+    if proc.poll() is not None:
+        tail = log.read_text(errors="replace")[-2000:]
+        raise AssertionError(f"MeshLab exited with code {proc.returncode}; the end of its output ({log}):\n{tail}")
 
 
 def crop(src, geometry, dst):

@@ -16,19 +16,26 @@ def _norm(word):
 
 
 class XSession:
-    def __init__(self, shots_dir, display=":77", size="1600x1000"):
-        self.display = display
-        self.env = dict(os.environ, DISPLAY=display)
+    def __init__(self, shots_dir, size="1600x1000"):
         self.shots = pathlib.Path(shots_dir)
         self.shots.mkdir(parents=True, exist_ok=True)
-        self.xvfb = subprocess.Popen(["Xvfb", display, "-screen", "0", size + "x24", "-nolisten", "tcp"],
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        # Xvfb picks a free display and writes its number to the pipe (a fixed one may be taken).
+        read, write = os.pipe()
+        self.xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", size + "x24", "-nolisten",
+                                      "tcp"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, pass_fds=(write,))
+        os.close(write)
+        with os.fdopen(read) as pipe:
+            number = pipe.readline().strip()
+        if not number:
+            raise RuntimeError(f"Xvfb did not start (exit code {self.xvfb.wait()})")
+        self.display = f":{number}"
+        self.env = dict(os.environ, DISPLAY=self.display)
         for _ in range(100):
             if subprocess.run(["xdotool", "getmouselocation"], env=self.env, capture_output=True).returncode == 0:
                 break
             time.sleep(0.1)
         else:
-            raise RuntimeError("Xvfb did not start")
+            raise RuntimeError(f"Xvfb on {self.display} does not answer")
 
     def close(self):
         self.xvfb.terminate()
@@ -75,12 +82,16 @@ class XSession:
                 return (x0 + x1) // 2, (y0 + y1) // 2
         return None
 
+    def alive(self):
+        """Raises if the program under test has ended (a test sets it)."""
+
     def wait_for(self, phrase, timeout=60, name="wait", region=None):
         end = time.time() + timeout
         while time.time() < end:
             pos = self.find(phrase, name=name, region=region)
             if pos:
                 return pos
+            self.alive()
             time.sleep(1)
         raise AssertionError(f"'{phrase}' never appeared on screen (last screenshot: {self.shots / name}.png)")
 
