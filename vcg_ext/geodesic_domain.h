@@ -163,7 +163,7 @@ class GeodesicDomain {
       if (p.orientNormals) {
         if (nr.estimated) progress(55, 100, "Orienting normals");
         // The walk takes one thread: what the graph needs of the table is found meanwhile.
-        PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, findOneWay);
+        PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, findOneWay, progress.Sub(75, 100));
       } else {
         nr.fittedOfKept.clear();  // only the walk reads them
         findOneWay();

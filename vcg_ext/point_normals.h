@@ -8,8 +8,11 @@
 // fit's own error is far larger), and in double they would cost 12 more bytes
 // a point at the pipeline's peak.
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 #include <utility>
 #include <vector>
 #include <Eigen/Eigenvalues>
@@ -63,8 +66,8 @@ class PointNormals {
   /// NeedsEstimate is false): Estimate, then Orient.
   static Result Compute(const std::vector<Coord>& pos, const std::vector<Coord>& inputNormal,
                         const KnnTable<Scalar>& knn, const Param& p, Progress progress = Progress(nullptr)) {
-    Result r = Estimate(pos, inputNormal, knn, p, progress);
-    Orient(pos, knn, p, r);
+    Result r = Estimate(pos, inputNormal, knn, p, progress.Sub(0, 90));
+    Orient(pos, knn, p, r, progress.Sub(90, 100));
     return r;
   }
 
@@ -94,23 +97,47 @@ class PointNormals {
   /// Consistent signs for the estimated normals of Estimate's result, from a
   /// table of at least OrientColumns columns (the same rows Estimate had, or
   /// their first columns): O(n), the walk on one thread.
-  static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r) {
-    Orient(pos, knn, p, r, [] {});
+  static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r,
+                     Progress progress = Progress(nullptr)) {
+    Orient(pos, knn, p, r, [] {}, progress);
   }
-  /// The same, running `beside()` on another thread during the walk (Beside),
-  /// or alone when there is nothing to orient. `beside` may read `knn` and
-  /// `pos`, not `r`.
+  /// The same, running `beside()` on the calling thread during the walk
+  /// (Beside), or alone when there is nothing to orient. `beside` may read
+  /// `knn` and `pos`, not `r`, and may report to a progress of its own; once
+  /// it is done, `progress` (at a standing percent) hears from the calling
+  /// thread until the walk ends, and a stop request ends the walk too.
   template <class F>
   static void Orient(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, const Param& p, Result& r,
-                     F&& beside) {
+                     F&& beside, Progress progress = Progress(nullptr)) {
     if (r.estimated == 0) return beside();
     for (auto& f : r.fittedOfKept) std::swap(r.normal[size_t(f.first)], f.second);
     const int c = std::min(OrientColumns(p), knn.k);
-    const std::vector<uint8_t> level = ArcLevels(knn, c, r.normal);
-    Beside(beside, [&] {
-      Walk(knn, c, level, r.normal);
-      OrientOutward(pos, r.normal);
-    });
+    const std::vector<uint8_t> level = ArcLevels(knn, c, r.normal);  // short: O(n c) on all threads
+    std::atomic<bool> walked{false}, stop{false};
+    // The walk's thread asks whether to stop; on the calling thread (one
+    // thread) it asks `progress` itself.
+    auto stopped = [&] {
+      if (ThreadIndex() == 0) progress(0, 1, kWhat);
+      return stop.load(std::memory_order_relaxed);
+    };
+    Beside(
+        [&] {
+          beside();
+          try {
+            for (; !walked.load(std::memory_order_acquire); std::this_thread::sleep_for(kWaitStep))
+              progress(0, 1, kWhat);
+          } catch (...) {
+            stop = true;  // the walk ends at its next look
+            throw;
+          }
+        },
+        [&] {
+          struct Done {
+            std::atomic<bool>& walked;
+            ~Done() { walked.store(true, std::memory_order_release); }
+          } done{walked};
+          if (Walk(knn, c, level, r.normal, stopped)) OrientOutward(pos, r.normal);
+        });
     for (const auto& f : r.fittedOfKept) r.normal[size_t(f.first)] = f.second;
     r.fittedOfKept = std::vector<std::pair<int, Normal>>();
   }
@@ -166,15 +193,23 @@ class PointNormals {
     });
     return arcLevel;
   }
-  static void Walk(const KnnTable<Scalar>& knn, int c, const std::vector<uint8_t>& arcLevel,
-                   std::vector<Normal>& normal) {
+  // How often the waiting calling thread looks whether the walk is done, and
+  // how many points the walk visits between its looks at a stop request.
+  static constexpr std::chrono::milliseconds kWaitStep{5};
+  static constexpr size_t kStopCheck = 1 << 14;
+  static constexpr const char* kWhat = "Orienting normals";
+  // False when stopped() asked it to stop.
+  template <class Stopped>
+  static bool Walk(const KnnTable<Scalar>& knn, int c, const std::vector<uint8_t>& arcLevel,
+                   std::vector<Normal>& normal, Stopped&& stopped) {
     const size_t n = normal.size();
-    if (c <= 0) return;
+    if (c <= 0) return true;
     std::vector<std::vector<std::pair<int, int>>> bucket(kLevels);  // (source, target), level 0 most parallel
     // Per point: the lowest level of an arc queued to it (kLevels: none), or kVisited.
     constexpr uint8_t kVisited = 254;
     std::vector<uint8_t> state(n, uint8_t(kLevels));
     int top = kLevels;  // lowest level that may be non-empty
+    size_t visited = 0;
     auto addArcs = [&](int s) {
       const uint8_t* level = &arcLevel[size_t(s) * c];
       for (int j = 0; j < c; ++j) {
@@ -198,11 +233,13 @@ class PointNormals {
         const std::pair<int, int> a = bucket[top].back();
         bucket[top].pop_back();
         if (state[a.second] == kVisited) continue;
+        if ((visited++ & (kStopCheck - 1)) == 0 && stopped()) return false;
         state[a.second] = kVisited;
         if (Dot(normal[a.first], normal[a.second]) < 0) normal[a.second] = -normal[a.second];
         addArcs(a.second);
       }
     }
+    return true;
   }
 
   // Propagation leaves a global sign open: choose the one whose normals point

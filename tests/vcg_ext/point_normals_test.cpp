@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <vcg_ext/point_normals.h>
 #include <vcg_ext/point_set.h>
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace point_normals_test {
@@ -65,6 +66,29 @@ TEST(PointNormals, OrientOnTheTablesFirstColumnsGivesComputesNormals) {
   Normals::Orient(ps.pos, shrunk, p, r);
   EXPECT_TRUE(r.fittedOfKept.empty());
   for (size_t i = 0; i < ps.size(); ++i) ASSERT_EQ(r.normal[i], want.normal[i]) << i;
+}
+
+// The walk takes one thread for O(n) steps (over a second at 14M points):
+// a stop request (Ctrl-C, Cancel) must end it, while the pass beside it runs
+// and after that pass is done.
+bool StopAtOnce(int, const char*) { return false; }
+TEST(PointNormals, OrientHearsAStopRequestDuringTheWalk) {
+  test::TMesh m;
+  test::HeightField(m, 80, [](float x, float y) { return test::HalfBumpy(x, y); });
+  auto ps = vcg_ext::PointSetFromMesh<test::TMesh>::Compute(m);
+  const Normals::Param p{20, false};
+  const auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 20);
+  for (int threads : {1, 2}) {
+    auto r = Normals::Estimate(ps.pos, ps.normal, knn, p);
+    bool besideRan = false;
+    EXPECT_THROW(test::OnThreads(threads, [&] {
+                   Normals::Orient(ps.pos, knn, p, r, [&] { besideRan = true; }, vcg_ext::Progress(StopAtOnce));
+                   return 0;
+                 }),
+                 vcg_ext::Cancelled)
+        << threads;
+    EXPECT_TRUE(besideRan) << threads;  // what runs beside the walk is left to finish
+  }
 }
 
 }  // namespace point_normals_test
