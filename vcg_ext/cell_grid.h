@@ -140,16 +140,28 @@ class CellGrid {
     ParallelFor(key_.size(), 16, [&](size_t c) {
       std::array<std::pair<int, int>, 27> ranges;
       int m = 0;
-      ForBlockCells(CellOf(sorted[size_t(start_[c])]), 1,
-                    [&](size_t b) { ranges[size_t(m++)] = {at[b], at[b + 1]}; });
+      size_t candidates = 0;
+      ForBlockCells(CellOf(sorted[size_t(start_[c])]), 1, [&](size_t b) {
+        ranges[size_t(m++)] = {at[b], at[b + 1]};
+        candidates += size_t(at[b + 1] - at[b]);
+      });
+      // The offsets within the ball, gathered with no branch on the test (a
+      // third of the candidates pass it, in no pattern a branch predicts),
+      // then handed to g in the same order.
+      thread_local std::vector<vcg::Point3d> inside;
+      if (inside.size() < candidates) inside.resize(candidates);
       for (int r = start_[c]; r < start_[c + 1]; ++r) {
         const vcg::Point3d p = sorted[size_t(r)];
         f(size_t(r), [&](double r2, auto&& g) {
+          vcg::Point3d* out = inside.data();
+          size_t kept = 0;
           for (int k = 0; k < m; ++k)
             for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
               const vcg::Point3d q = read[size_t(t)] - p;
-              if (q.SquaredNorm() <= r2) g(q);
+              out[kept] = q;
+              kept += q.SquaredNorm() <= r2;
             }
+          for (size_t i = 0; i < kept; ++i) g(out[i]);
         });
       }
       const size_t done = size_t(start_[c + 1] - start_[c]);

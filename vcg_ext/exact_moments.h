@@ -5,6 +5,7 @@
 // offsets (a point's ball as the whole cloud and as a cluster's tile list its
 // points), with no sort. Offsets of at most `unit` are kept to 2^-40 of it.
 // Cost O(1) an offset; ExactSums, without the outer products, a third of it.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <Eigen/Core>
@@ -27,13 +28,14 @@ class ExactSums {
   static constexpr int kBits = 40;  // |v| <= 2^40: a sum of 2^20 outer products fits in 2^100
 
   /// Adds q, rounded half away from zero by truncation (inline; std::llround is
-  /// a library call, the most of the cost).
+  /// a library call, the most of the cost), with no branch on the sign (half
+  /// the offsets are negative, in no order a branch predicts).
   void AddFixed(const vcg::Point3d& q, int64_t* v = nullptr) {
     int64_t w[3];
     if (v == nullptr) v = w;
     for (int a = 0; a < 3; ++a) {
       const double s = q[a] * scale_;
-      v[a] = int64_t(s < 0 ? s - 0.5 : s + 0.5);
+      v[a] = int64_t(s + std::copysign(0.5, s));
       sum_[a] += v[a];
     }
     ++count_;
