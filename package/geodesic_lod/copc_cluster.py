@@ -195,7 +195,8 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     try:
         box, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
                                       total, tile_points)  # the headers' box
-        cells = partition.make(client, srcs, partition.Grid(box.lo, box.hi, shape), work / "cells", tile_points, ticks)
+        cells = partition.make(client, srcs, partition.Grid(box.lo, box.hi, shape), work / "cells", tile_points, ticks,
+                               threads)
         # The points' own bounds (the headers' may be rounded): the cube one machine makes.
         lo = np.min([b[1] for b in cells.bounds.values()], axis=0)
         hi = np.max([b[2] for b in cells.bounds.values()], axis=0)

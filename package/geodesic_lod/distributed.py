@@ -532,7 +532,7 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
     run_dir = out.begin()
     try:
         cells = partition.make(client, srcs, partition.Grid(cloud.lo, cloud.hi, shape), run_dir / CELLS,
-                               tile_points, ticks)
+                               tile_points, ticks, threads)
         if size["radius"] is not None:  # a share of the points' own diagonal, as on one machine
             targets = [("radius", _radius(size["radius"], *cells.points_box()))]
         boxes = tiles.balanced(cloud, [cells.grid.edges(a) for a in range(3)], cells.histogram(), tile_points)

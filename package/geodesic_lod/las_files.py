@@ -202,13 +202,23 @@ def _chunk_range(path, header, table, first: int, stop: int, size: int) -> Itera
             first, a = int(starts[b]), b
 
 
-def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None) -> Iterator[tuple]:
+def decoders(threads: Optional[int] = None):
+    """The LAZ decoders laspy may use for a run on `threads` threads (None: laspy's own choice, which spreads
+    each chunk over every core): on one thread, those that decode on one."""
+    import laspy
+    if threads != 1:
+        return None
+    return [b for b in laspy.LazBackend.detect_available() if b != laspy.LazBackend.LazrsParallel]
+
+
+def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None,
+           threads: Optional[int] = None) -> Iterator[tuple]:
     """(first row, records) of a LAS/LAZ file's rows first to stop (None: its end; first: where one of
-    ``pieces`` starts), `size` records at a time; a file that ends before the records its header announces,
-    or does not decode, is named."""
+    ``pieces`` starts), `size` records at a time, decoded on `threads` threads (``decoders``); a file that
+    ends before the records its header announces, or does not decode, is named."""
     import laspy
     try:
-        with laspy.open(str(path)) as f:
+        with laspy.open(str(path), laz_backend=decoders(threads)) as f:
             start, count = first, int(f.header.point_count)
             if stop is not None:
                 count = min(count, stop)
@@ -238,11 +248,12 @@ def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None) 
               "is wrong")
 
 
-def read(path) -> tuple:
-    """(LasSource, every record as a laspy.PackedPointRecord, xyz as (n, 3) float64)."""
+def read(path, threads: Optional[int] = None) -> tuple:
+    """(LasSource, every record as a laspy.PackedPointRecord, xyz as (n, 3) float64), decoded on `threads`
+    threads (``decoders``)."""
     import laspy
     source = open_source(path)
-    parts = [c.array for _, c in chunks(path)]
+    parts = [c.array for _, c in chunks(path, threads=threads)]
     array = np.concatenate(parts) if parts else np.zeros(0, source.header.point_format.dtype())
     records = laspy.PackedPointRecord(array, source.header.point_format)
     return source, records, xyz(records, source.header)

@@ -136,7 +136,7 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
         raise PointFileError(output, f"a COPC file's name ends in {point_files.COPC_SUFFIX}")
     point_files.check_outputs([input], [output], overwrite=overwrite)
     _choice(visit_order, VISIT_ORDERS, "visit_order")
-    source = point_files.read(input)
+    source = point_files.read(input, threads=threads)
     problem = too_few_points(len(source.points), max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors))
     if problem:
         raise PointFileError(source.path, problem)

@@ -118,8 +118,9 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 
 
 @give_back
-def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str) -> dict:
-    """A Dask task: decodes one piece, writes its records as they come (a sample's record is then found by
+def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str,
+          threads: Optional[int] = None) -> dict:
+    """A Dask task: decodes one piece (on `threads` threads, ``las_files.decoders``), writes its records as they come (a sample's record is then found by
     its id alone) and each cell's share of its points, block by block, each block in id order (``blocks``:
     where each block starts, and the end): their rows in the piece and their coordinates, a LAS file's as
     its integers (``Scaling`` gives the same floats as decoding). Returns the id of its first record, the
@@ -129,7 +130,7 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     s = srcs[f]
     if s.kind == "las":
         header = las_files.open_source(s.path).header
-        parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop)]
+        parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop, threads=threads)]
         records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
         scaling = Scaling(tuple(float(v) for v in header.scales), tuple(float(v) for v in header.offsets))
         kept = las_files.integers(records)
@@ -379,8 +380,9 @@ def member(values: np.ndarray, sorted_ids: np.ndarray) -> np.ndarray:
 
 
 def make(client, srcs: Sequence[cloud_files.Source], grid: Grid, folder: pathlib.Path, piece_points: int,
-         ticks=None) -> Partition:
-    """Runs ``split`` on every piece of every file: the job's partition in `folder` (made here)."""
+         ticks=None, threads: Optional[int] = None) -> Partition:
+    """Runs ``split`` on every piece of every file, each on `threads` threads: the job's partition in
+    `folder` (made here)."""
     from dask.distributed import as_completed
     start = time.perf_counter()
     folder.mkdir(parents=True, exist_ok=True)
@@ -388,7 +390,7 @@ def make(client, srcs: Sequence[cloud_files.Source], grid: Grid, folder: pathlib
     if ticks is not None:
         ticks.expect(len(work))
     futures = client.map(split, [srcs] * len(work), work, range(len(work)), [grid] * len(work),
-                         [str(folder)] * len(work), pure=False)
+                         [str(folder)] * len(work), threads=threads, pure=False)
     for _ in as_completed(futures):
         if ticks is not None:
             ticks()

@@ -141,13 +141,16 @@ def check_writable(source: "PointFile", outputs: Sequence) -> None:
             raise PointFileError(source.path, f"cannot be written as {ext}: {e}") from None
 
 
-def read(path) -> PointFile:
+def read(path, threads: Optional[int] = None) -> PointFile:
+    """The file's points, records and source; a LAZ file decoded on `threads` threads (None: every core)."""
     path = pathlib.Path(path)
     kind = format_of(path)
     if not path.is_file():
         raise PointFileError(path, "no such file" if not path.exists() else "is not a file")
     try:
-        return {"ply": _read_ply, "las": _read_las, "npy": _read_npy}[kind](path)
+        if kind == "las":
+            return _read_las(path, threads)
+        return {"ply": _read_ply, "npy": _read_npy}[kind](path)
     except PointFileError:
         raise
     except (OSError, ValueError, EOFError, KeyError, IndexError, TypeError) as e:
@@ -212,8 +215,8 @@ def _triangles(face, n, path):
     return t
 
 
-def _read_las(path):
-    source, records, points = las_files.read(path)
+def _read_las(path, threads=None):
+    source, records, points = las_files.read(path, threads)
     return PointFile(path, "las", points, None, None, records, source)
 
 

@@ -178,3 +178,52 @@ def test_a_files_integers_scale_to_its_coordinates(name):
         assert np.array_equal(las_files.xyz(part, src.header), floats[rows])
     packed = laspy.PackedPointRecord(records, src.header.point_format)
     assert np.array_equal(las_files.xyz(packed, src.header), floats)
+
+
+def decoders_used(monkeypatch):
+    """The LAZ decoders laspy is asked for, one entry per read of records (a list filled as they come)."""
+    used = []
+    read = laspy.LasReader.read_points
+
+    def spy(self, n):
+        used.append(self.laz_backend)
+        return read(self, n)
+
+    monkeypatch.setattr(laspy.LasReader, "read_points", spy)
+    return used
+
+
+def parallel(backend):
+    return laspy.LazBackend.LazrsParallel in (backend if isinstance(backend, (list, tuple)) else [backend])
+
+
+def test_one_thread_decodes_laz_on_one_thread_and_all_threads_on_every_core(tmp_path, monkeypatch):
+    # laspy's default decoder spreads each LAZ chunk over every core: --threads 1 on a shared server, or a
+    # cluster's one-thread worker, would take them all while reading.
+    path = tmp_path / "cloud.laz"
+    las_cloud(path)
+    used = decoders_used(monkeypatch)
+    from geodesic_lod import cli, partition, point_files, tiles
+    one = point_files.read(path, threads=1)
+    assert used and not any(parallel(b) for b in used)
+    used.clear()
+    every = point_files.read(path)
+    assert used and all(parallel(b) for b in used)
+    assert np.array_equal(one.points, every.points)
+
+    used.clear()
+    out = tmp_path / "lod.laz"
+    assert cli.main([str(path), "-o", str(out), "--rate", "10%", "--threads", "1", "--quiet"]) == 0
+    assert used and not any(parallel(b) for b in used)
+
+    used.clear()
+    gl.write_copc(path, tmp_path / "lod.copc.laz", threads=1)
+    assert used and not any(parallel(b) for b in used)
+
+    used.clear()
+    from geodesic_lod import cloud_files
+    srcs = cloud_files.sources([path], [cloud_files.survey(path)])
+    grid = partition.Grid(srcs[0].lo, srcs[0].hi, (1, 1, 1))
+    (tmp_path / "cells").mkdir()
+    partition.split(srcs, (0, 0, srcs[0].count), 0, grid, str(tmp_path / "cells"), threads=1)
+    assert used and not any(parallel(b) for b in used)
