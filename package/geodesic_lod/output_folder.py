@@ -44,6 +44,10 @@ class OutputFolder:
             raise PointFileError(out, "is a link to no folder")
         if out.exists() and not out.is_dir():
             raise PointFileError(out, "exists and is not a folder")
+        if out.suffix.lower() in point_files.FORMATS:  # `-o lod.laz` asks for a file, not a folder of tiles
+            raise PointFileError(out, f"is named like a point file, but a cluster run writes a folder of tiles and "
+                                      f"{INDEX}: name a folder (such as lod/), or a file *{point_files.COPC_SUFFIX} "
+                                      "for one COPC file")
         if not out.exists() and not out.parent.is_dir():
             raise PointFileError(out, f"the folder {out.parent} does not exist")
         where = out if out.exists() else out.parent

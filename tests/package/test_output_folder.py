@@ -286,3 +286,12 @@ def test_every_name_a_run_writes_is_removed_as_its_own(tmp_path, name):
     (run / name).parent.mkdir(parents=True, exist_ok=True)
     (run / name).write_bytes(b"a tile")
     assert of.remove_own(run) is True and not run.exists(), files_under(run)
+
+
+@pytest.mark.parametrize("name", ["lod.laz", "lod.las", "lod.ply", "lod.npy", "LOD.LAZ"])
+def test_a_folder_named_like_a_point_file_is_refused_and_nothing_made(tmp_path, name):
+    # `-o lod.laz --workers 2` would make a folder of tiles named lod.laz, not the file the user asked for.
+    out = tmp_path / name
+    problem = refused(out)
+    assert "folder" in problem and "tiles" in problem, problem
+    assert not out.exists()
