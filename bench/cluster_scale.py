@@ -78,7 +78,7 @@ def split_seconds(folder, scratch, memory, tile_points, trim, repeats):
         for t in trim:
             with cluster_with(1, memory, t) as cluster, Client(cluster) as client:
                 start = time.perf_counter()
-                partition.make(client, srcs, grid, scratch, tile_points)
+                partition.make(client, srcs, grid, scratch, tile_points, threads=1)  # as the jobs' tasks
                 out[t].append(round(time.perf_counter() - start, 1))
             shutil.rmtree(scratch)
     return out
