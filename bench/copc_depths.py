@@ -1,11 +1,10 @@
 """What a viewer streaming a COPC file shows at each depth: our octree LOD's depth-d cut (the nested
 Poisson-disk LOD of radius spacing / 2^d, geodesic_lod.octree_lod, as `geodesic-lod IN -o OUT.copc.laz`
-writes it, in the default random visiting order, with the prominent points first and with the rims first)
-against the rule
-untwine and PDAL's writers.copc choose a node's points by (one random point per cell of a 128^3 grid
-over each node: at one depth, one random point per cell of a grid over the cloud), with the cell
-searched to the same count, and against uniform random points; each scored by
-the quality benchmark's reconstruction error (bench/quality.py), on its models and normals and on the
+writes it, in the paper's random visiting order, with the prominent points first (the default) and
+with the rims first) against the rule untwine and PDAL's writers.copc choose a node's points by (one
+random point per cell of a 128^3 grid over each node: at one depth, one random point per cell of a
+grid over the cloud), with the cell searched to the same count, and against uniform random points;
+each scored by the quality benchmark's reconstruction error (bench/quality.py), on its models and normals and on the
 shared airborne files (normals as for the raw scans: MeshLab's from 10 neighbours); beside them the
 error of every point, the measure's reference. The deepest depth (every point) is left out.
 
@@ -21,7 +20,7 @@ from quality_config import COUNT_TOLERANCE, MODELS
 from results import publish
 
 AIRBORNE = ["autzen_trim.laz", "lone-star.laz"]  # ../shared/data/lidar/: a city, a forest
-# The default; the order that wins the visiting-order tuning; the one for airborne tiles' rims.
+# The paper's; the default (it wins the visiting-order tuning); the one for airborne tiles' rims.
 ORDERS = ["random", "prominence", "rims"]
 SEED = 0
 

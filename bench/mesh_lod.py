@@ -36,10 +36,10 @@ def qec(pymeshlab, name, n, optimal):
     return quadric_to_count(lambda: load(pymeshlab, name), n, COUNT_TOLERANCE, optimalplacement=optimal)
 
 
-def ours(pymeshlab, name, n, output):
-    """The Poisson LOD filter with its defaults and a triangle-mesh output (geodesic Delaunay)."""
+def ours(pymeshlab, name, n, output, **options):
+    """The Poisson LOD filter with its defaults (but `options`) and a triangle-mesh output."""
     ms = load(pymeshlab, name)
-    ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n, output=output)
+    ms.apply_filter("generate_geodesic_poisson_lod", samplenum=n, output=output, **options)
     m = ms.current_mesh()
     return m.vertex_matrix(), m.face_matrix()
 
@@ -73,6 +73,8 @@ OUTPUTS = {"optimized (default)": "Triangle mesh (geodesic Delaunay)",
            "input vertices": "Triangle mesh on input vertices"}
 METHODS = {
     **{f"ours, Poisson LOD, {k}": (lambda pm, name, n, v=v: ours(pm, name, n, v)) for k, v in OUTPUTS.items()},
+    "ours, Poisson LOD, optimized, random order": lambda pm, name, n: ours(pm, name, n, OUTPUTS["optimized (default)"],
+                                                                         visitorder="Random"),
     "ours, LOD pyramid of every rate, optimized (default)": pyramid_level,
     "MeshLab quadric edge collapse (defaults)": lambda pm, name, n: qec(pm, name, n, optimal=True),
     "quadric edge collapse on input vertices": lambda pm, name, n: qec(pm, name, n, optimal=False),

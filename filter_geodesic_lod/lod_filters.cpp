@@ -217,8 +217,8 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
   p.push_back({ParamKind::Enum, kVisitOrder, "Visiting order",
                "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
-               "Random: the paper's seeded order. Prominent points first: those standing out of the scan's "
-               "scatter at the disks' scale (docs/visit_order.json). Rims first: the points at the rim of their "
+               "Prominent points first: those standing out of the scan's scatter at the disks' scale "
+               "(docs/visit_order.json). Random: the paper's seeded order. Rims first: the points at the rim of their "
                "surroundings, such as a roof's edges (docs/airborne_classes.md).",
                kVisitOrders.IndexOf(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().order), 0, 0,
                kVisitOrders.Names()});

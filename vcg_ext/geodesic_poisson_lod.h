@@ -43,8 +43,10 @@ class GeodesicPoissonLod {
     std::vector<int> within;
     /// Which point of a neighbourhood a disk keeps: any order keeps separation
     /// and coverage (Prominence: the most prominent at the disk's scale first;
-    /// Border: the rims of the points' surroundings first).
-    VisitOrder order = VisitOrder::Random;
+    /// Border: the rims of the points' surroundings first; Random: the paper's).
+    /// Prominence: the lower error on every tuning model but one cell, clouds
+    /// (docs/visit_order_tuning.json) and mesh (docs/mesh_lod_tuning.json).
+    VisitOrder order = VisitOrder::Prominence;
     /// With Prominence: the standard errors of the noise discounted from each
     /// point's prominence (Prominence::Compute). On the tuning models
     /// (docs/visit_order_tuning.json) 2 and 3 tie for the lowest mean error

@@ -128,8 +128,8 @@ LOD_ATTRIBUTES = f"""Attributes
 
 VISIT_ORDER = """visit_order : {'random', 'prominence', 'rims'}
         Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage.
-        'random': the paper's seeded order (default). 'prominence': the points that stand out of their
-        scan's scatter at the disks' scale first (docs/visit_order.json). 'rims': the points at the rim
+        'prominence' (default): the points that stand out of their scan's scatter at the disks' scale
+        first (docs/visit_order.json). 'random': the paper's seeded order. 'rims': the points at the rim
         of their surroundings first, such as a roof's edges (docs/airborne_classes.md). The same on a
         cluster (``lod_files``, ``copc_file``)."""
 

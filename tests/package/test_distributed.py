@@ -118,8 +118,8 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
     assert abs(index["samples"] - target) <= 0.01 * target
     # One machine's search from the same pilot takes the same steps to the same radius.
     assert index["radius"] == gl.poisson_lod(points, count=target, tolerance=1.0).radius
-    index, got = output_records(tmp_path / "lod")  # the Poisson set of the radius found, as on one machine
-    whole = gl.poisson_lod(points, radius=index["radius"]).indices
+    index, got = output_records(tmp_path / "lod")  # one machine's samples for that count
+    whole = gl.poisson_lod(points, count=target, tolerance=1.0).indices
     assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)
 
 
@@ -148,7 +148,8 @@ def test_a_key_order_gives_the_single_machine_samples_by_radius_and_by_count(req
     folder, points = request.getfixturevalue(model)[:2]
     common = dict(seed=3, metric=metric, visit_order=order)
     whole = gl.poisson_lod(points, radius=RADIUS, **common).indices
-    assert sorted(whole) != sorted(gl.poisson_lod(points, radius=RADIUS, seed=3, metric=metric).indices)
+    assert sorted(whole) != sorted(gl.poisson_lod(points, radius=RADIUS, seed=3, metric=metric,
+                                                  visit_order="random").indices)
     index = dist.lod_files([str(folder)], tmp_path / "r", radius=RADIUS, **common, tile_points=tile_points,
                            client=client, threads=1)
     assert index["visit_order"] == order and len(index["tiles"]) >= 4
@@ -188,9 +189,9 @@ def test_levels_are_the_nested_poisson_sets_of_one_machine(cloud, client, tmp_pa
         ids = got["gps_time"].astype(np.int64)
         assert got.tobytes() == records[ids].tobytes()
         assert lv["target"] == target and abs(len(ids) - target) <= 0.02 * target
-        # Exactly the Poisson set of the level's radius among the finer level's samples, on one machine.
-        whole = gl.poisson_lod(points, radius=lv["radius"], seed=5, within=finer).indices
-        assert sorted(ids) == sorted(whole)
+        # Exactly one machine's set of that count among the finer level's samples.
+        whole = gl.poisson_lod(points, count=target, tolerance=2.0, seed=5, within=finer)
+        assert lv["radius"] == whole.radius and sorted(ids) == sorted(whole.indices)
         assert finer is None or np.isin(ids, finer).all()
         finer = ids
 
@@ -427,7 +428,8 @@ def test_workers_without_memory_for_the_reads_load_them_from_the_work_folder(clo
     finer = None
     for lv in levels:
         ids = level_ids(tmp_path / "lod", lv)["gps_time"].astype(np.int64)
-        assert sorted(ids) == sorted(gl.poisson_lod(points, radius=lv["radius"], within=finer).indices)
+        whole = gl.poisson_lod(points, count=lv["target"], tolerance=2.0, within=finer)  # one machine's
+        assert lv["radius"] == whole.radius and sorted(ids) == sorted(whole.indices)
         finer = ids
 
 

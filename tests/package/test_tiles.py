@@ -31,7 +31,7 @@ def uneven(n=12000, seed=1):
 ])
 def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
     p = uneven()
-    whole = gl.poisson_lod(p, radius=radius, seed=seed, metric=metric).indices
+    whole = gl.poisson_lod(p, radius=radius, seed=seed, metric=metric, visit_order="random").indices
     opened = []
     tiled = poisson_lod_tiled(p, radius=radius, shape=shape, seed=seed, metric=metric,
                                     on_tile=lambda t, d: opened.append(len(d.open_ids)))
@@ -45,7 +45,7 @@ def test_a_halo_too_narrow_is_widened_and_changes_nothing():
     tiled = poisson_lod_tiled(p, normals, radius=0.07, shape=(2, 2, 2), halo=0.0701,
                                     on_tile=lambda t, d: widened.append(d.halo > 0.0701))
     assert any(widened)
-    assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.07).indices)
+    assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.07, visit_order="random").indices)
 
 
 def test_a_tiles_read_serves_the_next_runs_on_its_points():
@@ -60,8 +60,8 @@ def test_a_tiles_read_serves_the_next_runs_on_its_points():
     coarse = poisson_lod_tiled(p, radius=0.12, halo=wide, within=fine, reads=reads)
     assert reads.reads.keys() == kept.keys() and all(reads.reads[k] is kept[k] for k in kept)
     dom = gl.Domain(p)
-    assert np.array_equal(fine, dom.poisson_lod(radius=0.06).indices)
-    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine).indices)
+    assert np.array_equal(fine, dom.poisson_lod(radius=0.06, visit_order="random").indices)
+    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine, visit_order="random").indices)
 
 
 def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
@@ -117,8 +117,8 @@ def test_reads_past_the_memory_budget_are_written_to_the_folder_and_serve_the_ne
     coarse = poisson_lod_tiled(p, radius=0.12, halo=wide, within=fine, reads=other, folder=tmp_path)
     assert (other.loads, other.misses) == (4, 0)
     dom = gl.Domain(p)
-    assert np.array_equal(fine, dom.poisson_lod(radius=0.06).indices)
-    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine).indices)
+    assert np.array_equal(fine, dom.poisson_lod(radius=0.06, visit_order="random").indices)
+    assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine, visit_order="random").indices)
 
 
 def test_reads_are_not_written_where_the_disk_would_be_left_too_full(tmp_path, monkeypatch):
@@ -157,7 +157,7 @@ def test_given_normals_and_the_pymeshlab_filter_agree():
     normals = p / np.linalg.norm(p, axis=1)[:, None]
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=p, v_normals_matrix=normals))
-    ms.generate_geodesic_poisson_lod(radius=pymeshlab.PureValue(0.06), seed=4)
+    ms.generate_geodesic_poisson_lod(radius=pymeshlab.PureValue(0.06), seed=4, visitorder="Random")
     filtered = ms.current_mesh().vertex_matrix()
     tiled = poisson_lod_tiled(p, normals, radius=0.06, shape=(2, 2, 1), seed=4)
     assert np.array_equal(p[tiled], filtered)

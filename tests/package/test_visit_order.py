@@ -33,8 +33,10 @@ def roofs():
     return two_roofs()
 
 
-def test_the_default_is_the_papers_random_order():
-    assert gl.arrays.DEFAULT_VISIT_ORDER == "random"
+def test_the_default_visits_the_prominent_points_first(roofs):
+    assert gl.arrays.DEFAULT_VISIT_ORDER == "prominence"  # the C++ Param's, read by the package
+    np.testing.assert_array_equal(gl.poisson_lod(roofs, count=200, seed=3).indices,
+                                  gl.poisson_lod(roofs, count=200, seed=3, visit_order="prominence").indices)
 
 
 @pytest.mark.parametrize("order", ORDERS)

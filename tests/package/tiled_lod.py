@@ -15,9 +15,10 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
                       threads: Optional[int] = None,
                       on_tile: Optional[Callable[[int, Decision], None]] = None,
                       reads: Optional[TileReads] = None, folder=None) -> np.ndarray:
-    """poisson_lod(points, normals, radius=radius, seed=seed, within=within).indices, computed tile by tile in
-    one process (shape: tiles per axis), by the steps the Dask pipeline runs on workers; `reads`: the tiles'
-    reads kept across runs, keyed by the tile's number (those that do not fit in memory written to `folder`)."""
+    """poisson_lod(points, normals, radius=radius, seed=seed, within=within, visit_order="random").indices,
+    computed tile by tile in one process (shape: tiles per axis), by the steps the Dask pipeline runs on
+    workers; `reads`: the tiles' reads kept across runs, keyed by the tile's number (those that do not fit in
+    memory written to `folder`)."""
     p, n = arrays.point_arrays(points, normals)
     domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
     cloud = Box(p.min(axis=0), p.max(axis=0))

@@ -213,7 +213,7 @@ TEST(GeodesicPoissonLod, ARadiusGivesItsPoissonSetAndItsDiskRegions) {
   Poisson::Param p = Radius(radius);
   p.regions = vcg_ext::Regions::Disk;
   const Poisson::Result r = Poisson::Compute(d, p);
-  const std::vector<int> samples = Poisson::Sample(d, radius, p.seed).samples;
+  const std::vector<int> samples = Poisson::Sample(d, radius, p.seed, vcg_ext::Progress(nullptr), {}, p.order).samples;
   EXPECT_EQ(test::PointsOf(d, r.vertIndex), samples);
   ASSERT_GT(samples.size(), 10u);
   EXPECT_EQ(r.radius, radius);
@@ -364,6 +364,7 @@ TEST(GeodesicPoissonLod, ACountIsMetExactlyInEveryVisitingOrder) {
   const Domain d = Domain::FromMesh(m, Domain::Param());
   Poisson::Param p;
   p.sampleNum = 80;
+  p.order = vcg_ext::VisitOrder::Random;
   const auto random = Poisson::Compute(d, p).vertIndex;
   for (vcg_ext::VisitOrder order : {vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
     p.order = order;
