@@ -12,7 +12,8 @@ Also writes docs/cluster_scale.md: the table, and a projection to 10^9 and 10^10
 measured rates (--report rewrites it from the JSON alone).
 
 usage: bench/cluster_scale.py [--points 100000000] [--files-per-side 10] [--tile-points 2000000]
-                              [--worker-memory 3GB] [--workers 1,2] [--split-repeats 3] [--data DIR] [--report]
+                              [--worker-memory 3GB] [--workers 1,2] [--split-repeats 3] [--data DIR]
+                              [--visit-order ORDER] [--report]
 """
 import argparse
 import json
@@ -27,7 +28,7 @@ import numpy as np
 from dask.distributed import Client, get_task_stream
 from dask.utils import key_split
 
-from geodesic_lod import cloud_files, partition, tiles
+from geodesic_lod import arrays, cloud_files, partition, tiles
 from geodesic_lod import distributed as dist
 from host import ROOT, peak_rss_mb
 from make_scan import _height
@@ -94,12 +95,12 @@ def compute_seconds(stream) -> dict:
     return {k: {"tasks": v["tasks"], "seconds": round(v["seconds"], 1)} for k, v in out.items()}
 
 
-def run(folder, out, workers, memory, tile_points, radius):
+def run(folder, out, workers, memory, tile_points, radius, visit_order):
     with cluster_with(workers, memory) as cluster, Client(cluster) as client:
         t = time.perf_counter()
         with get_task_stream(client) as stream:
             index = dist.lod_files([str(folder)], out, radius=radius, tile_points=tile_points, client=client,
-                                   threads=1)
+                                   threads=1, visit_order=visit_order)
         seconds = time.perf_counter() - t
         peaks = sorted(client.run(peak_rss_mb).values())  # local workers start with our sys.path
     shutil.rmtree(out)
@@ -110,11 +111,11 @@ def run(folder, out, workers, memory, tile_points, radius):
             "worker_peak_mb": [round(p) for p in peaks], "memory_limit": memory,
             "halo_share": round(read / index["points"] - 1, 3), "open_points": index["open_points"],
             "phase_seconds": {"split": index["partition"]["seconds"], **index["seconds"]},
-            "partition_bytes": index["partition"]["bytes"], "radius": radius,
+            "partition_bytes": index["partition"]["bytes"], "radius": radius, "visit_order": visit_order,
             "compute_seconds": compute_seconds(stream.data)}
 
 
-def one_process(folder, tiles_, radius):
+def one_process(folder, tiles_, radius, visit_order):
     """Each tile's core points (`tiles_`, [lo, hi] as the index gives them) sampled by one process on one
     thread, the points in memory beforehand: per tile, its points and seconds."""
     import geodesic_lod as gl
@@ -129,7 +130,7 @@ def one_process(folder, tiles_, radius):
         points, _, _ = cloud_files.read_region(srcs, outer.lo, outer.hi)
         points = points[box.core_mask(points, cloud)]
         t = time.perf_counter()
-        gl.poisson_lod(points, radius=radius, threads=1)
+        gl.poisson_lod(points, radius=radius, threads=1, visit_order=visit_order)
         runs.append((len(points), time.perf_counter() - t))
     return runs
 
@@ -155,6 +156,7 @@ def main():
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--split-repeats", type=int, default=3)
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-cluster"))
+    ap.add_argument("--visit-order", default=arrays.DEFAULT_VISIT_ORDER, choices=list(arrays.VISIT_ORDERS))
     a = ap.parse_args()
     folder = pathlib.Path(a.data) / f"scan_{a.points}"
     t = time.perf_counter()
@@ -163,12 +165,13 @@ def main():
     radius = 3.0 / np.sqrt(a.points)  # about 10% of the points as samples on this height field
     rows, singles = [], []
     for w in a.workers.split(","):  # each job followed by one process on the first job's spread of tiles
-        rows.append(run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius))
-        singles.append(one_process(folder, rows[0]["spread_tiles"], radius))
+        rows.append(run(folder, pathlib.Path(a.data) / "lod", int(w), a.worker_memory, a.tile_points, radius,
+                        a.visit_order))
+        singles.append(one_process(folder, rows[0]["spread_tiles"], radius, a.visit_order))
     # The split with workers as Dask's nannies start them by default (distributed.nanny.pre-spawn-environ).
     splits = split_seconds(folder, pathlib.Path(a.data) / "cells", a.worker_memory, a.tile_points,
                            [None, str(DASK_TRIM)], a.split_repeats) if a.split_repeats else {}
-    singles.append(one_process(folder, rows[0]["spread_tiles"], radius))
+    singles.append(one_process(folder, rows[0]["spread_tiles"], radius, a.visit_order))
     single = reference(singles)
     for r in rows:
         r.pop("spread_tiles")
@@ -227,7 +230,8 @@ def report(rows):
     lines = ["# The Dask pipeline at scale", "",
              "Written by `bench/cluster_scale.py` (data in `docs/cluster_scale.json`): make_scan.py's height field as a",
              "grid of LAZ files on this machine (2 cores), sampled at about 9% by a local cluster with a memory limit",
-             "per worker, one task at a time each, one thread per task.", "",
+             "per worker, one task at a time each, one thread per task"
+             + (f", the points visited in {best['visit_order']} order." if "visit_order" in best else "."), "",
              "| " + " | ".join(h for h, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     lines += ["| " + " | ".join(cell(r) for _, cell in COLUMNS) + " |" for r in rows]
     n = best["points"]

@@ -5,6 +5,7 @@ memory (the command's process; each worker's), in one run. Writes docs/copc_spee
 
 usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python copc_speed.py [--points 14000000]
            [--cluster-points 100000000] [--files-per-side 10] [--workers 2] [--worker-memory 3GB]
+           [--visit-order ORDER]
 """
 import argparse
 import pathlib
@@ -18,7 +19,7 @@ import numpy as np
 from dask.distributed import Client
 
 from cluster_scale import write_grid
-from geodesic_lod import copc_cluster
+from geodesic_lod import arrays, copc_cluster
 from geodesic_lod import distributed as dist
 from host import ROOT, peak_rss_mb
 from results import publish
@@ -47,32 +48,33 @@ def depth_counts(copc) -> list:
     return [int(c) for c in cuts[:-1]]
 
 
-def one_machine(folder, points) -> dict:
+def one_machine(folder, points, order) -> dict:
     data = folder / "one"
     write_grid(data, points, 1)
     src = next(data.glob("*.laz"))
     out = folder / "out"
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir()
-    copc_s, copc_mb = timed(COMMAND + [src, "-o", out / "lod.copc.laz", "-q"])
+    copc_s, copc_mb = timed(COMMAND + [src, "-o", out / "lod.copc.laz", "--visit-order", order, "-q"])
     counts = depth_counts(out / "lod.copc.laz")
     flat_s, flat_mb = timed(COMMAND + [src, "-o", out / "lod.laz", "--levels",
-                                       ",".join(str(c) for c in reversed(counts)), "-q"])
+                                       ",".join(str(c) for c in reversed(counts)), "--visit-order", order, "-q"])
     shutil.rmtree(out)
-    return {"where": "one machine", "points": points, "depth_counts": counts,
+    return {"where": "one machine", "points": points, "depth_counts": counts, "visit_order": order,
             "copc": {"seconds": copc_s, "peak_mb": round(copc_mb)}, "flat": {"seconds": flat_s, "peak_mb": round(flat_mb)}}
 
 
-def cluster(folder, points, side, workers, memory) -> dict:
+def cluster(folder, points, side, workers, memory, order) -> dict:
     data = folder / "grid"
     write_grid(data, points, side)
     out = folder / "out"
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir()
-    row = {"where": f"Dask, {workers} workers of {memory}", "points": points}
+    row = {"where": f"Dask, {workers} workers of {memory}", "points": points, "visit_order": order}
     with dist.local_cluster(workers, memory) as c, Client(c) as client:
         t = time.perf_counter()
-        made = copc_cluster.copc_file([str(data)], out / "lod.copc.laz", client=client, threads=1)
+        made = copc_cluster.copc_file([str(data)], out / "lod.copc.laz", client=client, threads=1,
+                                      visit_order=order)
         row["copc"] = {"seconds": round(time.perf_counter() - t, 1),
                        "worker_peak_mb": [round(p) for p in sorted(client.run(peak_rss_mb).values())],
                        "tiles": made["tiles"], "tile_depth": made["tile_depth"]}
@@ -80,7 +82,8 @@ def cluster(folder, points, side, workers, memory) -> dict:
     row["depth_counts"] = counts
     with dist.local_cluster(workers, memory) as c, Client(c) as client:  # fresh workers: their own peaks
         t = time.perf_counter()
-        dist.lod_files([str(data)], out / "flat", levels=list(reversed(counts)), client=client, threads=1)
+        dist.lod_files([str(data)], out / "flat", levels=list(reversed(counts)), client=client, threads=1,
+                       visit_order=order)
         row["flat"] = {"seconds": round(time.perf_counter() - t, 1),
                        "worker_peak_mb": [round(p) for p in sorted(client.run(peak_rss_mb).values())]}
     shutil.rmtree(out)
@@ -95,14 +98,16 @@ def main():
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--worker-memory", default="3GB")
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-copc"))
+    ap.add_argument("--visit-order", default=arrays.DEFAULT_VISIT_ORDER, choices=list(arrays.VISIT_ORDERS))
     args = ap.parse_args()
     folder = pathlib.Path(args.data)
     rows = []
     if args.points:
-        rows.append(one_machine(folder, args.points))
+        rows.append(one_machine(folder, args.points, args.visit_order))
         print(rows[-1], flush=True)
     if args.cluster_points:
-        rows.append(cluster(folder, args.cluster_points, args.files_per_side, args.workers, args.worker_memory))
+        rows.append(cluster(folder, args.cluster_points, args.files_per_side, args.workers, args.worker_memory,
+                            args.visit_order))
         print(rows[-1], flush=True)
     peak = lambda r, k: (f"{r[k]['peak_mb']:,} MB" if "peak_mb" in r[k]  # noqa: E731
                          else ", ".join(f"{p:,}" for p in r[k]["worker_peak_mb"]) + " MB per worker")

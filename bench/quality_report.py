@@ -33,6 +33,35 @@ def speed_section(docs):
             "otherwise idle machine).", "", body.replace("\n## ", "\n### ")]
 
 
+def visit_order_section(docs):
+    """Which point a disk keeps: bench/visit_order.py's rows (docs/visit_order*.json), random order against
+    the prominent points first, on the tuning models (the noise discount swept) and on the reported ones."""
+    lines = ["## Tuning the visiting order", "",
+             "`bench/visit_order.py` (`--tune` on the tuning models): our default Poisson LOD (exact count, "
+             "seed 0) visiting the points in the paper's random order and by prominence "
+             "(`vcg_ext/prominence.h`; on the tuning models with each noise discount, in standard errors), scored "
+             "by the reconstruction error above. Below 1: lower than random order's. The default visits the "
+             "prominent points first, discount 2."]
+    for name, title in (("visit_order_tuning", "Tuning models"), ("visit_order", "Reported models")):
+        path = docs / f"{name}.json"
+        if not path.is_file():
+            lines += ["", f"{title}: not measured yet."]
+            continue
+        rows = json.loads(path.read_text())
+        keys = [k for k in rows[0] if isinstance(rows[0][k], dict) and k != "random"]
+        lines += ["", f"{title}:", "", "| model | rate | random (‰) | " + " | ".join(f"{k} / random" for k in keys)
+                  + " |", "|---|---:|---:|" + "---:|" * len(keys)]
+        for r in rows:
+            base = r["random"]["recon_mean"]
+            lines.append(f"| {r['model']} | {r['rate']:.0%} | {1000 * base:.3f} | "
+                         + " | ".join(f"{r[k]['recon_mean'] / base:.3f}" for k in keys) + " |")
+        lines.append("")
+        for k in keys:
+            ratios = [r[k]["recon_mean"] / r["random"]["recon_mean"] for r in rows]
+            lines.append(f"- {k} / random: geometric mean {geomean(ratios):.3f}, largest {max(ratios):.3f}")
+    return lines + [""]
+
+
 def value(runs, model, method, rate, what):
     """what: 'recon', 'plane' (mean error per diagonal), 'miss' (the reconstruction measure's miss
     fraction), 'search_seconds' (the time to the count), 'seconds' or 'count'; NaN if absent."""
@@ -569,6 +598,7 @@ def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_model
             bad = sorted(((x, m, r) for (m, r), x in d.items() if x > 1), reverse=True)
             cells = ", ".join(f"{m} {r:.0%} ({x:.2f})" for x, m, r in bad) or "nowhere"
             doc.append(f"- a = {a_of[key]:g}: {cells} ({len(bad)} of {len(d)} cells)")
+    doc += [""] + visit_order_section(doc_path.parent)
     doc += [""] + seed_section(runs, models, tune_rates)
     doc += ["## Actual sample counts (deviation from the target)", "",
             count_table(runs, models, rates, methods), "",
