@@ -161,7 +161,7 @@ class GeodesicDomain {
         oneWay = NeighbourGraph<Scalar>::OneWayArcs(knn, p.graphNeighbours, progress.Sub(55, 75));
       };
       if (p.orientNormals) {
-        if (nr.estimated) progress(55, 100, "Orienting normals");
+        if (nr.estimated) progress(55, 100, PointNormals<Scalar>::kWhat);
         // The walk takes one thread: what the graph needs of the table is found meanwhile.
         PointNormals<Scalar>::Orient(d.points.pos, knn, np, nr, findOneWay, progress.Sub(75, 100));
       } else {

@@ -44,7 +44,7 @@ class GeodesicPoissonLod {
     /// Which point of a neighbourhood a disk keeps: any order keeps separation
     /// and coverage (Prominence: the most prominent at the disk's scale first;
     /// Border: the rims of the points' surroundings first; Random: the paper's).
-    /// Prominence: the lower error on every tuning model but one cell, clouds
+    /// Prominence: the lower error in every cell of the tuning clouds
     /// (docs/visit_order_tuning.json) and mesh (docs/mesh_lod_tuning.json).
     VisitOrder order = VisitOrder::Prominence;
     /// With Prominence: the standard errors of the noise discounted from each
@@ -132,9 +132,8 @@ class GeodesicPoissonLod {
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
                                     VisitOrder visit = VisitOrder::Random, double noise = -1) {
     CheckRadius(radius);
-    const int ordering = OrderPercent(visit);
-    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, progress.Sub(0, ordering));
-    progress = progress.Sub(ordering, 100);
+    const Progress ordering = OrderShare(progress, visit);
+    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, ordering);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -156,10 +155,9 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     // One order for every run of the search: a key order at that guess's scale.
-    const int ordering = OrderPercent(p.order);
+    const Progress ordering = OrderShare(progress, p.order);
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p),
-                                                 progress.Sub(0, ordering));
-    progress = progress.Sub(ordering, 100);
+                                                 ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;

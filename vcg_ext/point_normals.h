@@ -91,6 +91,9 @@ class PointNormals {
     return r;
   }
 
+  /// What Orient's progress reports say it does.
+  static constexpr const char* kWhat = "Orienting normals";
+
   /// The kNN columns Orient reads (vcglib's coherentAdjNum: 8 with the point).
   static int OrientColumns(const Param& p) { return std::min(p.k, 8) - 1; }
 
@@ -197,7 +200,6 @@ class PointNormals {
   // how many points the walk visits between its looks at a stop request.
   static constexpr std::chrono::milliseconds kWaitStep{5};
   static constexpr size_t kStopCheck = 1 << 14;
-  static constexpr const char* kWhat = "Orienting normals";
   // False when stopped() asked it to stop.
   template <class Stopped>
   static bool Walk(const KnnTable<Scalar>& knn, int c, const std::vector<uint8_t>& arcLevel,

@@ -100,8 +100,7 @@ class PoissonTile {
     }
     std::vector<int> order;
     if (p.order != VisitOrder::Random) {
-      const Progress ordering = progress.Sub(0, OrderPercent(p.order));
-      progress = progress.Sub(OrderPercent(p.order), 100);
+      const Progress ordering = OrderShare(progress, p.order);
       std::vector<float> key =
           p.order == VisitOrder::Border
               ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <vector>
+#include "progress.h"
 #include "radix_sort.h"
 
 namespace vcg_ext {
@@ -20,6 +21,14 @@ enum class VisitOrder { Random = 0, Prominence = 1, Border = 2 };
 /// a key order about a third of the run's time at 10% of the points
 /// (docs/visit_order_cost.json), the random order next to none.
 inline int OrderPercent(VisitOrder visit) { return visit == VisitOrder::Random ? 0 : 35; }
+
+/// A run's progress split for its visiting order: returns the order's share
+/// and leaves `run` the rest.
+inline Progress OrderShare(Progress& run, VisitOrder visit) {
+  const Progress ordering = run.Sub(0, OrderPercent(visit));
+  run = run.Sub(OrderPercent(visit), 100);
+  return ordering;
+}
 
 /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every bit.
 inline uint64_t Mix64(uint64_t x) {
