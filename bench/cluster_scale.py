@@ -28,9 +28,9 @@ import numpy as np
 from dask.distributed import Client, get_task_stream
 from dask.utils import key_split
 
-from geodesic_lod import arrays, cloud_files, partition, tiles
+from geodesic_lod import cloud_files, partition, tiles
 from geodesic_lod import distributed as dist
-from host import ROOT, peak_rss_mb
+from host import ROOT, add_visit_order_option, peak_rss_mb
 from make_scan import _height
 from results import DOCS, publish
 
@@ -156,7 +156,7 @@ def main():
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--split-repeats", type=int, default=3)
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-cluster"))
-    ap.add_argument("--visit-order", default=arrays.DEFAULT_VISIT_ORDER, choices=list(arrays.VISIT_ORDERS))
+    add_visit_order_option(ap)
     a = ap.parse_args()
     folder = pathlib.Path(a.data) / f"scan_{a.points}"
     t = time.perf_counter()

@@ -19,9 +19,9 @@ import numpy as np
 from dask.distributed import Client
 
 from cluster_scale import write_grid
-from geodesic_lod import arrays, copc_cluster
+from geodesic_lod import copc_cluster
 from geodesic_lod import distributed as dist
-from host import ROOT, peak_rss_mb
+from host import ROOT, add_visit_order_option, peak_rss_mb
 from results import publish
 
 COMMAND = [sys.executable, "-m", "geodesic_lod"]
@@ -98,7 +98,7 @@ def main():
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--worker-memory", default="3GB")
     ap.add_argument("--data", default=str(ROOT / "build" / "bench-copc"))
-    ap.add_argument("--visit-order", default=arrays.DEFAULT_VISIT_ORDER, choices=list(arrays.VISIT_ORDERS))
+    add_visit_order_option(ap)
     args = ap.parse_args()
     folder = pathlib.Path(args.data)
     rows = []

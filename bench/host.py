@@ -14,6 +14,12 @@ def add_plugin_option(parser):
     parser.add_argument("--plugin", default=str(PLUGIN))
 
 
+def add_visit_order_option(parser):
+    """--visit-order ORDER, the package's orders and default."""
+    from geodesic_lod import arrays
+    parser.add_argument("--visit-order", default=arrays.DEFAULT_VISIT_ORDER, choices=list(arrays.VISIT_ORDERS))
+
+
 def load_plugin(path=PLUGIN):
     """pymeshlab with the plugin loaded; imported here so scripts that never load it need no pymeshlab."""
     import pymeshlab

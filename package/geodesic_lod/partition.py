@@ -120,12 +120,13 @@ def _save(path: pathlib.Path, array: np.ndarray) -> None:
 @give_back
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str,
           threads: Optional[int] = None) -> dict:
-    """A Dask task: decodes one piece (on `threads` threads, ``las_files.decoders``), writes its records as they come (a sample's record is then found by
-    its id alone) and each cell's share of its points, block by block, each block in id order (``blocks``:
-    where each block starts, and the end): their rows in the piece and their coordinates, a LAS file's as
-    its integers (``Scaling`` gives the same floats as decoding). Returns the id of its first record, the
-    piece's scaling (None: coordinates kept as floats), whether its points carry normals, per cell holding
-    points (count, lowest corner, highest corner, points per block), and the bytes written."""
+    """A Dask task: decodes one piece (on `threads` threads, ``las_files.decoders``), writes its records as
+    they come (a sample's record is then found by its id alone) and each cell's share of its points, block
+    by block, each block in id order (``blocks``: where each block starts, and the end): their rows in the
+    piece and their coordinates, a LAS file's as its integers (``Scaling`` gives the same floats as
+    decoding). Returns the id of its first record, the piece's scaling (None: coordinates kept as floats),
+    whether its points carry normals, per cell holding points (count, lowest corner, highest corner, points
+    per block), and the bytes written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
