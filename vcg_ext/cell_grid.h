@@ -37,15 +37,18 @@ class CellGrid {
     const double extent = std::max({box.DimX(), box.DimY(), box.DimZ()});
     h_ = h > 0 ? h : extent / double(1 << kBits);
     if (!(h_ > 0) || !std::isfinite(h_)) h_ = 1;  // all points coincide: one cell
-    std::vector<uint64_t> key(pos.size());
-    ParallelFor(pos.size(), 4096, [&](size_t i) { key[i] = Key(CellOf(pos[i])); });
-    pts_ = SortKeys(key);  // ties by index: the same order on any thread count
-    for (size_t r = 0; r < key.size(); ++r)
-      if (r == 0 || key[r] != key[r - 1]) {
-        key_.push_back(key[r]);
+    // The keys are computed again where needed, not stored: a grid's peak is
+    // its sort's 16 bytes a point (the peak of a key visiting order).
+    auto keyOf = [&](size_t i) { return Key(CellOf(pos[i])); };
+    pts_ = SortBy(pos.size(), keyOf);  // ties by index: the same order on any thread count
+    for (size_t r = 0; r < pts_.size(); ++r) {
+      const uint64_t k = keyOf(size_t(pts_[r]));
+      if (r == 0 || k != key_.back()) {
+        key_.push_back(k);
         start_.push_back(int(r));
       }
-    start_.push_back(int(key.size()));
+    }
+    start_.push_back(int(pts_.size()));
   }
 
   double CellSide() const { return h_; }
@@ -97,12 +100,12 @@ class CellGrid {
   /// Some of the grid's points, in cell order, with each cell's range: what
   /// ForEachBall may read in place of all of them.
   struct Subset {
-    std::vector<vcg::Point3d> pos;
+    std::vector<Coord> pos;
     std::vector<int> start;  ///< per cell, its first position in `pos`; one past the end last
   };
   /// The points of `sorted` (InCellOrder) whose rank r in cell order has keep(r). O(n).
   template <class Keep>
-  Subset SubsetOf(const std::vector<vcg::Point3d>& sorted, Keep&& keep) const {
+  Subset SubsetOf(const std::vector<Coord>& sorted, Keep&& keep) const {
     Subset s;
     s.start.reserve(start_.size());
     for (size_t c = 0; c + 1 < start_.size(); ++c) {
@@ -115,10 +118,11 @@ class CellGrid {
   }
 
   /// The points of `pos` (the points the grid holds) in cell order, what
-  /// ForEachBall reads: a ball's cells are then contiguous runs. O(n).
-  std::vector<vcg::Point3d> InCellOrder(const std::vector<Coord>& pos) const {
-    std::vector<vcg::Point3d> sorted(pts_.size());
-    ParallelFor(pts_.size(), 4096, [&](size_t r) { sorted[r] = vcg::Point3d::Construct(pos[size_t(pts_[r])]); });
+  /// ForEachBall reads: a ball's cells are then contiguous runs. In the
+  /// points' own precision: half a double copy's memory, at the same speed. O(n).
+  std::vector<Coord> InCellOrder(const std::vector<Coord>& pos) const {
+    std::vector<Coord> sorted(pts_.size());
+    ParallelFor(pts_.size(), 4096, [&](size_t r) { sorted[r] = pos[size_t(pts_[r])]; });
     return sorted;
   }
   /// For every point, on all threads: f(r, ball) for the r-th point in cell
@@ -130,9 +134,9 @@ class CellGrid {
   /// `progress` hears of the points done (and may stop the loop) from the
   /// calling thread.
   template <class F>
-  void ForEachBall(const std::vector<vcg::Point3d>& sorted, F&& f, const Subset* from = nullptr,
+  void ForEachBall(const std::vector<Coord>& sorted, F&& f, const Subset* from = nullptr,
                    Progress progress = Progress(nullptr), const char* what = "") const {
-    const std::vector<vcg::Point3d>& read = from ? from->pos : sorted;
+    const std::vector<Coord>& read = from ? from->pos : sorted;
     const std::vector<int>& at = from ? from->start : start_;
     const size_t n = sorted.size();
     std::atomic<size_t> finished{0};
@@ -148,20 +152,21 @@ class CellGrid {
       // The offsets within the ball, gathered with no branch on the test (a
       // third of the candidates pass it, in no pattern a branch predicts),
       // then handed to g in the same order.
-      thread_local std::vector<vcg::Point3d> inside;
+      thread_local std::vector<Coord> inside;
       if (inside.size() < candidates) inside.resize(candidates);
       for (int r = start_[c]; r < start_[c + 1]; ++r) {
-        const vcg::Point3d p = sorted[size_t(r)];
+        const Coord p = sorted[size_t(r)];
         f(size_t(r), [&](double r2, auto&& g) {
-          vcg::Point3d* out = inside.data();
+          const Scalar within = Scalar(r2);
+          Coord* out = inside.data();
           size_t kept = 0;
           for (int k = 0; k < m; ++k)
             for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
-              const vcg::Point3d q = read[size_t(t)] - p;
+              const Coord q = read[size_t(t)] - p;
               out[kept] = q;
-              kept += q.SquaredNorm() <= r2;
+              kept += q.SquaredNorm() <= within;
             }
-          for (size_t i = 0; i < kept; ++i) g(out[i]);
+          for (size_t i = 0; i < kept; ++i) g(vcg::Point3d::Construct(out[i]));
         });
       }
       const size_t done = size_t(start_[c + 1] - start_[c]);

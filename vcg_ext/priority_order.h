@@ -41,7 +41,7 @@ inline uint64_t Mix64(uint64_t x) {
 /// The priority of id under seed: lower comes first.
 inline uint64_t Priority(uint64_t seed, uint64_t id) { return Mix64(Mix64(seed) ^ id); }
 
-/// order[k] = the point (index into `id`) visited k-th. O(n) (SortKeys),
+/// order[k] = the point (index into `id`) visited k-th. O(n) (SortBy),
 /// on all threads; the same order for any thread count. Priority is a
 /// bijection of the id for a given seed, so only equal ids share a hash, and
 /// those keep their numbering's order.
