@@ -43,12 +43,11 @@ class BallShare {
   static void ForEachBall(const std::vector<Coord>& pos, const std::vector<Id>& id, double side, double share,
                           F&& f, Progress progress = Progress(nullptr), const char* what = "") {
     const CellGrid<Scalar> grid(pos, side);
-    const std::vector<Coord> sorted = grid.InCellOrder(pos);
     auto reads = [&](size_t r) { return Reads(uint64_t(id[size_t(grid.Point(r))]), share); };
     const bool every = share >= 1;
-    const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(sorted, reads);
+    const typename CellGrid<Scalar>::Subset part = every ? typename CellGrid<Scalar>::Subset() : grid.SubsetOf(pos, reads);
     grid.ForEachBall(
-        sorted, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || reads(r)); }, every ? nullptr : &part,
+        pos, [&](size_t r, auto&& ball) { f(grid.Point(r), ball, every || reads(r)); }, every ? nullptr : &part,
         progress, what);
   }
 

@@ -103,49 +103,43 @@ class CellGrid {
     std::vector<Coord> pos;
     std::vector<int> start;  ///< per cell, its first position in `pos`; one past the end last
   };
-  /// The points of `sorted` (InCellOrder) whose rank r in cell order has keep(r). O(n).
+  /// The points of `pos` (the points the grid holds) whose rank r in cell
+  /// order has keep(r), copied in cell order. O(n).
   template <class Keep>
-  Subset SubsetOf(const std::vector<Coord>& sorted, Keep&& keep) const {
+  Subset SubsetOf(const std::vector<Coord>& pos, Keep&& keep) const {
     Subset s;
     s.start.reserve(start_.size());
     for (size_t c = 0; c + 1 < start_.size(); ++c) {
       s.start.push_back(int(s.pos.size()));
       for (int r = start_[c]; r < start_[c + 1]; ++r)
-        if (keep(size_t(r))) s.pos.push_back(sorted[size_t(r)]);
+        if (keep(size_t(r))) s.pos.push_back(pos[size_t(pts_[size_t(r)])]);
     }
     s.start.push_back(int(s.pos.size()));
     return s;
   }
 
-  /// The points of `pos` (the points the grid holds) in cell order, what
-  /// ForEachBall reads: a ball's cells are then contiguous runs. In the
-  /// points' own precision: half a double copy's memory, at the same speed. O(n).
-  std::vector<Coord> InCellOrder(const std::vector<Coord>& pos) const {
-    std::vector<Coord> sorted(pts_.size());
-    ParallelFor(pts_.size(), 4096, [&](size_t r) { sorted[r] = pos[size_t(pts_[r])]; });
-    return sorted;
-  }
-  /// For every point, on all threads: f(r, ball) for the r-th point in cell
-  /// order, where ball(r2, g) calls g(q) for the points within sqrt(r2) (at
-  /// most the cell side) of it, q their offset from it. A cell's 27 neighbour
-  /// ranges are looked up once for all its points (a lookup per point was
-  /// most of the cost on small cells). `sorted`: InCellOrder(pos).
-  /// With `from`, the balls hold only its points (still around every point).
-  /// `progress` hears of the points done (and may stop the loop) from the
-  /// calling thread.
+  /// For every point of `pos` (the points the grid holds), on all threads:
+  /// f(r, ball) for the r-th point in cell order, where ball(r2, g) calls g(q)
+  /// for the points within sqrt(r2) (at most the cell side) of it, q their
+  /// offset from it. A cell's 27 neighbour ranges are looked up once for all
+  /// its points (a lookup per point was most of the cost on small cells). The
+  /// points are read through the cell order, not copied in it: a copy was the
+  /// peak of a key visiting order, and points numbered along cells already
+  /// (a domain's) read nearly in sequence. With `from`, the balls hold only
+  /// its points (still around every point). `progress` hears of the points
+  /// done (and may stop the loop) from the calling thread.
   template <class F>
-  void ForEachBall(const std::vector<Coord>& sorted, F&& f, const Subset* from = nullptr,
+  void ForEachBall(const std::vector<Coord>& pos, F&& f, const Subset* from = nullptr,
                    Progress progress = Progress(nullptr), const char* what = "") const {
-    const std::vector<Coord>& read = from ? from->pos : sorted;
     const std::vector<int>& at = from ? from->start : start_;
-    const size_t n = sorted.size();
+    const size_t n = pts_.size();
     std::atomic<size_t> finished{0};
     progress(0, n, what);
     ParallelFor(key_.size(), 16, [&](size_t c) {
       std::array<std::pair<int, int>, 27> ranges;
       int m = 0;
       size_t candidates = 0;
-      ForBlockCells(CellOf(sorted[size_t(start_[c])]), 1, [&](size_t b) {
+      ForBlockCells(CellOf(pos[size_t(pts_[size_t(start_[c])])]), 1, [&](size_t b) {
         ranges[size_t(m++)] = {at[b], at[b + 1]};
         candidates += size_t(at[b + 1] - at[b]);
       });
@@ -154,21 +148,27 @@ class CellGrid {
       // then handed to g in the same order.
       thread_local std::vector<Coord> inside;
       if (inside.size() < candidates) inside.resize(candidates);
-      for (int r = start_[c]; r < start_[c + 1]; ++r) {
-        const Coord p = sorted[size_t(r)];
-        f(size_t(r), [&](double r2, auto&& g) {
-          const Scalar within = Scalar(r2);
-          Coord* out = inside.data();
-          size_t kept = 0;
-          for (int k = 0; k < m; ++k)
-            for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
-              const Coord q = read[size_t(t)] - p;
-              out[kept] = q;
-              kept += q.SquaredNorm() <= within;
-            }
-          for (size_t i = 0; i < kept; ++i) g(vcg::Point3d::Construct(out[i]));
-        });
-      }
+      auto balls = [&](auto&& read) {  // read(t): the t-th point of the ranges
+        for (int r = start_[c]; r < start_[c + 1]; ++r) {
+          const Coord p = pos[size_t(pts_[size_t(r)])];
+          f(size_t(r), [&](double r2, auto&& g) {
+            const Scalar within = Scalar(r2);
+            Coord* out = inside.data();
+            size_t kept = 0;
+            for (int k = 0; k < m; ++k)
+              for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
+                const Coord q = read(t) - p;
+                out[kept] = q;
+                kept += q.SquaredNorm() <= within;
+              }
+            for (size_t i = 0; i < kept; ++i) g(vcg::Point3d::Construct(out[i]));
+          });
+        }
+      };
+      if (from)
+        balls([&](int t) { return from->pos[size_t(t)]; });
+      else
+        balls([&](int t) { return pos[size_t(pts_[size_t(t)])]; });
       const size_t done = size_t(start_[c + 1] - start_[c]);
       const size_t total = finished.fetch_add(done, std::memory_order_relaxed) + done;
       if (ThreadIndex() == 0) progress(total, n, what);

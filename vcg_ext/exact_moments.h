@@ -4,7 +4,8 @@
 // point: integer sums are exact, so they are the same in any order of the
 // offsets (a point's ball as the whole cloud and as a cluster's tile list its
 // points), with no sort. Offsets of at most `unit` are kept to 2^-40 of it.
-// Cost O(1) an offset; ExactSums, without the outer products, a third of it.
+// Cost O(1) an offset; ExactSums, without the outer products, a third of it;
+// ExactLineMoments, of scalars (offsets along one direction), a third of that.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -24,8 +25,9 @@ class ExactSums {
   size_t Count() const { return count_; }
   Eigen::Vector3d Sum() const { return Eigen::Vector3d(double(sum_[0]), double(sum_[1]), double(sum_[2])) / scale_; }
 
+  static constexpr int kBits = 40;  ///< |v| <= 2^40: a sum of 2^20 outer products fits in 2^100
+
  protected:
-  static constexpr int kBits = 40;  // |v| <= 2^40: a sum of 2^20 outer products fits in 2^100
 
   /// Adds q, rounded half away from zero by truncation (inline; std::llround is
   /// a library call, the most of the cost), with no branch on the sign (half
@@ -69,6 +71,41 @@ class ExactMoments : public ExactSums {
 
  private:
   __int128 outer_[6] = {0, 0, 0, 0, 0, 0};
+};
+
+/// The count, sum and sum of squares of scalars of magnitude at most `unit`
+/// (offsets along a direction), in the same fixed point: where only a
+/// direction's moments are wanted, one rounding an offset rather than three.
+class ExactLineMoments {
+ public:
+  explicit ExactLineMoments(double unit) : scale_(double(int64_t(1) << ExactSums::kBits) / unit) {}
+
+  /// Adds x to the count and the sum only.
+  void AddToSum(double x) {
+    sum_ += Fixed(x);
+    ++count_;
+  }
+  /// Adds x to the count, the sum and the sum of squares.
+  void Add(double x) {
+    const int64_t v = Fixed(x);
+    sum_ += v;
+    squares_ += __int128(v) * v;
+    ++count_;
+  }
+
+  size_t Count() const { return count_; }
+  double Sum() const { return double(sum_) / scale_; }
+  double Squares() const { return double(squares_) / (scale_ * scale_); }
+
+ private:
+  int64_t Fixed(double x) const {  // as ExactSums::AddFixed rounds
+    const double s = x * scale_;
+    return int64_t(s + std::copysign(0.5, s));
+  }
+  double scale_;
+  int64_t sum_ = 0;
+  __int128 squares_ = 0;
+  size_t count_ = 0;
 };
 
 }  // namespace vcg_ext

@@ -8,14 +8,14 @@
 // otherwise cut, with the same separation and coverage as any order. A ball
 // holding more than kBallPoints has its mean taken over a share of its points
 // chosen by their ids, about kBallPoints, so the cost does not grow with R
-// (coarse levels): O(n kBallPoints), on all threads. The sums are
-// exact (ExactMoments), so a point's value is the same on any thread count
-// and in any subset holding its R-ball (a cluster's tile, poisson_tile.h).
+// (coarse levels): O(n kBallPoints), on all threads. Only the offsets' parts
+// along the point's normal are summed, and exactly (ExactLineMoments), so a
+// point's value is the same on any thread count and in any subset holding its
+// R-ball (a cluster's tile, poisson_tile.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-#include <Eigen/Core>
 #include <vcg/space/point3.h>
 #include "ball_share.h"
 #include "exact_moments.h"
@@ -72,25 +72,28 @@ class Prominence {
     const double R = scale.R, s = std::min(scale.s, scale.R);
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
-    auto value = [&](int i, const ExactMoments& nearBall, const Eigen::Vector3d& farMean) {
-      const Eigen::Vector3d n = Eigen::Vector3d(normal[size_t(i)][0], normal[size_t(i)][1], normal[size_t(i)][2]);
+    auto value = [&](int i, const ExactLineMoments& nearBall, double farMean) {
       const double nNear = double(nearBall.Count());
-      const Eigen::Vector3d mean = nearBall.Sum() / nNear;
-      const double sxx = n.dot(nearBall.Outer() * n);  // the sum of (q . n)^2 over the near points
-      const double sigma = std::sqrt(std::max(0.0, sxx / nNear - mean.dot(n) * mean.dot(n)));
-      const Eigen::Vector3d gap = mean - farMean;  // both hold the point itself
-      out[size_t(i)] = float(std::max(0.0, std::abs(gap.dot(n)) - noise * sigma / std::sqrt(nNear)) / R);
+      const double mean = nearBall.Sum() / nNear;
+      const double sigma = std::sqrt(std::max(0.0, nearBall.Squares() / nNear - mean * mean));
+      // Both means hold the point itself.
+      out[size_t(i)] = float(std::max(0.0, std::abs(mean - farMean) - noise * sigma / std::sqrt(nNear)) / R);
+    };
+    auto along = [&](int i) {  // an offset's part along point i's normal
+      const vcg::Point3f& n = normal[size_t(i)];
+      return [n](const vcg::Point3d& q) { return q[0] * double(n[0]) + q[1] * double(n[1]) + q[2] * double(n[2]); };
     };
     // Reading every point of both balls, one pass finds them; reading a share,
     // the mean within R first, then the points within s on a grid of side s.
     const bool all = scale.farShare >= 1 && scale.nearShare >= 1;  // Scale::Of: the first gives the second
-    std::vector<Eigen::Vector3d> farMean(all ? 0 : pos.size());
+    std::vector<double> farMean(all ? 0 : pos.size());
     BallShare<Scalar>::ForEachBall(pos, id, R, scale.farShare, [&](int i, auto&& ball, bool itself) {
-      ExactSums farBall(R);
-      ExactMoments nearBall(R);
+      const auto x = along(i);
+      ExactLineMoments farBall(R), nearBall(R);
       ball(R * R, [&](const vcg::Point3d& q) {
-        farBall.Add(q);
-        if (all && q.SquaredNorm() <= s * s) nearBall.Add(q);
+        const double v = x(q);
+        farBall.AddToSum(v);
+        if (all && q.SquaredNorm() <= s * s) nearBall.Add(v);
       });
       const double nFar = double(farBall.Count() + (itself ? 0 : 1));  // the point itself
       if (all)
@@ -100,9 +103,10 @@ class Prominence {
     }, all ? progress : progress.Sub(0, 50), kWhat);
     if (all) return out;
     BallShare<Scalar>::ForEachBall(pos, id, s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
-      ExactMoments nearBall(R);
-      ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(q); });
-      if (!itself) nearBall.Add(vcg::Point3d(0, 0, 0));  // the point itself
+      const auto x = along(i);
+      ExactLineMoments nearBall(R);
+      ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(x(q)); });
+      if (!itself) nearBall.Add(0);  // the point itself
       value(i, nearBall, farMean[size_t(i)]);
     }, progress.Sub(50, 100), kWhat);
     return out;

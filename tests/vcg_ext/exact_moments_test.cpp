@@ -43,4 +43,27 @@ TEST(ExactMoments, TheSumsAreTheSameInAnyOrderAndCloseToTheExactOnes) {
   }
 }
 
+TEST(ExactLineMoments, TheSumsAreTheSameInAnyOrderAndCloseToTheExactOnes) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.37, 0.37);  // within the unit 0.37
+  std::vector<double> x(2000);
+  for (double& v : x) v = u(rng);
+  vcg_ext::ExactLineMoments first(0.37), sumOnly(0.37);
+  long double sum = 0, squares = 0;
+  for (double v : x) first.Add(v), sumOnly.AddToSum(v), sum += v, squares += (long double)v * v;
+  EXPECT_EQ(sumOnly.Count(), first.Count());
+  EXPECT_EQ(sumOnly.Sum(), first.Sum());
+  EXPECT_EQ(sumOnly.Squares(), 0.0);
+  for (int shuffle = 0; shuffle < 5; ++shuffle) {
+    std::shuffle(x.begin(), x.end(), rng);
+    vcg_ext::ExactLineMoments again(0.37);
+    for (double v : x) again.Add(v);
+    EXPECT_EQ(again.Count(), first.Count());
+    EXPECT_EQ(again.Sum(), first.Sum());  // bit for bit
+    EXPECT_EQ(again.Squares(), first.Squares());
+  }
+  EXPECT_NEAR(first.Sum(), double(sum), 2000 * 0.37 * 0x1p-40);
+  EXPECT_NEAR(first.Squares(), double(squares), 2000 * 0.37 * 0x1p-39);
+}
+
 }  // namespace exact_moments_test
