@@ -14,30 +14,34 @@
 
 namespace vcg_ext {
 
+/// What offsets of at most `unit` are multiplied by before they are rounded:
+/// then |v| <= 2^40, and a sum of 2^20 outer products fits in 2^100.
+inline double ExactScale(double unit) { return double(int64_t(1) << 40) / unit; }
+
+/// x (an offset times ExactScale) rounded half away from zero
+/// by truncation (inline; std::llround is a library call, the most of the
+/// cost), with no branch on the sign (half the offsets are negative, in no
+/// order a branch predicts).
+inline int64_t ExactFixed(double x) { return int64_t(x + std::copysign(0.5, x)); }
+
 /// The count and sum of the offsets.
 class ExactSums {
  public:
   /// Offsets of length at most `unit` > 0 are added.
-  explicit ExactSums(double unit) : scale_(double(int64_t(1) << kBits) / unit) {}
+  explicit ExactSums(double unit) : scale_(ExactScale(unit)) {}
 
   void Add(const vcg::Point3d& q) { AddFixed(q); }
 
   size_t Count() const { return count_; }
   Eigen::Vector3d Sum() const { return Eigen::Vector3d(double(sum_[0]), double(sum_[1]), double(sum_[2])) / scale_; }
 
-  static constexpr int kBits = 40;  ///< |v| <= 2^40: a sum of 2^20 outer products fits in 2^100
-
  protected:
-
-  /// Adds q, rounded half away from zero by truncation (inline; std::llround is
-  /// a library call, the most of the cost), with no branch on the sign (half
-  /// the offsets are negative, in no order a branch predicts).
+  /// Adds q, rounded (ExactFixed).
   void AddFixed(const vcg::Point3d& q, int64_t* v = nullptr) {
     int64_t w[3];
     if (v == nullptr) v = w;
     for (int a = 0; a < 3; ++a) {
-      const double s = q[a] * scale_;
-      v[a] = int64_t(s + std::copysign(0.5, s));
+      v[a] = ExactFixed(q[a] * scale_);
       sum_[a] += v[a];
     }
     ++count_;
@@ -78,16 +82,16 @@ class ExactMoments : public ExactSums {
 /// direction's moments are wanted, one rounding an offset rather than three.
 class ExactLineMoments {
  public:
-  explicit ExactLineMoments(double unit) : scale_(double(int64_t(1) << ExactSums::kBits) / unit) {}
+  explicit ExactLineMoments(double unit) : scale_(ExactScale(unit)) {}
 
   /// Adds x to the count and the sum only.
   void AddToSum(double x) {
-    sum_ += Fixed(x);
+    sum_ += ExactFixed(x * scale_);
     ++count_;
   }
   /// Adds x to the count, the sum and the sum of squares.
   void Add(double x) {
-    const int64_t v = Fixed(x);
+    const int64_t v = ExactFixed(x * scale_);
     sum_ += v;
     squares_ += __int128(v) * v;
     ++count_;
@@ -98,10 +102,6 @@ class ExactLineMoments {
   double Squares() const { return double(squares_) / (scale_ * scale_); }
 
  private:
-  int64_t Fixed(double x) const {  // as ExactSums::AddFixed rounds
-    const double s = x * scale_;
-    return int64_t(s + std::copysign(0.5, s));
-  }
   double scale_;
   int64_t sum_ = 0;
   __int128 squares_ = 0;
