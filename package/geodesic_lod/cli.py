@@ -419,6 +419,7 @@ def main(argv=None) -> int:
                 if given is not None:
                     raise ValueError(f"{flag} goes with a cluster run (--workers, --scheduler, several files or a "
                                      "folder)")
+            point_files.check_not_a_folder(args.output, args.input[0])  # a folder is a cluster run's output
             if "copc" in request:
                 bar = _Bar(args.quiet, "sampling")
                 summary = _copc(args, bar if bar.bar is not None else None)

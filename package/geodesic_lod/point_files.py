@@ -67,6 +67,21 @@ def check_named(path) -> None:
         raise InputError("the output's name is empty: give a file or folder name")
 
 
+def check_not_a_folder(output, input) -> None:
+    """Refuses the command's output given as a folder (one that exists, or a name ending in a separator)
+    where one file is written, naming a file to give instead (of the input's format)."""
+    text = os.fspath(output)
+    out = pathlib.Path(text)
+    try:
+        folder = out.is_dir()
+    except OSError:  # a name too long: said by check_outputs
+        folder = False
+    if folder or text.endswith(("/", os.sep)):
+        src = pathlib.Path(input)
+        raise PointFileError(out, f"is a folder: give the LOD file's name, such as "
+                             f"{out / (src.stem + '_lod' + src.suffix.lower())}")
+
+
 def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) -> None:
     """Refuses, before any input is read, outputs that could not be written or would replace a file:
     an unknown or unfitting format, a missing or read-only folder, a name too long, a folder, a name

@@ -60,6 +60,16 @@ def test_output_problems_are_found_before_reading(tmp_path, output, problem):
     assert r.returncode == 2 and problem in r.stderr and "cannot be read" not in r.stderr, r.stderr
 
 
+@pytest.mark.parametrize("output", ["out", "out/", "new/"])
+def test_a_folder_as_the_output_of_one_file_is_named_as_such(tmp_path, output):
+    (tmp_path / "out").mkdir()
+    src = ply_cloud(tmp_path / "in.ply")
+    r = run(src, "-o", f"{tmp_path}/{output}", "--rate", "10%", "-q")  # a Path would drop the trailing /
+    assert r.returncode == 2 and "is a folder: give the LOD file's name, such as" in r.stderr, r.stderr
+    assert "unknown output format" not in r.stderr
+    assert not (tmp_path / "new").exists() and not any((tmp_path / "out").iterdir())
+
+
 def test_a_poisson_lod_keeps_the_inputs_order(tmp_path):
     src = las_cloud(tmp_path / "in.laz")
     assert run(src, "-o", tmp_path / "lod.laz", "--rate", "10%", "-q").returncode == 0
