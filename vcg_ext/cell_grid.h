@@ -40,14 +40,9 @@ class CellGrid {
     // The keys are computed again where needed, not stored: a grid's peak is
     // its sort's 16 bytes a point (the peak of a key visiting order).
     auto keyOf = [&](size_t i) { return Key(CellOf(pos[i])); };
-    pts_ = SortBy(pos.size(), keyOf);  // ties by index: the same order on any thread count
-    for (size_t r = 0; r < pts_.size(); ++r) {
-      const uint64_t k = keyOf(size_t(pts_[r]));
-      if (r == 0 || k != key_.back()) {
-        key_.push_back(k);
-        start_.push_back(int(r));
-      }
-    }
+    pts_ = SortBy(pos.size(), keyOf, &start_);  // ties by index: the same order on any thread count
+    key_.resize(start_.size());
+    ParallelFor(start_.size(), 4096, [&](size_t c) { key_[c] = keyOf(size_t(pts_[size_t(start_[c])])); });
     start_.push_back(int(pts_.size()));
   }
 

@@ -71,9 +71,11 @@ inline void RadixPasses(std::vector<uint64_t>& packed, uint64_t differ) {
 /// prominence and rims orders, a far outlier's Morton key above a cloud's).
 /// The same result for any number of threads:
 /// the sorted order is unique, and each step writes to places that depend on
-/// the counts only.
+/// the counts only. `runStarts` (optional) gets the places r where the r-th
+/// key differs from the one before (0 first), read from the packed words in
+/// order rather than from each key again (a key of a point is a random read).
 template <class KeyOf>
-std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
+std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStarts = nullptr) {
   constexpr int kWindow = 32;
   constexpr uint64_t kLow = 0xffffffffULL;
   std::vector<uint64_t> packed(n);
@@ -136,6 +138,15 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf) {
       ParallelFor(len, 4096, [&](size_t j) { run[j] = packed[r.first + size_t(run[j] & kLow)]; });
       std::copy(run.begin(), run.end(), packed.begin() + std::ptrdiff_t(r.first));
     }
+  }
+  if (runStarts) {
+    // Keys agree above the window, so equal windows are equal keys but where
+    // the window left out low bits (shift > 0): those ties are asked again.
+    runStarts->clear();
+    for (size_t r = 0; r < n; ++r)
+      if (r == 0 || packed[r] >> 32 != packed[r - 1] >> 32 ||
+          (shift > 0 && keyOf(size_t(packed[r] & kLow)) != keyOf(size_t(packed[r - 1] & kLow))))
+        runStarts->push_back(int(r));
   }
   std::vector<int> order(n);
   ParallelFor(blocks, 1, [&](size_t k) {

@@ -1,5 +1,6 @@
-// SortKeys against a comparison sort of (key, index) pairs, on key sets that
-// take each of its paths, on one and several threads.
+// SortKeys against a comparison sort of (key, index) pairs, and SortBy's run
+// starts against where its keys change, on key sets that take each of its
+// paths, on one and several threads.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cstdint>
@@ -18,7 +19,13 @@ void MatchesAComparisonSort(std::vector<uint64_t> key) {
   std::vector<std::pair<uint64_t, int>> want(key.size());
   for (size_t i = 0; i < key.size(); ++i) want[i] = {key[i], int(i)};
   std::sort(want.begin(), want.end());
+  std::vector<int> wantStarts, starts;  // where a key differs from the one before it
+  for (size_t r = 0; r < want.size(); ++r)
+    if (r == 0 || want[r].first != want[r - 1].first) wantStarts.push_back(int(r));
+  const std::vector<int> byKey = vcg_ext::SortBy(key.size(), [&](size_t i) { return key[i]; }, &starts);
+  EXPECT_EQ(starts, wantStarts);
   const std::vector<int> order = vcg_ext::SortKeys(key);
+  EXPECT_EQ(order, byKey);
   ASSERT_EQ(order.size(), want.size());
   for (size_t r = 0; r < want.size(); ++r) {
     ASSERT_EQ(key[r], want[r].first) << r;
