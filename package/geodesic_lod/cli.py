@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from . import _core, arrays, point_files, stop_signals, tile_points
+from . import _core, arrays, las_files, point_files, stop_signals, tile_points
 from .command import PROG, stopped
 from .errors import ClusterJobError
 
@@ -180,9 +180,10 @@ def _run_on_cluster(args, request: dict) -> int:
         else:
             import os
             workers = args.workers or max(1, min(4, os.cpu_count() or 1))
+            args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
+            las_files.size_decoder_pool(args.threads)  # the workers inherit it
             cluster = distributed.local_cluster(workers, args.worker_memory)
             client = Client(cluster)
-            args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
         link = None if args.quiet else distributed.dashboard_link(client)
         if link:
             print(f"{PROG}: Dask dashboard at {link}", file=sys.stderr)
@@ -415,6 +416,8 @@ def main(argv=None) -> int:
             _note_a_fraction(args, request)
             if _on_cluster(args):
                 return _run_on_cluster(args, request)
+            if args.threads is not None:
+                las_files.size_decoder_pool(args.threads)
             for flag, given in (("--tile-points", args.tile_points), ("--worker-memory", args.worker_memory)):
                 if given is not None:
                     raise ValueError(f"{flag} goes with a cluster run (--workers, --scheduler, several files or a "

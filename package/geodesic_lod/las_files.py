@@ -202,13 +202,32 @@ def _chunk_range(path, header, table, first: int, stop: int, size: int) -> Itera
             first, a = int(starts[b]), b
 
 
+# lazrs's parallel decoder runs on rayon's global pool, which takes this many threads when it starts (the
+# process's first parallel decode): unset or 0, every core.
+POOL_SIZE = "RAYON_NUM_THREADS"
+
+
+def cores() -> int:
+    """The cores this process may run on (rayon's count of them)."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
 def decoders(threads: Optional[int] = None):
-    """The LAZ decoders laspy may use for a run on `threads` threads (None: laspy's own choice, which spreads
-    each chunk over every core): on one thread, those that decode on one."""
+    """The LAZ decoders laspy may use for a run on `threads` threads (None: every core): laspy's own choice,
+    the parallel decoder, where its pool keeps within them (``POOL_SIZE``), else those that decode on one
+    thread."""
     import laspy
-    if threads != 1:
+    pool = os.environ.get(POOL_SIZE, "").strip()
+    pool_threads = int(pool) if pool.isdigit() and int(pool) > 0 else cores()
+    if threads is None or (threads > 1 and pool_threads <= threads):
         return None
     return [b for b in laspy.LazBackend.detect_available() if b != laspy.LazBackend.LazrsParallel]
+
+
+def size_decoder_pool(threads: int):
+    """In a process of our own (the command, its local cluster's workers), before its first decode: the
+    parallel decoder's pool to `threads`, unless the environment sizes it."""
+    os.environ.setdefault(POOL_SIZE, str(threads))
 
 
 def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None,

@@ -2,6 +2,7 @@
 GeoTIFF keys and WKT, EVLRs, extra bytes, COPC) is sampled by the command with its records, VLRs and
 EVLRs kept byte for byte; a file that lies about its records or cannot be written back is refused, naming
 it, before any work."""
+import os
 import pathlib
 import struct
 
@@ -227,3 +228,39 @@ def test_one_thread_decodes_laz_on_one_thread_and_all_threads_on_every_core(tmp_
     (tmp_path / "cells").mkdir()
     partition.split(srcs, (0, 0, srcs[0].count), 0, grid, str(tmp_path / "cells"), threads=1)
     assert used and not any(parallel(b) for b in used)
+
+
+@pytest.mark.parametrize("pool, cores, threads, spread", [
+    (None, 8, None, True), (None, 8, 8, True), (None, 8, 4, False), (None, 8, 1, False),
+    ("4", 8, 4, True), ("8", 8, 4, False), ("0", 8, 4, False), ("0", 8, 8, True), ("x", 8, 4, False)])
+def test_the_parallel_decoder_only_where_its_pool_keeps_within_the_threads_asked(monkeypatch, pool, cores,
+                                                                                 threads, spread):
+    # lazrs's parallel decoder runs on rayon's pool: every core unless RAYON_NUM_THREADS (0: every core)
+    # sizes it. --threads 4 on a 64-core server must not decode on 64.
+    from geodesic_lod import las_files
+    monkeypatch.setenv(las_files.POOL_SIZE, "0")  # restored as it was when the test ends
+    if pool is None:
+        monkeypatch.delenv(las_files.POOL_SIZE)
+    else:
+        monkeypatch.setenv(las_files.POOL_SIZE, pool)
+    monkeypatch.setattr(las_files, "cores", lambda: cores)
+    backends = las_files.decoders(threads)
+    assert (backends is None) == spread
+    if backends is not None:
+        assert backends and not parallel(backends)
+
+
+def test_the_command_sizes_the_decoders_pool_to_its_threads_unless_the_environment_does(tmp_path, monkeypatch):
+    path = tmp_path / "cloud.laz"
+    las_cloud(path)
+    from geodesic_lod import cli, las_files
+    monkeypatch.setenv(las_files.POOL_SIZE, "0")  # restored as it was when the test ends
+    monkeypatch.delenv(las_files.POOL_SIZE)
+    monkeypatch.setattr(las_files, "cores", lambda: 64)
+    used = decoders_used(monkeypatch)
+    assert cli.main([str(path), "-o", str(tmp_path / "a.laz"), "--rate", "10%", "--threads", "3", "--quiet"]) == 0
+    assert os.environ[las_files.POOL_SIZE] == "3"  # the command's own process: the pool starts at its first read
+    assert used and all(parallel(b) for b in used)
+    monkeypatch.setenv(las_files.POOL_SIZE, "2")
+    assert cli.main([str(path), "-o", str(tmp_path / "b.laz"), "--rate", "10%", "--threads", "3", "--quiet"]) == 0
+    assert os.environ[las_files.POOL_SIZE] == "2"
