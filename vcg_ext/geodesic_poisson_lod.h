@@ -77,7 +77,7 @@ class GeodesicPoissonLod {
   /// (noise < 0: the order's default discount); a mesh's border points
   /// before the rest (BorderFirst). A key order reports to `progress`.
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
-                                        VisitOrder visit = VisitOrder::Random, double scale = 0, double noise = -1,
+                                        VisitOrder visit = Param().order, double scale = 0, double noise = -1,
                                         Progress progress = Progress(nullptr)) {
     if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
@@ -130,7 +130,7 @@ class GeodesicPoissonLod {
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
-                                    VisitOrder visit = VisitOrder::Random, double noise = -1) {
+                                    VisitOrder visit = Param().order, double noise = -1) {
     CheckRadius(radius);
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, ordering);

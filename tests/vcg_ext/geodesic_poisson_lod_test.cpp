@@ -106,16 +106,19 @@ TEST(GeodesicPoissonLod, CheckParamReadsTheRadiusOnlyWithoutACount) {
   EXPECT_EQ(FieldOf([&] { Poisson::Compute(d, Count(10, 1.0)); }), "Tolerance");
 }
 
+// The paper's order: by the seed alone (the default order adds a key first).
+constexpr vcg_ext::VisitOrder kSeeded = vcg_ext::VisitOrder::Random;
+
 TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
   test::TMesh m;
   BumpyCloud(m);
   const Domain d = Domain::FromMesh(m, Domain::Param());
-  const std::vector<int> order = Poisson::VisitingOrder(d, 5);
+  const std::vector<int> order = Poisson::VisitingOrder(d, 5, {}, kSeeded);
   std::vector<int> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   for (size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], int(i)) << "not a permutation of the points";
-  EXPECT_EQ(Poisson::VisitingOrder(d, 5), order);
-  EXPECT_NE(Poisson::VisitingOrder(d, 6), order);
+  EXPECT_EQ(Poisson::VisitingOrder(d, 5, {}, kSeeded), order);
+  EXPECT_NE(Poisson::VisitingOrder(d, 6, {}, kSeeded), order);
   // `within` keeps the order of the points it names; repeats and indices past the input change nothing.
   std::vector<int> within;
   std::set<int> may;
@@ -125,8 +128,8 @@ TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
   std::vector<int> want;
   for (int v : Vertices(d, order))
     if (may.count(v)) want.push_back(v);
-  EXPECT_EQ(Vertices(d, Poisson::VisitingOrder(d, 5, within)), want);
-  EXPECT_EQ(FieldOf([&] { Poisson::VisitingOrder(d, 5, {3, -1}); }), "Within");
+  EXPECT_EQ(Vertices(d, Poisson::VisitingOrder(d, 5, within, kSeeded)), want);
+  EXPECT_EQ(FieldOf([&] { Poisson::VisitingOrder(d, 5, {3, -1}, kSeeded); }), "Within");
   // The same vertex has the same rank in the domain of a subset of the input (a tile, a cloud with deleted points).
   test::TMesh fewer;
   BumpyCloud(fewer);
@@ -135,7 +138,7 @@ TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
   want.clear();
   for (int v : Vertices(d, order))
     if (v % 4 != 0) want.push_back(v);
-  EXPECT_EQ(Vertices(e, Poisson::VisitingOrder(e, 5)), want);
+  EXPECT_EQ(Vertices(e, Poisson::VisitingOrder(e, 5, {}, kSeeded)), want);
 }
 
 // A bumpy open grid mesh: its outline is its border.
@@ -154,12 +157,12 @@ TEST(GeodesicPoissonLod, AMeshsBorderPointsAreVisitedFirstEachPartInTheSeededOrd
   for (char first : {1, 0})
     for (int i : seeded)
       if (border[size_t(i)] == first) want.push_back(i);
-  EXPECT_EQ(Poisson::VisitingOrder(d, 5), want);
+  EXPECT_EQ(Poisson::VisitingOrder(d, 5, {}, kSeeded), want);
   // A cloud has no border: the seeded order.
   test::TMesh c;
   BumpyCloud(c);
   const Domain e = Domain::FromMesh(c, Domain::Param());
-  EXPECT_EQ(Poisson::VisitingOrder(e, 5), vcg_ext::PriorityOrder(e.points.vertIndex, 5));
+  EXPECT_EQ(Poisson::VisitingOrder(e, 5, {}, kSeeded), vcg_ext::PriorityOrder(e.points.vertIndex, 5));
 }
 
 TEST(GeodesicPoissonLod, EveryBorderPointOfAMeshHasABorderSampleWithinTheRadius) {
