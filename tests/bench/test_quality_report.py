@@ -92,3 +92,18 @@ def test_errors_within_the_margin_are_ties_and_cells_near_all_points_are_left_ou
     text = write(tmp_path, runs)
     assert "Saturated cells are left out: bunny 10%, bunny 2%" in text and "2 saturated cells are left out" in text
     assert "| saturated | saturated |" in text and "**" not in row("ours_density")
+
+
+def test_against_meshlab_each_cell_is_over_its_simplification_with_every_point_beside_it(tmp_path):
+    runs = tiny_runs()
+    for rate, mean in zip(RATES, (4e-4, 5e-4)):
+        runs[("bunny", quality_report.AGAINST, rate)]["recon"] = error(mean)
+    peers = [m for m in config.METHODS if m != quality_report.AGAINST and not m.startswith("ours") and m != "random"]
+    lowest = min(peers, key=lambda m: runs[("bunny", m, 0.1)]["recon"]["mean"])
+    lines = quality_report.against_meshlab_table(runs, ["bunny"], RATES).splitlines()
+    assert len(lines) == 2 + len(RATES)
+    ours, other, every = (runs[("bunny", "ours_density", 0.1)]["recon"]["mean"] / 4e-4,
+                          runs[("bunny", lowest, 0.1)]["recon"]["mean"] / 4e-4, 1e-5 / 4e-4)
+    assert lines[2] == (f"| bunny | 10% | {ours:.3f} | {other:.3f} ({config.METHODS[lowest].label}) | {every:.3f} |")
+    assert lines[3].startswith(f"| bunny | 2% | {1e-4 / 5e-4:.3f} |")
+    assert "### Against MeshLab point cloud simplification" in write(tmp_path, runs)
