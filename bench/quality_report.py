@@ -186,7 +186,7 @@ def against_meshlab_table(runs, models, rates):
     """Per model and rate, reconstruction errors over MeshLab's point cloud simplification's: ours with
     its defaults, the lowest of the other peers, and the reconstruction from every input point, which a
     LOD beats only where fewer points fit the input's scatter more closely."""
-    peers = [m for m in config.METHODS if m != AGAINST and not m.startswith("ours") and m != "random"]
+    peers = [m for m in PEERS if m not in (AGAINST, "random")]
     lines = ["| model | rate | ours (defaults) | lowest other peer | every point |", "|---|---|---:|---:|---:|"]
     for model in models:
         full = runs.get((model, "all_points", 1.0))
