@@ -4,7 +4,7 @@
 // pipeline of vcg_ext on it, reporting the time of each stage and the peak
 // memory, without any host's overhead.
 //
-// usage: lod_cli IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]
+// usage: lod_cli IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean|surface-density|automatic]
 //                [--recompute-normals] [--seed S] [--threads T] [--samples OUT.txt] [--voronoi OUT.txt]
 #include <chrono>
 #include <cstdio>
@@ -120,8 +120,8 @@ bool Callback(const int, const char* what) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean]\n"
-                         "       [--visit-order random|prominence|rims] [--recompute-normals] [--seed S] [--threads T]\n"
+    std::fprintf(stderr, "usage: %s IN.ply [--radius R | --radius-pct P | --count N | --fps N] [--metric eq3|density|geodesic|euclidean|surface-density|automatic]\n"
+                         "       [--visit-order random|prominence|rims|automatic] [--recompute-normals] [--seed S] [--threads T]\n"
                          "       [--samples OUT.txt] [--voronoi OUT.txt]\n", argv[0]);
     return 2;
   }
@@ -150,11 +150,12 @@ int main(int argc, char** argv) {
   }
   const std::map<std::string, vcg_ext::Metric> metrics = {
       {"eq3", vcg_ext::Metric::WeightedEq3}, {"density", vcg_ext::Metric::CurvatureDensity},
-      {"geodesic", vcg_ext::Metric::Geodesic}, {"euclidean", vcg_ext::Metric::Euclidean}};
+      {"geodesic", vcg_ext::Metric::Geodesic}, {"euclidean", vcg_ext::Metric::Euclidean},
+      {"surface-density", vcg_ext::Metric::SurfaceDensity}, {"automatic", vcg_ext::Metric::Automatic}};
   if (!metric.empty() && !metrics.count(metric)) { std::fprintf(stderr, "unknown metric %s\n", metric.c_str()); return 2; }
   const std::map<std::string, vcg_ext::VisitOrder> orders = {
       {"random", vcg_ext::VisitOrder::Random}, {"prominence", vcg_ext::VisitOrder::Prominence},
-      {"rims", vcg_ext::VisitOrder::Border}};
+      {"rims", vcg_ext::VisitOrder::Border}, {"automatic", vcg_ext::VisitOrder::Automatic}};
   if (!order.empty() && !orders.count(order)) { std::fprintf(stderr, "unknown visiting order %s\n", order.c_str()); return 2; }
 
   const auto t0 = Clock::now();

@@ -49,7 +49,8 @@ const Choices<Metric> kMetrics{{{Metric::WeightedEq3, "Weighted geodesic (eq. 3)
                                 {Metric::CurvatureDensity, "Curvature-density geodesic"},
                                 {Metric::Geodesic, "Geodesic (unweighted)"},
                                 {Metric::Euclidean, "Euclidean"},
-                                {Metric::SurfaceDensity, "Surface-density geodesic (airborne LiDAR)"}}};
+                                {Metric::SurfaceDensity, "Surface-density geodesic (airborne LiDAR)"},
+                                {Metric::Automatic, "Automatic (surface-density where the points scatter)"}}};
 const Choices<GeodesicMode> kModes{{{GeodesicMode::Auto, "Auto"},
                                     {GeodesicMode::Mesh, "Mesh (fast marching)"},
                                     {GeodesicMode::PointGraph, "Point graph (Dijkstra)"}}};
@@ -65,7 +66,8 @@ const Choices<Regions> kFpsRegions{{{Regions::None, "None"}, {Regions::Voronoi, 
 using vcg_ext::VisitOrder;
 const Choices<VisitOrder> kVisitOrders{{{VisitOrder::Random, "Random"},
                                         {VisitOrder::Prominence, "Prominent points first"},
-                                        {VisitOrder::Border, "Rims first"}}};
+                                        {VisitOrder::Border, "Rims first"},
+                                        {VisitOrder::Automatic, "Automatic (rims first where the points scatter)"}}};
 using vcg_ext::Placement;
 // A triangle mesh placed as vcg_ext's default, then the other placements, each a choice of its own, in an order
 // that keeps the choices of scripts written before them.
@@ -128,8 +130,11 @@ void AddDomainParams(std::vector<ParamSpec>& p, const Choices<OutputKind>& outpu
                "Distance the samples are spread by. Weighted geodesic: paper eq. 3, edges weighted by "
                "exp(|v_i - v_j|^c), curvature differences. Curvature-density geodesic: edges weighted by "
                "(1 + a (v_i + v_j)/2), denser where curvature is high. Geodesic: unweighted shortest paths. "
-               "Euclidean: straight-line distance (for comparison). The default is the one with the lowest "
-               "reconstruction error in the quality benchmark (docs/benchmarks.md).",
+               "Euclidean: straight-line distance (for comparison). Surface-density geodesic: edges weighted by "
+               "a point's flatness, denser on ground and roofs than in vegetation (airborne LiDAR). Automatic "
+               "(the default): surface-density where the points' neighbourhoods scatter (airborne LiDAR, "
+               "docs/airborne_classes.md), else curvature-density, the lowest reconstruction error in the "
+               "quality benchmark (docs/benchmarks.md); the log names the metric taken.",
                kMetrics.IndexOf(kDomainDefaults.metric), 0, 0, kMetrics.Names()});
   p.push_back({ParamKind::Enum, kGeodesicMode, "Geodesics",
                "How geodesic distances are computed. Auto: fast marching over the triangles when the layer has "
@@ -180,7 +185,8 @@ void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, co
   seed = uint64_t(s);
 }
 
-QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_ext::Metric metric) {
+QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_ext::Metric asked) {
+  const vcg_ext::Metric metric = r.metric;
   QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric, %6 geodesics")
                   .arg(what)
                   .arg(r.vertIndex.size())
@@ -188,6 +194,8 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
                   .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
                   .arg(kMetrics.NameOf(metric))
                   .arg(metric == vcg_ext::Metric::Euclidean ? "no" : r.meshGeodesics ? "fast-marching" : "point-graph");
+  if (asked == vcg_ext::Metric::Automatic)
+    s += QString(" (chosen: %1% of the points' neighbourhoods scatter)").arg(100 * r.scatterShare, 0, 'f', 1);
   s += QString("; %1 normals estimated; %2 connected parts").arg(r.estimatedNormals).arg(r.components);
   if (r.leftOut) s += QString("; %1 vertices in no triangle left out (use the point graph to keep them)").arg(r.leftOut);
   if (!r.faces.empty()) s += QString("; %1 triangles").arg(r.faces.size());
@@ -219,7 +227,9 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
                "Prominent points first: those standing out of the scan's scatter at the disks' scale "
                "(docs/visit_order.json). Random: the paper's seeded order. Rims first: the points at the rim of their "
-               "surroundings, such as a roof's edges (docs/airborne_classes.md).",
+               "surroundings, such as a roof's edges (docs/airborne_classes.md). Automatic (the default): rims "
+               "first where the points' neighbourhoods scatter, as the automatic metric chooses, else prominent "
+               "points first; the log names the order taken.",
                kVisitOrders.IndexOf(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().order), 0, 0,
                kVisitOrders.Names()});
   return p;
@@ -267,7 +277,7 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;
     run.summary = Describe("Geodesic Poisson-disk LOD", run.result, p.domain.metric) +
-                  QString("; radius %1").arg(r.radius);
+                  QString("; radius %1; visiting order: %2").arg(r.radius).arg(kVisitOrders.NameOf(r.order));
     if (p.sampleNum > 0)
       run.summary += QString("; %1 samples asked: radius found in %2 Poisson runs (%3 samples)%4")
                          .arg(p.sampleNum).arg(r.iterations).arg(r.poissonCount)

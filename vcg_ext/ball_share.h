@@ -55,8 +55,15 @@ class BallShare {
   /// their ids (input indices): the same subsample in any numbering of them
   /// (a domain's, a cluster's, which measures it over all its tiles).
   static double CellSide(const std::vector<Coord>& pos, const std::vector<int>& id) {
+    if (pos.size() < 2) return 0;
+    return CellGrid<Scalar>::SurfaceCellSideOf(SubsampleById(pos, id), pos.size(), 1);
+  }
+
+  /// The points of CellGrid's subsample of n = pos.size() points taken in the
+  /// order of their ids `id` (the points of ranks SubsampleIndex(i, n) among
+  /// them), in that order. O(n).
+  static std::vector<Coord> SubsampleById(const std::vector<Coord>& pos, const std::vector<int>& id) {
     const size_t n = pos.size();
-    if (n < 2) return 0;
     int top = 0;
     for (int v : id) top = std::max(top, v);
     std::vector<int> at(size_t(top) + 1, -1);  // point by id
@@ -66,7 +73,7 @@ class BallShare {
     sub.reserve(m);
     for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
       if (at[v] >= 0 && rank++ == CellGrid<Scalar>::SubsampleIndex(sub.size(), n)) sub.push_back(pos[size_t(at[v])]);
-    return CellGrid<Scalar>::SurfaceCellSideOf(sub, n, 1);
+    return sub;
   }
 };
 

@@ -20,6 +20,7 @@
 #include "normal_variation.h"
 #include "point_normals.h"
 #include "point_set.h"
+#include "scatter_share.h"
 #include "surface_density.h"
 
 namespace vcg_ext {
@@ -35,9 +36,10 @@ class GeodesicDomain {
  public:
   typedef vcg::Point3<Scalar> Coord;
   /// The product defaults: every front end reads them from here. The metric
-  /// and a were chosen by the quality benchmark (docs/benchmarks.md).
+  /// and a were chosen by the quality benchmark (docs/benchmarks.md) and, for
+  /// clouds that scatter, by the airborne one (docs/airborne_classes.md).
   struct Param {
-    Metric metric = Metric::CurvatureDensity;
+    Metric metric = Metric::Automatic;
     GeodesicMode mode = GeodesicMode::Auto;
     double curvatureExponent = 1.0;  ///< c of eq. 3, > 0 (the paper's)
     double adaptivity = 3.0;         ///< a of the curvature-density weighting, >= 0
@@ -48,6 +50,9 @@ class GeodesicDomain {
     /// Give estimated normals consistent signs. Sampling never reads the signs
     /// (eq. 1 and the orders take |n_i . n_j|); only normals a caller outputs need them.
     bool orientNormals = true;
+    /// The ScatterShare of the whole cloud where a caller measured it (a
+    /// cluster, once for all its tiles); < 0: measured here.
+    double scatterShare = -1;
   };
 
   /// Numbered in the cells' Morton order, near points at near numbers
@@ -58,7 +63,10 @@ class GeodesicDomain {
   size_t estimatedNormals = 0;
   std::vector<float> curvature;     ///< v_i, eq. 1 (in float: NormalVariation)
   std::vector<float> density;       ///< s_i of the surface-density metric (empty for the others)
-  Metric metric = Param().metric;
+  Metric metric = Metric::CurvatureDensity;  ///< as asked, an automatic choice made (ChosenMetric)
+  /// The points' ScatterShare: where it Scatters, automatic choices take the
+  /// surface-density metric and the rims first.
+  double scatterShare = 0;
   double curvatureExponent = Param().curvatureExponent;
   double adaptivity = Param().adaptivity;
   bool meshGeodesics = false;       ///< fast marching (else point graph or Euclidean)
@@ -115,7 +123,6 @@ class GeodesicDomain {
     d.hasFaces = !tris.tri.empty() || tris.skipped > 0;
     d.vertexCount = ps.vertexCount;
     for (int v : ps.vertIndex) d.vertexCount = std::max(d.vertexCount, size_t(v) + 1);
-    d.metric = p.metric;
     d.curvatureExponent = p.curvatureExponent;
     d.adaptivity = p.adaptivity;
     d.meshGeodesics = p.metric != Metric::Euclidean && !UsesPointGraph(!tris.tri.empty(), p);
@@ -123,6 +130,8 @@ class GeodesicDomain {
       d.leftOut = KeepReferenced(ps, tris.tri);
       Check(ps, true, p);  // what is left must still be samplable
     }
+    d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::Of(ps.pos, ps.vertIndex);
+    d.metric = ChosenMetric(p.metric, d.Scatters());
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a
@@ -149,7 +158,7 @@ class GeodesicDomain {
       auto nr = PointNormals<Scalar>::Estimate(d.points.pos, d.points.normal, knn, np, progress.Sub(35, 50));
       d.points.normal = std::vector<Coord>();  // nr holds them now
       d.curvature = NormalVariation<Scalar>::Compute(nr.normal, knn, p.normalNeighbours, progress.Sub(50, 55));
-      if (p.metric == Metric::SurfaceDensity)
+      if (d.metric == Metric::SurfaceDensity)
         d.density = SurfaceDensity<Scalar>::Compute(d.points.pos, knn, p.normalNeighbours, p.adaptivity);
       // Eq. 1 is blind to the normals' signs: they are made consistent after
       // it, when the table has shrunk to what the graph and the walk read (at
@@ -194,6 +203,7 @@ class GeodesicDomain {
   }
 
   size_t size() const { return points.size(); }
+  bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
 
   /// The edge lengths g_ij of this domain's metric (eq. 2-3), from its
   /// positions and curvature: valid while the domain is neither moved nor changed.

@@ -15,7 +15,8 @@ enum class Metric {
   CurvatureDensity = 1,  ///< g_ij = (1 + a (v_i + v_j) / 2) |p_i - p_j|
   Geodesic = 2,          ///< g_ij = |p_i - p_j|
   Euclidean = 3,         ///< straight-line distance, no graph (for comparison)
-  SurfaceDensity = 4     ///< g_ij = (1 + (s_i + s_j) / 2) |p_i - p_j|, s of SurfaceDensity (airborne LiDAR)
+  SurfaceDensity = 4,    ///< g_ij = (1 + (s_i + s_j) / 2) |p_i - p_j|, s of SurfaceDensity (airborne LiDAR)
+  Automatic = 5          ///< SurfaceDensity where the points scatter, else CurvatureDensity (ScatterShare)
 };
 
 /// Functor giving the weighted length g_ij of the edge (i, j) of Euclidean

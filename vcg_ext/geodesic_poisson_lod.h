@@ -43,10 +43,13 @@ class GeodesicPoissonLod {
     std::vector<int> within;
     /// Which point of a neighbourhood a disk keeps: any order keeps separation
     /// and coverage (Prominence: the most prominent at the disk's scale first;
-    /// Border: the rims of the points' surroundings first; Random: the paper's).
+    /// Border: the rims of the points' surroundings first; Random: the paper's;
+    /// Automatic: Border where the domain's points scatter, else Prominence).
     /// Prominence: the lower error in every cell of the tuning clouds
-    /// (docs/visit_order_tuning.json) and mesh (docs/mesh_lod_tuning.json).
-    VisitOrder order = VisitOrder::Prominence;
+    /// (docs/visit_order_tuning.json) and mesh (docs/mesh_lod_tuning.json);
+    /// Border with the surface-density metric on airborne LiDAR
+    /// (docs/airborne_classes.md).
+    VisitOrder order = VisitOrder::Automatic;
     /// With Prominence: the standard errors of the noise discounted from each
     /// point's prominence (Prominence::Compute). On the tuning models
     /// (docs/visit_order_tuning.json) 2 and 3 tie for the lowest mean error
@@ -63,6 +66,7 @@ class GeodesicPoissonLod {
     int iterations = 1;       ///< Poisson runs
     bool trimmed = false;     ///< thinned to sampleNum (PoissonTargetCount)
     double coveringRadius = 0;  ///< every point lies within it of a sample (exact when trimmed, else radius)
+    VisitOrder order = VisitOrder::Random;  ///< the visiting order: as asked, an automatic choice made
   };
 
   static void CheckRadius(double r) {
@@ -79,6 +83,7 @@ class GeodesicPoissonLod {
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
                                         VisitOrder visit = Param().order, double scale = 0, double noise = -1,
                                         Progress progress = Progress(nullptr)) {
+    visit = ChosenOrder(visit, d.Scatters());
     if (noise < 0) noise = NoiseOf(visit, Param());
     std::vector<int> order =
         visit == VisitOrder::Border
@@ -112,7 +117,7 @@ class GeodesicPoissonLod {
     return order;
   }
 
-  /// The noise discount p gives the visiting order `visit`.
+  /// The noise discount p gives the visiting order `visit` (chosen: not Automatic).
   static double NoiseOf(VisitOrder visit, const Param& p) {
     return visit == VisitOrder::Border ? p.borderNoise : p.prominenceNoise;
   }
@@ -132,6 +137,7 @@ class GeodesicPoissonLod {
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
                                     VisitOrder visit = Param().order, double noise = -1) {
     CheckRadius(radius);
+    visit = ChosenOrder(visit, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, ordering);
     PoissonDisk::Param pp;
@@ -155,8 +161,9 @@ class GeodesicPoissonLod {
     // make the whole box's diagonal, and the first runs, far too large).
     tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
     // One order for every run of the search: a key order at that guess's scale.
-    const Progress ordering = OrderShare(progress, p.order);
-    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, p.order, tp.initialRadius, NoiseOf(p.order, p),
+    const VisitOrder visit = ChosenOrder(p.order, d.Scatters());
+    const Progress ordering = OrderShare(progress, visit);
+    const std::vector<int> order = VisitingOrder(d, p.seed, p.within, visit, tp.initialRadius, NoiseOf(visit, p),
                                                  ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
@@ -201,6 +208,7 @@ class GeodesicPoissonLod {
     CheckParam(p, d.hasFaces);
     const Progress sampling = progress.Sub(0, p.meshOutput ? 75 : 100);
     Result r;
+    r.order = ChosenOrder(p.order, d.Scatters());
     std::vector<int> samples, disk, voronoi;
     if (p.sampleNum > 0) {
       PoissonTargetCount::Result t = SampleCount(d, p, sampling);
@@ -213,7 +221,7 @@ class GeodesicPoissonLod {
       r.trimmed = t.trimmed;
       r.coveringRadius = t.coveringRadius;
     } else {
-      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, p.order, NoiseOf(p.order, p));
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, r.order, NoiseOf(r.order, p));
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

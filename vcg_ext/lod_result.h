@@ -31,6 +31,8 @@ struct LodResult {
   size_t leftOut = 0;                         ///< vertices in no triangle, not sampled (mesh geodesics)
   int components = 0;
   bool meshGeodesics = false;
+  Metric metric = Metric::CurvatureDensity;   ///< the domain's: as asked, an automatic choice made
+  double scatterShare = 0;                    ///< the points' ScatterShare, which automatic choices follow
   std::vector<int> regionOf;  ///< on request, per m.vert index: rank of the sample whose region holds it, -1 if none
 
   /// Throws std::invalid_argument when triangle-mesh output is asked of a layer without faces.
@@ -85,6 +87,8 @@ struct LodResult {
     r.leftOut = d.leftOut;
     r.components = d.components;
     r.meshGeodesics = d.meshGeodesics;
+    r.metric = d.metric;
+    r.scatterShare = d.scatterShare;
     for (int i : samples) {
       r.vertIndex.push_back(d.points.vertIndex[i]);
       r.position.push_back(d.points.pos[i]);

@@ -14,8 +14,9 @@
 namespace vcg_ext {
 
 /// The order Poisson-disk sampling visits points in (Prominence: prominence.h;
-/// Border: border_order.h).
-enum class VisitOrder { Random = 0, Prominence = 1, Border = 2 };
+/// Border: border_order.h; Automatic: Border where the points scatter, else
+/// Prominence, scatter_share.h).
+enum class VisitOrder { Random = 0, Prominence = 1, Border = 2, Automatic = 3 };
 
 /// The percent of a Poisson run's progress reports its visiting order takes:
 /// a key order about a third of the run's time at 10% of the points

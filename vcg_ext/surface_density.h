@@ -30,6 +30,10 @@ class SurfaceDensity {
   /// BorderOrder's: an evenly scattered neighbourhood is no rim.
   static constexpr double kRimNoise = 4.0;
 
+  /// f = 1 - l0 / l1 of a neighbourhood's covariance eigenvalues l
+  /// (ascending, l1 > 0): 1 on a plane, 0 where the points scatter evenly.
+  static double Flatness(const Eigen::Vector3d& l) { return 1 - l(0) / l(1); }
+
   /// s_i = a f_i (1 + rim_i), over the point and its k - 1 nearest (k <= knn.k + 1):
   /// f_i = 1 - l0 / l1 of the neighbourhood's covariance (eigenvalues
   /// l0 <= l1 <= l2), 1 on a plane, 0 where the points scatter evenly (and
@@ -54,7 +58,7 @@ class SurfaceDensity {
         eig.computeDirect(cov, Eigen::ComputeEigenvectors);
         const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
         if (!(l(1) > 0) || !(far2 > 0)) continue;  // the points on one line through p, or at p
-        const double flat = 1 - l(0) / l(1);
+        const double flat = Flatness(l);
         const Eigen::Vector3d n = eig.eigenvectors().col(0);
         const Eigen::Vector3d along = mean - n * n.dot(mean);
         const double spread = (l(1) + l(2)) / 2;

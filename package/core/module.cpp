@@ -62,6 +62,8 @@ nb::dict Common(const LodResult& r) {
   d["left_out"] = r.leftOut;
   d["components"] = r.components;
   d["mesh_geodesics"] = r.meshGeodesics;
+  d["metric"] = r.metric;
+  d["scatter_share"] = r.scatterShare;
   return d;
 }
 
@@ -72,6 +74,7 @@ nb::dict PoissonDict(const Poisson::Result& r) {
   d["iterations"] = r.iterations;
   d["poisson_count"] = r.poissonCount;
   d["trimmed"] = r.trimmed;
+  d["visit_order"] = r.order;
   return d;
 }
 
@@ -210,7 +213,8 @@ NB_MODULE(_core, m) {
       .value("CurvatureDensity", vcg_ext::Metric::CurvatureDensity)
       .value("Geodesic", vcg_ext::Metric::Geodesic)
       .value("Euclidean", vcg_ext::Metric::Euclidean)
-      .value("SurfaceDensity", vcg_ext::Metric::SurfaceDensity);
+      .value("SurfaceDensity", vcg_ext::Metric::SurfaceDensity)
+      .value("Automatic", vcg_ext::Metric::Automatic);
   nb::enum_<vcg_ext::GeodesicMode>(m, "GeodesicMode")
       .value("Auto", vcg_ext::GeodesicMode::Auto)
       .value("Mesh", vcg_ext::GeodesicMode::Mesh)
@@ -222,7 +226,8 @@ NB_MODULE(_core, m) {
   nb::enum_<vcg_ext::VisitOrder>(m, "VisitOrder")
       .value("Random", vcg_ext::VisitOrder::Random)
       .value("Prominence", vcg_ext::VisitOrder::Prominence)
-      .value("Border", vcg_ext::VisitOrder::Border);
+      .value("Border", vcg_ext::VisitOrder::Border)
+      .value("Automatic", vcg_ext::VisitOrder::Automatic);
   nb::enum_<vcg_ext::Regions>(m, "Regions")
       .value("None_", vcg_ext::Regions::None)
       .value("Disk", vcg_ext::Regions::Disk)

@@ -38,7 +38,10 @@ Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, co
 }
 
 Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress) {
+  if (domain.metric == vcg_ext::Metric::Automatic)
+    throw std::invalid_argument("a tile takes a chosen metric: the cluster chooses for the whole cloud");
   Domain::Param dp = domain;
+  dp.scatterShare = 0;  // the metric is chosen: nothing here reads the share
   dp.keepReach = true;
   dp.orientNormals = false;  // a tile's output is the input's records: nothing reads the signs
   dp.mode = vcg_ext::GeodesicMode::PointGraph;

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 #include <vcg_ext/poisson_target_count.h>
+#include <vcg_ext/scatter_share.h>
 #include "array_input.h"
 #include "call_support.h"
 #include "python_progress.h"
@@ -173,6 +174,8 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
                                vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide) {
   const size_t rows = ids.shape(0);
   CheckTileRows(d, ids, core, candidate);
+  if (order == vcg_ext::VisitOrder::Automatic)
+    throw std::invalid_argument("a tile takes a chosen visiting order: the cluster chooses for the whole cloud");
   Threads team(threads);
   PythonProgress pp(std::move(progress));
   Tile::Result r = pp.Run([&](vcg_ext::Progress pr) {
@@ -266,6 +269,11 @@ inline double CoreDiagonalOf(const Array2& points) {
 
 typedef vcg_ext::CellGrid<double> Cells;
 
+// ScatterShare of n points from the points of CellSideSubsample(n), in order.
+inline double ScatterShareOf(const Array2& sub) {
+  return vcg_ext::ScatterShare<double>::OfSubsample(ReadPoints(sub, nullptr).pos);
+}
+
 // The ids of the points SurfaceCellSide reads of n points, in order.
 inline nb::ndarray<nb::numpy, uint64_t> CellSideSubsample(uint64_t n) {
   std::vector<uint64_t> ids(Cells::SubsampleSize(size_t(n)));
@@ -324,6 +332,15 @@ inline void BindTiles(nb::module_& m) {
         "the ids of the points the prominence order's point spacing is measured on, of n points");
   m.def("cell_side", &CellSideOf, "subsample"_a, "n"_a,
         "the point spacing (a cell side holding one point) of n points, from their cell_side_subsample");
+  m.def("scatter_share", &ScatterShareOf, "subsample"_a,
+        "the share of n points whose neighbourhoods scatter, from their cell_side_subsample (in id order)");
+  m.attr("SCATTERED_ABOVE") = vcg_ext::ScatterShare<double>::kScattered;
+  m.def("chosen_metric", [](vcg_ext::Metric asked, double share) {
+    return vcg_ext::ChosenMetric(asked, vcg_ext::ScatterShare<double>::Scatters(share)); }, "asked"_a, "share"_a,
+        "the metric asked for, or the automatic choice for points of this scatter_share");
+  m.def("chosen_order", [](vcg_ext::VisitOrder asked, double share) {
+    return vcg_ext::ChosenOrder(asked, vcg_ext::ScatterShare<double>::Scatters(share)); }, "asked"_a, "share"_a,
+        "the visiting order asked for, or the automatic choice for points of this scatter_share");
   m.def("settle", &Settle, "open"_a, "cover_offset"_a, "cover"_a, "status"_a);
   using vcg_ext::RadiusSearch;
   nb::enum_<RadiusSearch::Role>(m, "SearchRole")

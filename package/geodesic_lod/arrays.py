@@ -21,13 +21,13 @@ from .errors import InputError
 # The product defaults live in vcg_ext's Param structs; these read them.
 DOMAIN_DEFAULTS = _core.DomainParam()
 
-METRICS = {"curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
+METRICS = {"automatic": _core.Metric.Automatic, "curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
            "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean,
            "surface-density": _core.Metric.SurfaceDensity}
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
-VISIT_ORDERS = {"random": _core.VisitOrder.Random, "prominence": _core.VisitOrder.Prominence,
+VISIT_ORDERS = {"automatic": _core.VisitOrder.Automatic, "random": _core.VisitOrder.Random, "prominence": _core.VisitOrder.Prominence,
                 "rims": _core.VisitOrder.Border}
 
 
@@ -55,6 +55,8 @@ class Lod:
     components: int
     left_out: int
     mesh_geodesics: bool
+    metric: str
+    scatter_share: float
 
 
 @documented
@@ -65,6 +67,7 @@ class PoissonLod(Lod):
     iterations: int = 1
     poisson_count: int = 0
     trimmed: bool = False
+    visit_order: str = ""
 
 
 @documented
@@ -357,7 +360,8 @@ def _indices(values, n: int, name: str) -> np.ndarray:
 
 def result_of(cls, d: dict, **extra):
     names = {f for f in cls.__dataclass_fields__}
-    return cls(**{k: v for k, v in d.items() if k in names}, **extra)
+    named = {"metric": METRICS, "visit_order": VISIT_ORDERS}  # the choices made, by their names
+    return cls(**{k: _name_of(named[k], v) if k in named else v for k, v in d.items() if k in names}, **extra)
 
 
 Progress = Optional[Callable[[float], object]]

@@ -77,11 +77,13 @@ def parser() -> argparse.ArgumentParser:
                    "--rate, --count or --levels (nested prefixes of one run)")
     p.add_argument("--visit-order", choices=list(arrays.VISIT_ORDERS), help="Poisson-disk: which point of a "
                    "neighbourhood a disk keeps: random (the paper's), prominence (points standing out of the "
-                   "scan's scatter first) or rims (points at the rim of their surroundings, such as roof edges, "
-                   f"first) (default: {arrays.DEFAULT_VISIT_ORDER})")
+                   "scan's scatter first), rims (points at the rim of their surroundings, such as roof edges, "
+                   "first) or automatic (rims where the points scatter, as airborne LiDAR's do, else prominence) "
+                   f"(default: {arrays.DEFAULT_VISIT_ORDER})")
     p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
                    help="the distance the samples are spread in; surface-density, with --visit-order rims, "
-                        "for airborne LiDAR (default: %(default)s)")
+                        "for airborne LiDAR; automatic takes it where the points scatter, else "
+                        "curvature-density (default: %(default)s)")
     p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
                    help="curvature- and surface-density metrics: how much denser rugged parts (smooth "
                         "surfaces) get (default: %(default)s)")
@@ -223,18 +225,18 @@ def _run_on_cluster(args, request: dict) -> int:
             client.close()
         if cluster is not None:
             cluster.close()
-    if not args.quiet and copc:
-        print(f"{PROG}: {args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
-              f"{made['spacing']:.6g} at depth 0, from {made['tiles']} tiles", file=sys.stderr)
-        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
-    elif not args.quiet:
+    if copc:
+        summary = [f"{args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
+                   f"{made['spacing']:.6g} at depth 0, from {made['tiles']} tiles"] + _choices_line(args, made)
+    else:
+        summary = []
         for level in index.get("levels", [index]):
             where = pathlib.Path(args.output) / pathlib.Path(level["tiles"][0]["file"]).parent if level["tiles"] \
                 else pathlib.Path(args.output)
-            print(f"{PROG}: {where}: {level['samples']:,} of {index['points']:,} points in "
-                  f"{len(level['tiles'])} tiles, radius {level['radius']:.6g}", file=sys.stderr)
-        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
-    return 0
+            summary.append(f"{where}: {level['samples']:,} of {index['points']:,} points in "
+                           f"{len(level['tiles'])} tiles, radius {level['radius']:.6g}")
+        summary += _choices_line(args, index)
+    return _done(args, summary, start)
 
 
 class _Bar:
@@ -318,37 +320,52 @@ def _outputs(args, request: dict) -> list:
 
 
 def _run(args, request: dict, source: point_files.PointFile, progress):
-    """The LOD's indices per output file: in the input's order, but for --fps (farthest-point order)."""
+    """The LOD's indices per output file (in the input's order, but for --fps: farthest-point order), and the
+    result whose choices the summary names (None for --height-field)."""
     common = dict(faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                   recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                   progress=progress)
     order = dict(visit_order=args.visit_order)
     n = source.points.shape[0]
     if args.height_field:
-        return _height_field_levels(request, source, progress)
+        return _height_field_levels(request, source, progress), None
     if "levels" in request:
         return _nested_levels(args, request["levels"], source, progress)
     if "radius" in request:
-        return [np.sort(arrays.poisson_lod(source.points, source.normals,
-                                           radius=_radius(request["radius"], source.points), **common,
-                                           **order).indices)]
+        lod = arrays.poisson_lod(source.points, source.normals, radius=_radius(request["radius"], source.points),
+                                 **common, **order)
+        return [np.sort(lod.indices)], lod
     count = _count_of(request, n)
     if args.fps:
-        return [arrays.fps_lod(source.points, source.normals, count=count, **common).indices]
-    return [np.sort(arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0,
-                                       **common, **order).indices)]
+        lod = arrays.fps_lod(source.points, source.normals, count=count, **common)
+        return [lod.indices], lod
+    lod = arrays.poisson_lod(source.points, source.normals, count=count, tolerance=args.tolerance or 0.0, **common,
+                             **order)
+    return [np.sort(lod.indices)], lod
 
 
-def _nested_levels(args, items, source: point_files.PointFile, progress) -> list:
+def _choices_line(args, taken) -> list:
+    """A summary line naming what the automatic metric and visiting order took, where either was automatic:
+    `taken` a result (or a cluster's index) with the metric, the visiting order (Poisson) and the scatter
+    share."""
+    get = taken.get if isinstance(taken, dict) else lambda k: getattr(taken, k, None)
+    if taken is None or "automatic" not in (args.metric, args.visit_order if not args.fps else None):
+        return []
+    order = f", visiting order {get('visit_order')}" if get("visit_order") else ""
+    return [f"metric {get('metric')}{order} (automatic: {100 * get('scatter_share'):.1f}% of the points' "
+            f"neighbourhoods scatter; above {100 * _core.SCATTERED_ABOVE:g}% a cloud counts as scattered)"]
+
+
+def _nested_levels(args, items, source: point_files.PointFile, progress) -> tuple:
     """Each level the Poisson set of its count among the finer level's samples, as a cluster run makes
     them (the same samples where the searches accept a run within the tolerance; one machine thins a
-    set to the exact count where the tolerance is 0)."""
+    set to the exact count where the tolerance is 0); and the last level's result."""
     from .domain import Domain
     counts = arrays.level_counts(items, source.points.shape[0])
     part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
     dom = Domain(source.points, source.normals, faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                  recompute_normals=args.recompute_normals, threads=args.threads, progress=part(0.0, 0.4))
-    levels, finer = [], None
+    levels, finer, lod = [], None, None
     for k, count in enumerate(counts):
         lod = dom.poisson_lod(count=count, tolerance=args.tolerance or 0.0, seed=args.seed, within=finer,
                               visit_order=args.visit_order,
@@ -356,7 +373,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> list
                                                                  0.4 + 0.6 * (k + 1) / len(counts)))
         finer = np.sort(lod.indices)
         levels.append(finer)
-    return levels
+    return levels, lod
 
 
 def _count_of(request: dict, n: int) -> int:
@@ -439,11 +456,11 @@ def main(argv=None) -> int:
             point_files.check_writable(source, paths)
             bar = _Bar(args.quiet, "sampling")
             try:
-                chosen = _run(args, request, source, bar if bar.bar is not None else None)
+                chosen, lod = _run(args, request, source, bar if bar.bar is not None else None)
             except ValueError as e:  # the input's data or a value that depends on it
                 raise point_files.PointFileError(source.path, str(e)) from None
             bar.close()
-            return _done(args, _write_levels(source, paths, chosen), start)
+            return _done(args, _write_levels(source, paths, chosen) + _choices_line(args, lod), start)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
             _fail(str(e))
         except KeyboardInterrupt:

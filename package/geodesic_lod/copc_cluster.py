@@ -28,7 +28,7 @@ from . import tile_points as tile_points_
 from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
-from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_order, domain_fields, finer_samples,
+from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_choices, domain_fields, finer_samples,
                           forget_reads, poisson_run, write_tile)
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 
@@ -209,14 +209,15 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         keys = [int(k) for k in per_depth[t][0]]
         cloud = tiles.Box(lo, hi)
         boxes = [NodeTile.of(octree, t, k) for k in keys]
-        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
+        choices = cluster_choices(client, cells, domain, visit_order, total)
+        job = Job(srcs, cloud, 0.0, seed, choices.domain, threads, 0.0, cells)
         n = len(keys)
         stats = client.gather(client.map(_depth_stats, [job] * n, boxes, pure=False))
         depths = depth_count(stats, t)
         radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
-        visit = cluster_order(client, cells, visit_order, total)
+        visit = choices.order
         # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
         halo = tiles.first_halo(radii[0], spacing, visit)
         where = {}
@@ -256,4 +257,5 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         with stop_signals.held():  # a second Ctrl-C does not leave the work folder
             shutil.rmtree(work, ignore_errors=True)
     return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii,
+            "metric": choices.metric, "visit_order": choices.order.kind, "scatter_share": choices.scatter_share,
             "spacing": octree.spacing, "seconds": round(time.perf_counter() - start, 3)}

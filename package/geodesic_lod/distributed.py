@@ -455,22 +455,58 @@ def dashboard_link(client) -> Optional[str]:
     return client.dashboard_link if serves else None
 
 
-def cluster_order(client, cells: partition.Partition, kind: str, total: int) -> tiles.Order:
-    """The visiting order of every level but its scale: with a key order, the whole cloud's point spacing,
-    measured on the points one machine measures it on (a pass over the cells)."""
+@dataclass(frozen=True)
+class Choices:
+    """What a cluster job samples with, the automatic choices made once for the whole cloud.
+
+    Attributes
+    ----------
+    domain : dict
+        The tiles' domain fields (``domain_fields``), the metric chosen.
+    order : tiles.Order
+        The visiting order, chosen, but for its scale.
+    scatter_share : float
+        The points' scatter share the choices followed (``_core.scatter_share``; 0 where none was automatic).
+    metric : str
+        The metric chosen, by name.
+    """
+    domain: dict
+    order: tiles.Order
+    scatter_share: float
+
+    @property
+    def metric(self) -> str:
+        return arrays._name_of(arrays.METRICS, self.domain["metric"])
+
+
+def cluster_choices(client, cells: partition.Partition, domain: dict, kind: str, total: int) -> Choices:
+    """The metric and visiting order as one machine takes them for the whole cloud (its automatic choices
+    from the points' scatter share; with a key order, the point spacing), both measured on the points one
+    machine measures them on (a pass over the cells)."""
+    share = 0.0
+    chosen = domain["metric"]
+    automatic = chosen == _core.Metric.Automatic or kind == "automatic"
+    sub = _cluster_subsample(client, cells, total) if automatic or kind != "random" else None
+    if automatic:
+        share = _core.scatter_share(sub)
+        chosen = _core.chosen_metric(chosen, share)
+        kind = arrays._name_of(arrays.VISIT_ORDERS, _core.chosen_order(arrays.VISIT_ORDERS[kind], share))
     noise = _core.PoissonParam().noise_of(arrays.VISIT_ORDERS[kind]) if kind != "random" else 0.0
-    cell_side = 0.0
-    if kind != "random":
-        ids = _core.cell_side_subsample(total)
-        keys = sorted(cells.cells)
-        parts = client.gather(client.map(_subsample_of_cell, [cells] * len(keys), keys, [ids] * len(keys),
-                                         pure=False))
-        got = np.concatenate([p[0] for p in parts])
-        xyz = np.concatenate([p[1] for p in parts])[np.argsort(got, kind="stable")]
-        if len(got) != len(ids):
-            raise RuntimeError(f"{len(ids) - len(got)} of the spacing's points are missing from the cells")
-        cell_side = _core.cell_side(np.ascontiguousarray(xyz, dtype=np.float64), total)
-    return tiles.Order(kind, 0.0, noise, cell_side)
+    cell_side = _core.cell_side(sub, total) if kind != "random" else 0.0
+    return Choices({**domain, "metric": chosen}, tiles.Order(kind, 0.0, noise, cell_side), share)
+
+
+def _cluster_subsample(client, cells: partition.Partition, total: int) -> np.ndarray:
+    """The points of ``_core.cell_side_subsample(total)``, in id order, from the cells."""
+    ids = _core.cell_side_subsample(total)
+    keys = sorted(cells.cells)
+    parts = client.gather(client.map(_subsample_of_cell, [cells] * len(keys), keys, [ids] * len(keys),
+                                     pure=False))
+    got = np.concatenate([p[0] for p in parts])
+    xyz = np.concatenate([p[1] for p in parts])[np.argsort(got, kind="stable")]
+    if len(got) != len(ids):
+        raise RuntimeError(f"{len(ids) - len(got)} of the spacing's points are missing from the cells")
+    return np.ascontiguousarray(xyz, dtype=np.float64)
 
 
 @give_back
@@ -536,7 +572,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
         if size["radius"] is not None:  # a share of the points' own diagonal, as on one machine
             targets = [("radius", _radius(size["radius"], *cells.points_box()))]
         boxes = tiles.balanced(cloud, [cells.grid.edges(a) for a in range(3)], cells.histogram(), tile_points)
-        made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing,
+        choices = cluster_choices(client, cells, domain, size["visit_order"], total)
+        made = _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, choices, threads, spacing,
                        total, run_dir, ticks)
         client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
     except BaseException:
@@ -544,8 +581,8 @@ def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, 
             out.abort()
         raise
     first = srcs[0]
-    index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": metric,
-             "visit_order": size["visit_order"],
+    index = {"inputs": [s.path for s in srcs], "points": total, "seed": seed, "metric": choices.metric,
+             "visit_order": choices.order.kind, "scatter_share": choices.scatter_share,
              "adaptivity": adaptivity, "cells_per_axis": list(shape), "partition": cells.summary(),
              "bounds": _union([t["bounds"] for t in made[0]["tiles"]]),
              **cloud_files.format_fields(first), **made[0]}
@@ -561,15 +598,15 @@ def _union(boxes: list) -> Optional[list]:
     return [np.min([b[0] for b in boxes], axis=0).tolist(), np.max([b[1] for b in boxes], axis=0).tolist()]
 
 
-def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, domain, threads, spacing, total, run_dir,
-            ticks) -> list:
+def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, choices: Choices, threads, spacing, total,
+            run_dir, ticks) -> list:
     """Each level's run (at its radius, or searched to its count) written into the run folder: index entries."""
     work = run_dir / WORK
     once = len(targets) == 1 and targets[0][0] == "radius"  # one run: no read is needed again
-    job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells, runs_again=not once)
+    job = Job(srcs, cloud, 0.0, seed, choices.domain, threads, 0.0, cells, runs_again=not once)
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
-    order = cluster_order(client, cells, size["visit_order"], total)
+    order = choices.order
     # Every run reads the halo the coarsest level likely needs, so that a tile's read (its points and their
     # domain, kept on its worker) serves every level and every step of the count searches.
     reach = max(value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)

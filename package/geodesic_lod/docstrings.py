@@ -6,6 +6,7 @@ from __future__ import annotations
 from . import _core, tile_points
 
 _D = _core.DomainParam()
+_SCATTERED = _core.SCATTERED_ABOVE  # the automatic choices' threshold (vcg_ext/scatter_share.h)
 
 INPUTS = """points : (n, 3) array of float32 or float64
         The points (the vertices of a mesh). Never modified.
@@ -16,13 +17,16 @@ INPUTS = """points : (n, 3) array of float32 or float64
 FACES = """faces : (m, 3) array of int, optional
         Triangles over the points: geodesics then run over them (fast marching). Default: none."""
 
-METRIC = f"""metric : {{'curvature-density', 'eq3', 'geodesic', 'euclidean', 'surface-density'}}
-        The distance the samples are spread in: ``'curvature-density'``, (1 + a (v_i + v_j) / 2) |p_i - p_j|
-        (the default); ``'eq3'``, the method's exp(|v_i - v_j|^c) |p_i - p_j|; ``'geodesic'``, unweighted;
+METRIC = f"""metric : {{'automatic', 'curvature-density', 'eq3', 'geodesic', 'euclidean', 'surface-density'}}
+        The distance the samples are spread in: ``'curvature-density'``, (1 + a (v_i + v_j) / 2) |p_i - p_j|;
+        ``'eq3'``, the method's exp(|v_i - v_j|^c) |p_i - p_j|; ``'geodesic'``, unweighted;
         ``'euclidean'``, straight lines; ``'surface-density'``, (1 + (s_i + s_j) / 2) |p_i - p_j| with s_i
         = a times a point's flatness (1 on a plane, 0 in an even scatter such as leaves), up to twice
         that at a surface's rim: for airborne LiDAR, where it gives ground and roofs the samples the
         curvature-density metric spends on vegetation (best with ``visit_order='rims'``).
+        ``'automatic'`` (the default): ``'surface-density'`` where more than {_SCATTERED:.0%} of the points'
+        neighbourhoods scatter (airborne LiDAR), else ``'curvature-density'``; the result's ``metric``
+        names the one taken.
     geodesics : {{'auto', 'mesh', 'point-graph'}}
         Where geodesics run: ``'mesh'`` over the faces, ``'point-graph'`` on the symmetric k-nearest-neighbour
         graph; ``'auto'`` (the default) picks the mesh where there are faces.
@@ -107,7 +111,7 @@ LOD_REGIONS = """region_of : (n,) ndarray of int64
         With ``regions``: per input row, the rank in ``indices`` of the sample whose region holds it (-1:
         none); else empty."""
 
-LOD_DOMAIN = """point_count : int
+LOD_DOMAIN = f"""point_count : int
         Points sampled from.
     estimated_normals : int
         Normals estimated from the points (the others are the input's).
@@ -116,7 +120,12 @@ LOD_DOMAIN = """point_count : int
     left_out : int
         Input rows in no triangle: mesh geodesics do not sample them.
     mesh_geodesics : bool
-        Whether geodesics ran over the faces (fast marching), else on the point graph or in straight lines."""
+        Whether geodesics ran over the faces (fast marching), else on the point graph or in straight lines.
+    metric : str
+        The metric the samples are spread in: the one asked for, or the automatic choice.
+    scatter_share : float
+        The share of the points whose neighbourhoods scatter, measured on a subsample chosen by their rows;
+        above {_SCATTERED:g} the automatic choices take the surface-density metric and the rims first."""
 
 # An Attributes section opening with the attributes of every sampler's result.
 LOD_ATTRIBUTES = f"""Attributes
@@ -126,12 +135,13 @@ LOD_ATTRIBUTES = f"""Attributes
     {LOD_REGIONS}
     {LOD_DOMAIN}"""
 
-VISIT_ORDER = """visit_order : {'random', 'prominence', 'rims'}
+VISIT_ORDER = f"""visit_order : {{'automatic', 'random', 'prominence', 'rims'}}
         Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage.
-        'prominence' (default): the points that stand out of their scan's scatter at the disks' scale
-        first (docs/visit_order.json). 'random': the paper's seeded order. 'rims': the points at the rim
-        of their surroundings first, such as a roof's edges (docs/airborne_classes.md). The same on a
-        cluster (``lod_files``, ``copc_file``)."""
+        'prominence': the points that stand out of their scan's scatter at the disks' scale first
+        (docs/visit_order.json). 'random': the paper's seeded order. 'rims': the points at the rim of their
+        surroundings first, such as a roof's edges (docs/airborne_classes.md). 'automatic' (the default):
+        'rims' where the points scatter (as the automatic metric chooses), else 'prominence'. The same on
+        a cluster (``lod_files``, ``copc_file``)."""
 
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
@@ -339,13 +349,15 @@ TEXTS = {
         Threads per task (default: all the worker machine's cores).
     progress : callable, optional
         Called with (tasks done, tasks so far).
-    visit_order : {{'random', 'prominence', 'rims'}}
-        As in ``poisson_lod``. Default 'random'.
+    visit_order : {{'automatic', 'random', 'prominence', 'rims'}}
+        As in ``poisson_lod``, and the same default.
 
     Returns
     -------
     dict
-        The index: tiles (paths relative to it), counts, bounds, radius, point format, CRS, parameters.
+        The index: tiles (paths relative to it), counts, bounds, radius, point format, CRS, parameters
+        (``metric`` and ``visit_order`` as taken, the automatic choices made for the whole cloud from its
+        ``scatter_share``).
 
     Raises
     ------
@@ -567,6 +579,8 @@ TEXTS = {
         Samples of the Poisson set before a trim.
     trimmed : bool
         Whether the set was thinned to the count (the samples nearest to others taken out first).
+    visit_order : str
+        The visiting order the disks took: the one asked for, or the automatic choice.
     """,
     "FpsLod": f"""What ``fps_lod`` returns: a Lod in farthest-point order; its first k samples are the k-sample LOD.
 

@@ -164,7 +164,7 @@ def test_a_key_order_gives_the_single_machine_samples_by_radius_and_by_count(req
 
 @pytest.mark.parametrize("order", ["border", None, 2, ["rims"]])
 def test_an_unknown_order_is_refused_before_anything_is_written(roofs, client, tmp_path, order):
-    with pytest.raises(gl.InputError, match="visit_order must be one of 'random', 'prominence', 'rims'"):
+    with pytest.raises(gl.InputError, match="visit_order must be one of 'automatic', 'random', 'prominence', 'rims'"):
         dist.lod_files([str(roofs[0])], tmp_path / "lod", radius=RADIUS, visit_order=order, client=client)
     assert not (tmp_path / "lod").exists()
 

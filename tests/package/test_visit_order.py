@@ -16,8 +16,9 @@ from conftest import bumpy_sphere, rows_of
 from geodesic_lod import point_files as pf
 from point_file_inputs import ply_cloud
 
-ORDERS = ["random", "prominence", "rims"]
-PLUGIN_ORDER = {"random": "Random", "prominence": "Prominent points first", "rims": "Rims first"}
+ORDERS = ["random", "prominence", "rims", "automatic"]
+PLUGIN_ORDER = {"random": "Random", "prominence": "Prominent points first", "rims": "Rims first",
+                "automatic": "Automatic (rims first where the points scatter)"}
 
 
 def two_roofs(n=4000, seed=2):
@@ -33,10 +34,12 @@ def roofs():
     return two_roofs()
 
 
-def test_the_default_visits_the_prominent_points_first(roofs):
-    assert gl.arrays.DEFAULT_VISIT_ORDER == "prominence"  # the C++ Param's, read by the package
-    np.testing.assert_array_equal(gl.poisson_lod(roofs, count=200, seed=3).indices,
+def test_the_default_visits_the_prominent_points_first_on_surfaces(roofs):
+    assert gl.arrays.DEFAULT_VISIT_ORDER == "automatic"  # the C++ Param's, read by the package
+    lod = gl.poisson_lod(roofs, count=200, seed=3)
+    np.testing.assert_array_equal(lod.indices,
                                   gl.poisson_lod(roofs, count=200, seed=3, visit_order="prominence").indices)
+    assert lod.visit_order == "prominence"
 
 
 @pytest.mark.parametrize("order", ORDERS)
@@ -85,7 +88,7 @@ def test_a_domain_gives_what_the_function_gives(roofs, order):
 
 @pytest.mark.parametrize("bad", ["border", None, 1, "Random", ["rims"]])
 def test_an_unknown_order_is_refused_by_name(roofs, bad):
-    with pytest.raises(ValueError, match="visit_order must be one of 'random', 'prominence', 'rims'"):
+    with pytest.raises(ValueError, match="visit_order must be one of 'automatic', 'random', 'prominence', 'rims'"):
         gl.poisson_lod(roofs, count=10, visit_order=bad)
 
 
@@ -99,11 +102,11 @@ def test_the_filter_gives_what_the_function_gives(roofs, order):
 
 def test_the_filter_refuses_an_order_it_does_not_offer(roofs):
     ms = layer(roofs)
-    with pytest.raises(pymeshlab.InvalidEnumException, match="'Random'; 'Prominent points first'; 'Rims first'"):
+    with pytest.raises(pymeshlab.InvalidEnumException, match="'Random'; 'Prominent points first'; 'Rims first'; 'Automatic"):
         ms.generate_geodesic_poisson_lod(samplenum=250, visitorder="Border")
 
 
-@pytest.mark.parametrize("order", ["prominence", "rims"])
+@pytest.mark.parametrize("order", ["prominence", "rims", "automatic"])
 def test_the_command_gives_what_the_function_gives(tmp_path, order):
     src = ply_cloud(tmp_path / "in.ply")
     points, normals = pf.read(src).points, pf.read(src).normals

@@ -109,7 +109,14 @@ TEST(LodFilters, ParametersHaveThePythonNamesAndPaperDefaults) {
   EXPECT_EQ(byName.at("curvatureexponent").defaultValue, 1.0);
   EXPECT_EQ(byName.at("normalneighbors").defaultValue, 20);
   EXPECT_EQ(byName.at("graphneighbors").defaultValue, 10);
-  EXPECT_EQ(byName.at("metric").values.size(), 5);
+  // New choices come last, so that a script's earlier choice keeps its index; automatic is the default.
+  ASSERT_EQ(byName.at("metric").values.size(), 6);
+  EXPECT_TRUE(byName.at("metric").values[1].startsWith("Curvature-density"));
+  EXPECT_TRUE(byName.at("metric").values[5].startsWith("Automatic"));
+  EXPECT_EQ(byName.at("metric").defaultValue, 5);
+  ASSERT_EQ(byName.at("visitorder").values.size(), 4);
+  EXPECT_TRUE(byName.at("visitorder").values[3].startsWith("Automatic"));
+  EXPECT_EQ(byName.at("visitorder").defaultValue, 3);
 }
 
 TEST(LodFilters, OutputIsACopyOfChosenVerticesAndTheInputIsUnchanged) {
