@@ -48,11 +48,11 @@ def ours_rims_first(pymeshlab, xyz, n, seed):
     return gl.poisson_lod(xyz, count=n, seed=seed, metric="euclidean", visit_order="rims").indices
 
 
-def ours_surface_density(pymeshlab, xyz, n, seed):
-    """The surface-density metric (vcg_ext/surface_density.h: denser on smooth surfaces, up to twice so at
-    their rims, than in an even scatter), visiting the rims first, as for the Euclidean metric above."""
+def ours_on_surfaces(pymeshlab, xyz, n, seed):
+    """What the defaults take where the points do not scatter (scans of objects, terrain): the
+    curvature-density metric with the prominent points first."""
     import geodesic_lod as gl
-    return gl.poisson_lod(xyz, count=n, seed=seed, metric="surface-density", visit_order="rims").indices
+    return gl.poisson_lod(xyz, count=n, seed=seed, metric="curvature-density", visit_order="prominence").indices
 
 
 def meshlab_simplification(pymeshlab, xyz, n, seed):
@@ -83,9 +83,10 @@ def uniform_random(pymeshlab, xyz, n, seed):
 
 
 METHODS = {"ours (defaults)": ours,
-           "ours, Euclidean metric": lambda pm, xyz, n, seed: ours(pm, xyz, n, seed, metric="euclidean"),
+           "ours, curvature-density metric, prominent points first": ours_on_surfaces,
+           "ours, Euclidean metric": lambda pm, xyz, n, seed: ours(pm, xyz, n, seed, metric="euclidean",
+                                                                   visit_order="prominence"),
            "ours, Euclidean metric, rims first": ours_rims_first,
-           "ours, surface-density metric, rims first": ours_surface_density,
            "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
 
 

@@ -49,6 +49,9 @@ AIRBORNE = [("tile", lambda r: r["tile"]), ("rate", _rate), ("method", lambda r:
 # The mesh page's ratios of mean distances: (heading, numerator, denominator).
 OURS, KEPT = "ours, Poisson LOD, optimized (default)", "ours, Poisson LOD, input vertices"
 QEC, QEC_KEPT = "MeshLab quadric edge collapse (defaults)", "quadric edge collapse on input vertices"
+SCATTER = [("file", lambda r: r["model"]), ("points", lambda r: f"{r['points']:,}"),
+           ("subsample", lambda r: f"{r['subsample']:,}"), ("scattering", lambda r: f"{100 * r['share']:.1f}%"),
+           ("automatic metric", lambda r: r["metric"]), ("automatic visiting order", lambda r: r["visit_order"])]
 GAP = [("ours (default) / quadric collapse", OURS, QEC),
        ("pyramid level / quadric collapse", "ours, LOD pyramid of every rate, optimized (default)", QEC),
        ("ours on input vertices / quadric collapse", KEPT, QEC),
@@ -214,6 +217,7 @@ SAVED = {
     "mesh_lod_tuning": ("mesh_lod.md", lambda rows: {"tuning against quadric collapse": against_qec(rows),
                                                      "tuning": table(rows, MESH)}),
     "airborne_classes": ("airborne_classes.md", lambda rows: {"results": table(rows, AIRBORNE)}),
+    "scatter_share": ("airborne_classes.md", lambda rows: {"scatter share": table(rows, SCATTER)}),
 }
 
 
