@@ -187,15 +187,18 @@ void ReadDomainParams(const ParamSource& src, DomainParam& d, uint64_t& seed, co
 
 QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_ext::Metric asked) {
   const vcg_ext::Metric metric = r.metric;
-  QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric, %6 geodesics")
+  const QString chosen = asked == vcg_ext::Metric::Automatic
+                             ? QString(" (chosen: %1% of the points' neighbourhoods scatter)")
+                                   .arg(100 * r.scatterShare, 0, 'f', 1)
+                             : QString();
+  QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric%6, %7 geodesics")
                   .arg(what)
                   .arg(r.vertIndex.size())
                   .arg(r.pointCount)
                   .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
                   .arg(kMetrics.NameOf(metric))
+                  .arg(chosen)
                   .arg(metric == vcg_ext::Metric::Euclidean ? "no" : r.meshGeodesics ? "fast-marching" : "point-graph");
-  if (asked == vcg_ext::Metric::Automatic)
-    s += QString(" (chosen: %1% of the points' neighbourhoods scatter)").arg(100 * r.scatterShare, 0, 'f', 1);
   s += QString("; %1 normals estimated; %2 connected parts").arg(r.estimatedNormals).arg(r.components);
   if (r.leftOut) s += QString("; %1 vertices in no triangle left out (use the point graph to keep them)").arg(r.leftOut);
   if (!r.faces.empty()) s += QString("; %1 triangles").arg(r.faces.size());

@@ -304,6 +304,21 @@ TEST(LodFilters, NormalVariationFilterGivesEq1ForEveryVertexInPlace) {
   EXPECT_DOUBLE_EQ(run.values.at("max").toDouble(), top);
 }
 
+TEST(LodFilters, TheLogNamesWhatTheAutomaticDefaultsTook) {
+  Mesh in;
+  Bumpy(in, 30);  // a surface: the curvature-density metric, the prominent points first
+  MapSource p(in);
+  const LodRun automatic = RunPoissonLod(in, p, nullptr);
+  const std::string log = automatic.summary.toStdString();
+  EXPECT_TRUE(automatic.summary.contains("in the Curvature-density geodesic metric (chosen: ")) << log;
+  EXPECT_TRUE(automatic.summary.contains("of the points' neighbourhoods scatter)")) << log;
+  EXPECT_TRUE(automatic.summary.contains("visiting order: Prominent points first")) << log;
+  p.set("metric", 3);  // Euclidean, asked for by name: nothing chosen
+  const LodRun named = RunPoissonLod(in, p, nullptr);
+  EXPECT_TRUE(named.summary.contains("in the Euclidean metric")) << named.summary.toStdString();
+  EXPECT_FALSE(named.summary.contains("chosen")) << named.summary.toStdString();
+}
+
 TEST(LodFilters, PoissonGivesTheAskedCountAndTheRadiusItUsed) {
   Mesh in;
   Bumpy(in, 30);
