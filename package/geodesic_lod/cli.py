@@ -411,7 +411,7 @@ def _copc(args, progress) -> list:
                      progress=progress)
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
-            f"{lod.octree.spacing:.6g} at depth 0"]
+            f"{lod.octree.spacing:.6g} at depth 0"] + (_choices_line(args, lod) if lod.metric else [])
 
 
 def _done(args, summary: list, start: float) -> int:

@@ -544,6 +544,13 @@ TEXTS = {
         Per input row, its depth: 0 for the coarsest LOD's points, ``len(radii)`` for those in no LOD.
     radii : list of float
         Per Poisson depth d, the radius of its LOD, ``octree.spacing / 2**d``, in the metric.
+    metric : str
+        The metric the depths were sampled in: the one asked for, or the automatic choice ('' where no
+        depth was sampled).
+    visit_order : str
+        Their visiting order, as asked or automatically chosen ('' where no depth was sampled).
+    scatter_share : float
+        As in ``PoissonLod``: the share the automatic choices followed (0 where no depth was sampled).
     """,
     "Domain": f"""One input's normals, curvature (eq. 1) and geodesic structure, built once for several LODs.
 

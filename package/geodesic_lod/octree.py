@@ -22,6 +22,9 @@ class OctreeLod:
     octree: Octree
     depth: np.ndarray
     radii: list
+    metric: str = ""
+    visit_order: str = ""
+    scatter_share: float = 0.0
 
     def cut(self, d: int) -> np.ndarray:
         """The rows of depths 0 to d, in increasing order: the nested LOD of radius ``radii[d]``."""
@@ -111,6 +114,7 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
     depths = depth_count(octree, p)
     radii = [octree.spacing / 2 ** d for d in range(depths)]
     depth = np.full(p.shape[0], depths, dtype=np.int32)
+    taken = {}
     if depths:
         dom = Domain(p, n, **dataclasses.asdict(options), threads=threads, progress=part(0.0, 0.4))
         finer = None
@@ -119,9 +123,10 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
                                   progress=part(0.4 + 0.6 * k / depths, 0.4 + 0.6 * (k + 1) / depths))
             finer = np.sort(lod.indices)
             depth[finer] = d
+        taken = dict(metric=lod.metric, visit_order=lod.visit_order, scatter_share=lod.scatter_share)
     elif progress is not None:
         progress(1.0)
-    return OctreeLod(octree, depth, radii)
+    return OctreeLod(octree, depth, radii, **taken)
 
 
 @documented

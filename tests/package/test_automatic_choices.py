@@ -81,10 +81,22 @@ def test_the_filter_chooses_as_the_function(trees):
 def test_the_command_chooses_as_the_function(tmp_path, trees):
     np.save(tmp_path / "in.npy", trees)
     r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(tmp_path / "in.npy"), "-o", str(tmp_path / "out.npy"),
-                        "--rate", "5", "-q"], capture_output=True, text=True, timeout=300)
+                        "--rate", "5"], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     expected = trees[np.sort(gl.poisson_lod(trees, rate=5, **SCATTERED).indices)]
     np.testing.assert_array_equal(np.load(tmp_path / "out.npy")[:, :3], expected)
+    assert "geodesic-lod: metric surface-density, visiting order rims (automatic: " in r.stderr  # the summary says so
+    r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(tmp_path / "in.npy"), "-o", str(tmp_path / "e.npy"),
+                        "--rate", "5", "--metric", "euclidean", "--visit-order", "random"], capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 0 and "automatic" not in r.stderr, r.stderr  # nothing was left to choose
+
+
+def test_an_octree_lod_chooses_as_the_function():
+    p = ground_with_trees(150_000)  # more than a node takes: Poisson depths below the root
+    lod = gl.octree_lod(p)
+    assert len(lod.radii) > 0 and (lod.metric, lod.visit_order) == ("surface-density", "rims")
+    np.testing.assert_array_equal(lod.depth, gl.octree_lod(p, **SCATTERED).depth)
 
 
 @pytest.fixture(scope="module")
