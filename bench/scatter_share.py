@@ -4,7 +4,6 @@ visiting order the automatic defaults take from it.
 
 usage: PYTHONPATH=build/python .venv/bin/python bench/scatter_share.py   (writes docs/scatter_share.json)
 """
-import numpy as np
 
 import doc_tables
 from host import SHARED_DATA
@@ -21,9 +20,9 @@ def points_of(path):
 def row(name, points):
     """The cloud's share and the automatic choices, as a domain of these points makes them."""
     from geodesic_lod import _core, arrays
-    sub = points[_core.cell_side_subsample(len(points)).astype(np.int64)]
-    share = _core.scatter_share(np.ascontiguousarray(sub, dtype=np.float64))
-    return dict(model=name, points=int(len(points)), subsample=int(len(sub)), share=float(share),
+    share = arrays.scatter_share(points)
+    return dict(model=name, points=int(len(points)), subsample=int(len(_core.cell_side_subsample(len(points)))),
+                share=share,
                 metric=arrays._name_of(arrays.METRICS, _core.chosen_metric(_core.Metric.Automatic, share)),
                 visit_order=arrays._name_of(arrays.VISIT_ORDERS,
                                             _core.chosen_order(_core.VisitOrder.Automatic, share)))

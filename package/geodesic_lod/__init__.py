@@ -23,7 +23,7 @@ import typing as _typing
 # Ctrl-C before numpy and the core load (geodesic_lod/command.py).
 _HOMES = {
     "arrays": ("DEFAULT_METRIC", "METRICS", "FpsLod", "Lod", "LodPyramid", "NormalVariation", "PoissonLod", "fps_lod",
-               "level_counts", "lod_pyramid", "normal_variation", "poisson_lod"),
+               "level_counts", "lod_pyramid", "normal_variation", "poisson_lod", "scatter_share"),
     "domain": ("Domain",),
     "height_field": ("HeightFieldLod", "height_field_lod"),
     "octree": ("OctreeLod", "octree_lod", "write_copc"),
@@ -34,7 +34,7 @@ __all__ = sorted(_HOME_OF)
 
 if _typing.TYPE_CHECKING:  # what type checkers and editors read
     from .arrays import (DEFAULT_METRIC, METRICS, FpsLod, Lod, LodPyramid, NormalVariation, PoissonLod, fps_lod,
-                         level_counts, lod_pyramid, normal_variation, poisson_lod)
+                         level_counts, lod_pyramid, normal_variation, poisson_lod, scatter_share)
     from .domain import Domain
     from .errors import ClusterJobError, InputError, PointFileError
     from .height_field import HeightFieldLod, height_field_lod

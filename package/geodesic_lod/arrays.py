@@ -531,3 +531,10 @@ def normal_variation(points, normals=None, *, normal_neighbors: int = DOMAIN_DEF
                       recompute_normals=recompute_normals).param(p.shape[0])
     _, threads = run_options(0, threads, progress, False, False)
     return NormalVariation(**call_core(_core.normal_variation, p, n, d, threads, progress))
+
+
+@documented
+def scatter_share(points) -> float:
+    p, _ = point_arrays(points, None)
+    sub = p[_core.cell_side_subsample(len(p)).astype(np.int64)]
+    return float(_core.scatter_share(np.ascontiguousarray(sub, dtype=np.float64)))

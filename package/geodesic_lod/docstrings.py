@@ -260,6 +260,31 @@ TEXTS = {
     >>> float(gl.normal_variation(flat).curvature.max()) < 1e-6
     True
     """,
+    "scatter_share": f"""The share of the points whose 20 nearest scatter rather than lie along a plane, which the
+    automatic metric and visiting order follow: above {_SCATTERED:g}, the surface-density metric with the
+    rims first (airborne LiDAR), else the curvature-density metric with the prominent points first. Measured,
+    as every sampler measures it, on at most 65,536 of the points (every point up to that size, else evenly
+    through their rows), so that it is the same on one machine and on a cluster.
+
+    Parameters
+    ----------
+    points : (n, 3) array of float32 or float64
+        The points. Never modified.
+
+    Returns
+    -------
+    float
+        From 0 (every neighbourhood on a surface) to 1; a result's ``scatter_share`` is this.
+
+    {RAISES}
+
+    Examples
+    --------
+    >>> import numpy as np, geodesic_lod as gl
+    >>> leaves = np.random.default_rng(0).random((5000, 3))
+    >>> gl.scatter_share(leaves) > 0.5
+    True
+    """,
     "Domain.poisson_lod": f"""``poisson_lod`` on this domain: the same samples as the function gives for the
     domain's inputs and these arguments.
 

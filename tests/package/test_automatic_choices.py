@@ -32,12 +32,6 @@ def ground_with_trees(n=24000, seed=5):
     return rng.permutation(np.vstack([ground, trees]))
 
 
-def share_of(points):
-    """The scatter share one machine measures (on the rows of cell_side_subsample)."""
-    sub = points[_core.cell_side_subsample(len(points)).astype(np.int64)]
-    return _core.scatter_share(np.ascontiguousarray(sub, dtype=np.float64))
-
-
 @pytest.fixture(scope="module")
 def trees():
     return ground_with_trees()
@@ -50,11 +44,11 @@ def test_the_defaults_are_automatic():
 @pytest.mark.parametrize("model, named", [("trees", SCATTERED), ("sphere", SURFACES)])
 def test_each_cloud_gets_the_named_choice_and_the_result_says_which(trees, model, named):
     p = trees if model == "trees" else bumpy_sphere(6000)
-    assert (share_of(p) > _core.SCATTERED_ABOVE) == (model == "trees")
+    assert (gl.scatter_share(p) > _core.SCATTERED_ABOVE) == (model == "trees")
     for ask in (dict(count=600), dict(radius=0.4 if model == "trees" else 0.06)):
         lod = gl.poisson_lod(p, **ask, seed=2)
         assert lod.metric == named["metric"] and lod.visit_order == named["visit_order"]
-        assert lod.scatter_share == pytest.approx(share_of(p))
+        assert lod.scatter_share == pytest.approx(gl.scatter_share(p))
         np.testing.assert_array_equal(lod.indices, gl.poisson_lod(p, **ask, seed=2, **named).indices)
     other = SURFACES if named is SCATTERED else SCATTERED  # so that the equalities above can fail
     assert not np.array_equal(gl.poisson_lod(p, count=600, seed=2).indices,
@@ -110,11 +104,11 @@ def test_a_cluster_chooses_once_for_the_whole_cloud(client, tmp_path, trees):
     records = np.concatenate([laspy.read(str(p)).points.array for p in sorted(folder.glob("*.laz"))])
     points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
     ground_only = points[points[:, 0] > 10]  # what a tile over the bare half holds
-    assert share_of(ground_only) <= _core.SCATTERED_ABOVE < share_of(points)
+    assert gl.scatter_share(ground_only) <= _core.SCATTERED_ABOVE < gl.scatter_share(points)
     index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.4, tile_points=4000, client=client, threads=1)
     assert len(index["tiles"]) >= 4
     assert index["metric"] == "surface-density" and index["visit_order"] == "rims"
-    assert index["scatter_share"] == pytest.approx(share_of(points))
+    assert index["scatter_share"] == pytest.approx(gl.scatter_share(points))
     got = sorted(output_records(tmp_path / "lod")[1]["gps_time"].astype(np.int64))
     assert got == sorted(gl.poisson_lod(points, radius=0.4).indices)
 
@@ -134,4 +128,4 @@ def test_the_shared_scans_of_objects_keep_the_curvature_metric_and_airborne_tile
     else:
         las = laspy.read(str(path))
         points = np.column_stack([las.x, las.y, las.z])
-    assert (share_of(points) > _core.SCATTERED_ABOVE) == (name in AIRBORNE)
+    assert (gl.scatter_share(points) > _core.SCATTERED_ABOVE) == (name in AIRBORNE)
