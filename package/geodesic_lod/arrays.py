@@ -21,14 +21,14 @@ from .errors import InputError
 # The product defaults live in vcg_ext's Param structs; these read them.
 DOMAIN_DEFAULTS = _core.DomainParam()
 
-METRICS = {"automatic": _core.Metric.Automatic, "curvature-density": _core.Metric.CurvatureDensity, "eq3": _core.Metric.WeightedEq3,
-           "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean,
+METRICS = {"automatic": _core.Metric.Automatic, "curvature-density": _core.Metric.CurvatureDensity,
+           "eq3": _core.Metric.WeightedEq3, "geodesic": _core.Metric.Geodesic, "euclidean": _core.Metric.Euclidean,
            "surface-density": _core.Metric.SurfaceDensity}
 GEODESICS = {"auto": _core.GeodesicMode.Auto, "mesh": _core.GeodesicMode.Mesh,
              "point-graph": _core.GeodesicMode.PointGraph}
 REGIONS = {None: _core.Regions.None_, "disk": _core.Regions.Disk, "voronoi": _core.Regions.Voronoi}
-VISIT_ORDERS = {"automatic": _core.VisitOrder.Automatic, "random": _core.VisitOrder.Random, "prominence": _core.VisitOrder.Prominence,
-                "rims": _core.VisitOrder.Border}
+VISIT_ORDERS = {"automatic": _core.VisitOrder.Automatic, "random": _core.VisitOrder.Random,
+                "prominence": _core.VisitOrder.Prominence, "rims": _core.VisitOrder.Border}
 
 
 def _name_of(table, value):

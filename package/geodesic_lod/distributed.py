@@ -291,7 +291,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # a cluster takes every order one machine takes
     try:
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
-                                           max_runs=max_runs, visit_order=visit_order), seed, metric, adaptivity, domain,
+                                           max_runs=max_runs, visit_order=visit_order), seed, adaptivity, domain,
                           tile_points, client, threads, progress)
     except KilledWorker as e:
         raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
@@ -505,7 +505,7 @@ def _cluster_subsample(client, cells: partition.Partition, total: int) -> np.nda
     got = np.concatenate([p[0] for p in parts])
     xyz = np.concatenate([p[1] for p in parts])[np.argsort(got, kind="stable")]
     if len(got) != len(ids):
-        raise RuntimeError(f"{len(ids) - len(got)} of the spacing's points are missing from the cells")
+        raise RuntimeError(f"{len(ids) - len(got)} of the subsample's points are missing from the cells")
     return np.ascontiguousarray(xyz, dtype=np.float64)
 
 
@@ -543,7 +543,7 @@ def check_worker_memory(client) -> None:
                                   f"{2 * rss / 1e6:.0f} MB")
 
 
-def _lod_files(paths, out, size, seed, metric, adaptivity, domain, tile_points, client, threads, progress):
+def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, threads, progress):
     check_worker_memory(client)
     surveys = client.gather(client.map(cloud_files.survey, paths, pure=False))
     srcs = cloud_files.sources(paths, surveys)
