@@ -101,7 +101,7 @@ def test_filters_menu_dialog_apply_and_export(gui, tmp_path):
     s.click(s.wait_for("Filters", name="06_menubar", region=MENUS))
     s.click(s.wait_for("Sampling", name="07_filters", region=MENUS))
     s.click(s.wait_for("Geodesic Poisson-disk LOD", name="08_sampling", region=MENUS))
-    s.click(s.wait_for("Curvature-density geodesic", name="09_dialog", region=DIALOG))
+    s.click(s.wait_for("Automatic (surface-density", name="09_dialog", region=DIALOG))  # the default
     s.click(s.wait_for("Weighted geodesic (eq. 3)", name="10_metric_list", region=DIALOG))
     perc = s.wait_for("1.000", name="11_dialog", region=DIALOG)
     s.run("xdotool", "mousemove", str(perc[0]), str(perc[1]), "click", "--repeat", "3", "1")
