@@ -118,7 +118,8 @@ def over_seeds(rows) -> list:
                         samples=float(np.mean([r["samples"] for r in rs])), points=rs[0]["points"],
                         point_share=rs[0]["point_share"], kept=float(np.mean([r["kept"] for r in rs])),
                         mean_error=float(np.mean(errors)), lowest_error=min(errors), highest_error=max(errors),
-                        error_share=float(np.mean([r["error_share"] for r in rs]))))
+                        error_share=float(np.mean([r["error_share"] for r in rs])),
+                        seconds=float(np.mean([r["seconds"] for r in rs]))))
     return out
 
 

@@ -45,6 +45,9 @@ AIRBORNE = [("tile", lambda r: r["tile"]), ("rate", _rate), ("method", lambda r:
             ("kept", lambda r: f"{100 * r['kept']:.1f}%"), ("mean error (m)", lambda r: f"{r['mean_error']:.3f}"),
             ("lowest-highest (m)", lambda r: f"{r['lowest_error']:.3f}-{r['highest_error']:.3f}"),
             ("share of error", lambda r: f"{100 * r['error_share']:.1f}%")]
+# Each method's time on each tile and rate (the rows of its ground class: one per run).
+AIRBORNE_TIME = [("tile", lambda r: r["tile"]), ("rate", _rate), ("method", lambda r: r["method"]),
+                 ("samples", lambda r: f"{r['samples']:.0f}"), ("time (s)", lambda r: f"{r['seconds']:.2f}")]
 
 # The mesh page's ratios of mean distances: (heading, numerator, denominator).
 OURS, KEPT = "ours, Poisson LOD, optimized (default)", "ours, Poisson LOD, input vertices"
@@ -216,7 +219,9 @@ SAVED = {
                                               **_per_model(rows, MESH)}),
     "mesh_lod_tuning": ("mesh_lod.md", lambda rows: {"tuning against quadric collapse": against_qec(rows),
                                                      "tuning": table(rows, MESH)}),
-    "airborne_classes": ("airborne_classes.md", lambda rows: {"results": table(rows, AIRBORNE)}),
+    "airborne_classes": ("airborne_classes.md", lambda rows: {
+        "results": table(rows, AIRBORNE),
+        "time": table(rows, AIRBORNE_TIME, lambda r: r["group"] == "ground" and r["rate"] < 1)}),
     "scatter_share": ("airborne_classes.md", lambda rows: {"scatter share": table(rows, SCATTER)}),
 }
 

@@ -28,13 +28,14 @@ def test_each_class_gets_its_kept_share_mean_error_and_share_of_the_error_sum():
 def test_over_seeds_gives_each_class_the_mean_and_range_of_its_runs():
     from airborne_classes import over_seeds  # noqa: E402
     rows = [dict(tile="t", rate=0.1, method=m, group=g, seed=s, samples=100 + s, points=50, point_share=0.5,
-                 kept=0.1 * (s + 1), mean_error=e, error_share=0.5)
+                 kept=0.1 * (s + 1), mean_error=e, error_share=0.5, seconds=1.0 + s)
             for m in ("a", "b") for g in ("ground", "buildings") for s, e in enumerate([0.3, 0.1, 0.2])]
     got = over_seeds(rows)
     assert len(got) == 4 and all(r["seeds"] == 3 for r in got)
     for r in got:
         assert np.isclose(r["mean_error"], 0.2) and (r["lowest_error"], r["highest_error"]) == (0.1, 0.3)
         assert np.isclose(r["kept"], 0.2) and np.isclose(r["samples"], 101) and r["points"] == 50
+        assert np.isclose(r["seconds"], 2.0)
 
 
 def test_the_rims_first_method_keeps_exactly_n_input_points_and_puts_a_roofs_edge_first():
