@@ -27,7 +27,9 @@ template <class Scalar>
 class ScatterShare {
  public:
   typedef vcg::Point3<Scalar> Coord;
-  /// A neighbourhood: a subsample point and its nearest, k in all (eq. 1's k).
+  /// A neighbourhood: a subsample point and its nearest, k in all: the k of
+  /// the surface density's default, fixed here so that the choice is one per
+  /// cloud whatever the options (a cluster measures it before any tile).
   static constexpr int kNeighbours = 20;
   /// A neighbourhood scatters below this flatness (SurfaceDensity::Flatness).
   static constexpr double kFlat = 0.5;
