@@ -117,10 +117,11 @@ class CellGrid {
   /// f(r, ball) for the r-th point in cell order, where ball(r2, g) calls g(q)
   /// for the points within sqrt(r2) (at most the cell side) of it, q their
   /// offset from it. A cell's 27 neighbour ranges are looked up once for all
-  /// its points (a lookup per point was most of the cost on small cells). The
-  /// points are read through the cell order, not copied in it: a copy was the
-  /// peak of a key visiting order, and points numbered along cells already
-  /// (a domain's) read nearly in sequence. With `from`, the balls hold only
+  /// its points (a lookup per point was most of the cost on small cells), and
+  /// the block's points are copied once for them all. The points are read
+  /// through the cell order, not copied whole in it: a copy was the peak of a
+  /// key visiting order, and points numbered along cells already (a domain's)
+  /// read nearly in sequence. With `from`, the balls hold only
   /// its points (still around every point). `progress` hears of the points
   /// done (and may stop the loop) from the calling thread.
   template <class F>
@@ -138,32 +139,40 @@ class CellGrid {
         ranges[size_t(m++)] = {at[b], at[b + 1]};
         candidates += size_t(at[b + 1] - at[b]);
       });
-      // The offsets within the ball, gathered with no branch on the test (a
-      // third of the candidates pass it, in no pattern a branch predicts),
-      // then handed to g in the same order.
-      thread_local std::vector<Coord> inside;
-      if (inside.size() < candidates) inside.resize(candidates);
-      auto balls = [&](auto&& read) {  // read(t): the t-th point of the ranges
-        for (int r = start_[c]; r < start_[c + 1]; ++r) {
-          const Coord p = pos[size_t(pts_[size_t(r)])];
-          f(size_t(r), [&](double r2, auto&& g) {
-            const Scalar within = Scalar(r2);
-            Coord* out = inside.data();
-            size_t kept = 0;
-            for (int k = 0; k < m; ++k)
-              for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t) {
-                const Coord q = read(t) - p;
-                out[kept] = q;
-                kept += q.SquaredNorm() <= within;
-              }
-            for (size_t i = 0; i < kept; ++i) g(vcg::Point3d::Construct(out[i]));
-          });
-        }
+      // The block's points, copied once for all the cell's balls (coordinates
+      // apart, so the test below runs on plain arrays), then each ball's
+      // offsets within it gathered with no branch on the test (a third of the
+      // candidates pass it, in no pattern a branch predicts) and handed to g
+      // in the block's order.
+      thread_local std::vector<Scalar> block, inside;
+      if (block.size() < 3 * candidates) block.resize(3 * candidates), inside.resize(3 * candidates);
+      Scalar *bx = block.data(), *by = bx + candidates, *bz = by + candidates;
+      Scalar *ox = inside.data(), *oy = ox + candidates, *oz = oy + candidates;
+      auto gather = [&](auto&& read) {  // read(t): the t-th point of the ranges
+        size_t u = 0;
+        for (int k = 0; k < m; ++k)
+          for (int t = ranges[size_t(k)].first; t < ranges[size_t(k)].second; ++t, ++u) {
+            const Coord q = read(t);
+            bx[u] = q[0], by[u] = q[1], bz[u] = q[2];
+          }
       };
       if (from)
-        balls([&](int t) { return from->pos[size_t(t)]; });
+        gather([&](int t) { return from->pos[size_t(t)]; });
       else
-        balls([&](int t) { return pos[size_t(pts_[size_t(t)])]; });
+        gather([&](int t) { return pos[size_t(pts_[size_t(t)])]; });
+      for (int r = start_[c]; r < start_[c + 1]; ++r) {
+        const Coord p = pos[size_t(pts_[size_t(r)])];
+        f(size_t(r), [&](double r2, auto&& g) {
+          const Scalar within = Scalar(r2), px = p[0], py = p[1], pz = p[2];
+          size_t kept = 0;
+          for (size_t t = 0; t < candidates; ++t) {
+            const Scalar qx = bx[t] - px, qy = by[t] - py, qz = bz[t] - pz;
+            ox[kept] = qx, oy[kept] = qy, oz[kept] = qz;
+            kept += qx * qx + qy * qy + qz * qz <= within;  // Point3::SquaredNorm's sum, in its order
+          }
+          for (size_t i = 0; i < kept; ++i) g(vcg::Point3d(ox[i], oy[i], oz[i]));
+        });
+      }
       const size_t done = size_t(start_[c + 1] - start_[c]);
       const size_t total = finished.fetch_add(done, std::memory_order_relaxed) + done;
       if (ThreadIndex() == 0) progress(total, n, what);

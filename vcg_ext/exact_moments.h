@@ -97,6 +97,23 @@ class ExactLineMoments {
     ++count_;
   }
 
+  /// x as Add rounds it: for moments of the same unit that share an offset.
+  int64_t Rounded(double x) const { return ExactFixed(x * scale_); }
+  /// Adds a value Rounded gave to the count and the sum only.
+  void AddRoundedToSum(int64_t v) {
+    sum_ += v;
+    ++count_;
+  }
+  /// Adds a value Rounded gave to the count, the sum and the sum of squares
+  /// where `add` holds, with no branch on it (a ball's near points pass it
+  /// in no pattern a branch predicts).
+  void AddRoundedIf(int64_t v, bool add) {
+    const int64_t w = v & -int64_t(add);
+    sum_ += w;
+    squares_ += __int128(w) * w;
+    count_ += size_t(add);
+  }
+
   size_t Count() const { return count_; }
   double Sum() const { return double(sum_) / scale_; }
   double Squares() const { return double(squares_) / (scale_ * scale_); }

@@ -90,11 +90,15 @@ class Prominence {
     BallShare<Scalar>::ForEachBall(pos, id, R, scale.farShare, [&](int i, auto&& ball, bool itself) {
       const auto x = along(i);
       ExactLineMoments farBall(R), nearBall(R);
-      ball(R * R, [&](const vcg::Point3d& q) {
-        const double v = x(q);
-        farBall.AddToSum(v);
-        if (all && q.SquaredNorm() <= s * s) nearBall.Add(v);
-      });
+      // Both balls have the unit R: an offset is rounded once for both.
+      if (all)
+        ball(R * R, [&](const vcg::Point3d& q) {
+          const int64_t v = farBall.Rounded(x(q));
+          farBall.AddRoundedToSum(v);
+          nearBall.AddRoundedIf(v, q.SquaredNorm() <= s * s);
+        });
+      else
+        ball(R * R, [&](const vcg::Point3d& q) { farBall.AddToSum(x(q)); });
       const double nFar = double(farBall.Count() + (itself ? 0 : 1));  // the point itself
       if (all)
         value(i, nearBall, farBall.Sum() / nFar);
