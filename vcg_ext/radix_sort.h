@@ -4,8 +4,8 @@
 // the Poisson visiting order, on all threads. A least-significant-digit radix
 // sort over the 8-bit digits of the 32 highest bits in which keys differ (all
 // of them for Morton keys of a grid up to 2^10 cells wide), O(n) each; keys
-// still tied there are sorted by comparison (rare for hashes), or in long
-// runs (skewed keys) by passes over their bits below. At 14M keys
+// still tied there are sorted by comparison in short runs (rare for hashes),
+// or in longer ones (skewed keys) by passes over their bits below. At 14M keys
 // about 2x faster than a parallel comparison sort of (key, index) pairs, in
 // 16 bytes a key where that took 32 (tied keys take 16 more while sorted).
 #include <algorithm>
@@ -18,6 +18,7 @@
 namespace vcg_ext {
 
 constexpr int kRadixBits = 8;  // 256 buckets a thread: their write streams stay within the TLB's reach
+constexpr size_t kShortRun = 256;  // tied keys up to this many are sorted by comparison
 
 /// One stable counting pass by the kRadixBits bits of `key` from `shift`: calls
 /// move(from, to) for every key, each thread for a fixed chunk of them.
@@ -65,7 +66,8 @@ inline void RadixPasses(std::vector<uint64_t>& packed, uint64_t differ) {
 /// one word (the 32 bits from the highest in which some keys differ, above
 /// the index), radix-sorted by those bits, and only the keys still tied there
 /// (rare for hashes) are asked again: a short run is sorted by comparison, a
-/// long one by radix passes over the bits below the window. 16 bytes a key,
+/// longer one by radix passes over the bits below the window (one thread a
+/// run, all threads for each of the few largest). 16 bytes a key,
 /// and 16 more for each key of a run tied in those bits while the run is
 /// sorted (runs are long where keys share their high bits: flat ground in the
 /// prominence and rims orders, a far outlier's Morton key above a cloud's).
@@ -110,15 +112,45 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
       for (j = i + 1; j < n && packed[j] >> 32 == packed[i] >> 32;) ++j;
       if (j - i > 1) runs.emplace_back(i, j);
     }
-    typedef std::vector<std::pair<uint64_t, uint64_t>> Pairs;
-    auto sortRun = [&](size_t b, size_t e, Pairs& kp) {
-      kp.resize(e - b);
-      for (size_t i = b; i < e; ++i) kp[i - b] = {keyOf(size_t(packed[i] & kLow)), packed[i]};
-      std::sort(kp.begin(), kp.end());
-      for (size_t i = b; i < e; ++i) packed[i] = kp[i - b].second;
+    const uint64_t below = (uint64_t(1) << shift) - 1;  // shift <= 32: the bits a run's keys differ in
+    // A short run is sorted by comparison; a longer one (the many points of
+    // value 0 in a key-first order, split only by the hash's few bits in the
+    // window) by one thread's radix passes over the bits below the window.
+    struct Scratch {
+      std::vector<std::pair<uint64_t, uint64_t>> kp;
+      std::vector<uint64_t> run, run2;
+      std::vector<size_t> count;
+    };
+    auto sortRun = [&](size_t b, size_t e, Scratch& sc) {
+      const size_t len = e - b;
+      if (len <= kShortRun) {
+        sc.kp.resize(len);
+        for (size_t i = b; i < e; ++i) sc.kp[i - b] = {keyOf(size_t(packed[i] & kLow)), packed[i]};
+        std::sort(sc.kp.begin(), sc.kp.end());
+        for (size_t i = b; i < e; ++i) packed[i] = sc.kp[i - b].second;
+        return;
+      }
+      sc.run.resize(len), sc.run2.resize(len);
+      uint64_t all = ~uint64_t(0), any = 0;
+      for (size_t j = 0; j < len; ++j) {  // (the key's bits below shift, place in the run)
+        const uint64_t w = ((keyOf(size_t(packed[b + j] & kLow)) & below) << 32) | j;
+        sc.run[j] = w, all &= w, any |= w;
+      }
+      constexpr size_t kBuckets = size_t(1) << kRadixBits;
+      for (int d = 0; d < 32 / kRadixBits; ++d) {
+        const int at = 32 + d * kRadixBits;
+        if ((((all ^ any) >> at) & (kBuckets - 1)) == 0) continue;  // a digit all keys share orders nothing
+        sc.count.assign(kBuckets, 0);
+        for (uint64_t w : sc.run) ++sc.count[(w >> at) & (kBuckets - 1)];
+        for (size_t v = 0, sum = 0; v < kBuckets; ++v) sum += sc.count[v], sc.count[v] = sum - sc.count[v];
+        for (uint64_t w : sc.run) sc.run2[sc.count[(w >> at) & (kBuckets - 1)]++] = w;
+        sc.run.swap(sc.run2);
+      }
+      for (size_t j = 0; j < len; ++j) sc.run2[j] = packed[b + size_t(sc.run[j] & kLow)];
+      std::copy(sc.run2.begin(), sc.run2.begin() + std::ptrdiff_t(len), packed.begin() + std::ptrdiff_t(b));
     };
     const size_t large = std::max<size_t>(size_t(1) << 16, n / (4 * size_t(ThreadCount())));
-    std::vector<Pairs> scratch(static_cast<size_t>(ThreadCount()));
+    std::vector<Scratch> scratch(static_cast<size_t>(ThreadCount()));
     ParallelFor(runs.size(), 64, [&](size_t r) {
       if (runs[r].second - runs[r].first <= large)
         sortRun(runs[r].first, runs[r].second, scratch[size_t(ThreadIndex())]);
@@ -128,7 +160,6 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
     // A run's keys agree from `shift` up, so they differ in the 32 bits below
     // at most: radix passes over those order it whole. The run holds its keys
     // in index order (every pass is stable), so ties by place are ties by index.
-    const uint64_t below = (uint64_t(1) << shift) - 1;  // shift <= 32: the bits a run's keys differ in
     for (const auto& r : runs) {
       const size_t len = r.second - r.first;
       if (len <= large) continue;

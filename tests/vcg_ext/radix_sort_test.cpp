@@ -53,6 +53,17 @@ void AllShapes() {
   auto farOutlier = Keys(300000, 6, 0x3fffffff);  // Morton-like keys below one far above them: one
   farOutlier[123] = uint64_t(1) << 62;             // long run, ordered by its bits below the window
   MatchesAComparisonSort(farOutlier);
+  // A key-first order's shape: most values 0, each key a value above a hash,
+  // so the window holds the value and the hash's top bits: a few hundred runs
+  // of some hundred keys, each ordered by radix passes over the bits below
+  // (some equal keys among them: the hash's bits thinned out).
+  std::mt19937_64 valueRng(7);
+  std::vector<uint64_t> valueFirst(200000);
+  for (auto& x : valueFirst) {
+    const uint64_t value = valueRng() % 5 == 0 ? valueRng() % (uint64_t(1) << 24) : 0;
+    x = value << 32 | ((valueRng() >> 32) & 0xff0000f3ULL);
+  }
+  MatchesAComparisonSort(valueFirst);
   // Five differing digits, the four high ones from 40 values: runs of about
   // eight tied there, short enough for insertion, with equal keys in them.
   std::mt19937_64 rng(5);
