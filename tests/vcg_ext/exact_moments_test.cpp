@@ -66,4 +66,25 @@ TEST(ExactLineMoments, TheSumsAreTheSameInAnyOrderAndCloseToTheExactOnes) {
   EXPECT_NEAR(first.Squares(), double(squares), 2000 * 0.37 * 0x1p-39);
 }
 
+TEST(ExactLineMoments, ValuesRoundedOnceAddAsTheValuesThemselves) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-0.37, 0.37);
+  vcg_ext::ExactLineMoments all(0.37), sumOnly(0.37), some(0.37), rounded(0.37), roundedSome(0.37);
+  for (int i = 0; i < 2000; ++i) {
+    const double v = u(rng);
+    const bool pick = i % 3 == 0 || v > 0.2;
+    all.Add(v), sumOnly.AddToSum(v);
+    if (pick) some.Add(v);
+    const int64_t r = rounded.Rounded(v);
+    rounded.AddRoundedToSum(r);
+    roundedSome.AddRoundedIf(r, pick);
+  }
+  EXPECT_EQ(rounded.Count(), sumOnly.Count());
+  EXPECT_EQ(rounded.Sum(), sumOnly.Sum());  // bit for bit
+  EXPECT_EQ(roundedSome.Count(), some.Count());
+  EXPECT_LT(some.Count(), all.Count());
+  EXPECT_EQ(roundedSome.Sum(), some.Sum());
+  EXPECT_EQ(roundedSome.Squares(), some.Squares());
+}
+
 }  // namespace exact_moments_test
