@@ -20,17 +20,16 @@ namespace vcg_ext {
 constexpr int kRadixBits = 8;  // 256 buckets a thread: their write streams stay within the TLB's reach
 constexpr size_t kShortRun = 256;  // tied keys up to this many are sorted by comparison
 
-/// One stable counting pass by the kRadixBits bits of `key` from `shift`: calls
+/// One stable counting pass by digit(i) < 2^kRadixBits of the n keys: calls
 /// move(from, to) for every key, each thread for a fixed chunk of them.
-template <class Move>
-void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
+template <class Digit, class Move>
+void RadixScatterBy(size_t n, Digit digit, Move move) {
   constexpr size_t kBuckets = size_t(1) << kRadixBits;
-  const size_t n = key.size();
   // Each thread counts, then places, a fixed share of the keys.
   const int threads = int(std::min<size_t>(size_t(ThreadCount()), std::max<size_t>(1, n >> 12)));
   std::vector<size_t> count(size_t(threads) * kBuckets, 0);
   auto from = [&](int t) { return n * size_t(t) / size_t(threads); };
-  auto bucket = [&](size_t i) { return (key[i] >> shift) & (kBuckets - 1); };
+  auto bucket = [&](size_t i) { return size_t(digit(i)); };
   ThreadTeam::Mine().Run(threads, [&](int t) {
     size_t* mine = &count[size_t(t) * kBuckets];
     for (size_t i = from(t), e = from(t + 1); i < e; ++i) ++mine[bucket(i)];
@@ -47,6 +46,12 @@ void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
     size_t* mine = &count[size_t(t) * kBuckets];
     for (size_t i = from(t), e = from(t + 1); i < e; ++i) move(i, mine[bucket(i)]++);
   });
+}
+
+/// The same by the kRadixBits bits of `key` from `shift`.
+template <class Move>
+void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
+  RadixScatterBy(key.size(), [&](size_t i) { return (key[i] >> shift) & ((uint64_t(1) << kRadixBits) - 1); }, move);
 }
 
 /// Stable passes over the digits of the words' high 32 bits in which `differ`
@@ -67,7 +72,9 @@ inline void RadixPasses(std::vector<uint64_t>& packed, uint64_t differ) {
 /// the index), radix-sorted by those bits, and only the keys still tied there
 /// (rare for hashes) are asked again: a short run is sorted by comparison, a
 /// longer one by radix passes over the bits below the window (one thread a
-/// run, all threads for each of the few largest). 16 bytes a key,
+/// run, all threads for each of the few largest); where at most 8 bits lie
+/// below the window, a first pass by those leaves no ties but equal keys.
+/// 16 bytes a key (17 with that pass),
 /// and 16 more for each key of a run tied in those bits while the run is
 /// sorted (runs are long where keys share their high bits: flat ground in the
 /// prominence and rims orders, a far outlier's Morton key above a cloud's).
@@ -101,12 +108,26 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
   int high = 63;  // the highest bit in which keys differ
   while (high >= 0 && !((differ >> high) & 1)) --high;
   const int shift = std::max(0, high + 1 - kWindow);  // above the window all keys agree
+  // Keys a few bits wider than the window (Morton keys of a grid 2^11 to 2^13
+  // cells wide) keep those bits in a byte apart and are placed by them first:
+  // the passes after are stable, so keys tie in the window only where equal.
+  // Else a cell's points and its neighbour's would tie there, and be sorted
+  // again run by run (most of a fine grid's cost).
+  const bool lowFirst = shift > 0 && shift <= kRadixBits;
+  std::vector<uint8_t> low(lowFirst ? n : 0);
   ParallelFor(blocks, 1, [&](size_t k) {
-    for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i)
+    for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i) {
+      if (lowFirst) low[i] = uint8_t(packed[i] & ((uint64_t(1) << shift) - 1));
       packed[i] = (((packed[i] >> shift) & kLow) << 32) | uint64_t(i);
+    }
   });
+  if (lowFirst) {
+    std::vector<uint64_t> packed2(n);
+    RadixScatterBy(n, [&](size_t i) { return low[i]; }, [&](size_t from, size_t to) { packed2[to] = packed[from]; });
+    packed.swap(packed2);
+  }
   if (high >= 0) RadixPasses(packed, (differ >> shift) & kLow);
-  if (shift > 0) {  // keys equal in the window: by the whole key, then the index
+  if (shift > 0 && !lowFirst) {  // keys equal in the window: by the whole key, then the index
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t i = 0, j; i < n; i = j) {
       for (j = i + 1; j < n && packed[j] >> 32 == packed[i] >> 32;) ++j;
@@ -172,13 +193,15 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
   }
   if (runStarts) {
     // Keys agree above the window, so equal windows are equal keys but where
-    // the window left out low bits (shift > 0): those ties are asked again.
+    // the window left out low bits (shift > 0): those are compared too.
     runStarts->clear();
     for (size_t r = 0; r < n; ++r)
       if (r == 0 || packed[r] >> 32 != packed[r - 1] >> 32 ||
-          (shift > 0 && keyOf(size_t(packed[r] & kLow)) != keyOf(size_t(packed[r - 1] & kLow))))
+          (lowFirst && low[size_t(packed[r] & kLow)] != low[size_t(packed[r - 1] & kLow)]) ||
+          (shift > 0 && !lowFirst && keyOf(size_t(packed[r] & kLow)) != keyOf(size_t(packed[r - 1] & kLow))))
         runStarts->push_back(int(r));
   }
+  low = std::vector<uint8_t>();
   std::vector<int> order(n);
   ParallelFor(blocks, 1, [&](size_t k) {
     for (size_t i = k * kBlock, e = std::min(n, i + kBlock); i < e; ++i) order[i] = int(packed[i] & kLow);

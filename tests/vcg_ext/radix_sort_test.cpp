@@ -47,6 +47,11 @@ void AllShapes() {
   MatchesAComparisonSort(Keys(200000, 1, ~uint64_t(0)));                // hashes: passes, then a few ties
   MatchesAComparisonSort(Keys(200000, 2, 0xfff));                       // two digits, many equal keys
   MatchesAComparisonSort(Keys(200000, 3, 0x3fffffff, uint64_t(1) << 50));  // Morton-like, a constant high part
+  // A bit or eight below the window (Morton keys of a grid 2^11 to 2^13
+  // cells wide): placed by those first, equal keys among them.
+  MatchesAComparisonSort(Keys(200000, 8, 0x1ff000000ffULL & 0x1ffffffffULL));
+  MatchesAComparisonSort(Keys(200000, 9, 0xff000000ffULL));
+  MatchesAComparisonSort(Keys(200000, 10, 0x1ff000000ffULL));  // nine: runs tied in the window again
   auto tied = Keys(200000, 4, 0xffff);                                  // all tied in the high digits but
   for (size_t i = 0; i < tied.size(); i += 1000) tied[i] |= uint64_t(1) << 60;  // a few outliers: long runs
   MatchesAComparisonSort(tied);
