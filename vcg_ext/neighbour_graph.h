@@ -10,6 +10,9 @@
 #include <new>
 #include <utility>
 #include <vector>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #include "compact_index.h"
 #include "geodesic_metric.h"
 #include "knn_table.h"
@@ -18,6 +21,33 @@
 #include "union_find.h"
 
 namespace vcg_ext {
+
+/// Sorts `len` distinct values ascending. A row of up to 16 (nearly every
+/// row of the graph: k and the few arcs of points having it among theirs) by
+/// ranks, each value's count of smaller ones, found for all 16 at once with
+/// no branch: about a quarter of a comparison sort's time, whose branches on
+/// a short row mostly miss.
+inline void SortDistinct(int16_t* v, size_t len) {
+#ifdef __SSE2__
+  if (len <= 16) {
+    alignas(16) int16_t x[16], rank[16];
+    for (size_t j = 0; j < 16; ++j) x[j] = j < len ? v[j] : std::numeric_limits<int16_t>::max();  // never below a value
+    const __m128i lo = _mm_load_si128(reinterpret_cast<const __m128i*>(x));
+    const __m128i hi = _mm_load_si128(reinterpret_cast<const __m128i*>(x + 8));
+    __m128i rlo = _mm_setzero_si128(), rhi = _mm_setzero_si128();
+    for (size_t j = 0; j < 16; ++j) {  // each value's rank grows by one for each smaller x[j]
+      const __m128i b = _mm_set1_epi16(x[j]);
+      rlo = _mm_sub_epi16(rlo, _mm_cmpgt_epi16(lo, b));
+      rhi = _mm_sub_epi16(rhi, _mm_cmpgt_epi16(hi, b));
+    }
+    _mm_store_si128(reinterpret_cast<__m128i*>(rank), rlo);
+    _mm_store_si128(reinterpret_cast<__m128i*>(rank + 8), rhi);
+    for (size_t i = 0; i < len; ++i) v[rank[i]] = x[i];
+    return;
+  }
+#endif
+  std::sort(v, v + len);
+}
 
 template <class Scalar>
 class NeighbourGraph {
@@ -159,7 +189,7 @@ class NeighbourGraph {
     }
     ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i)
-        if (!hasFar[i]) std::sort(g.adj.slot.begin() + g.offset[i], g.adj.slot.begin() + g.offset[i + 1]);
+        if (!hasFar[i]) SortDistinct(&g.adj.slot[size_t(g.offset[i])], size_t(g.offset[i + 1] - g.offset[i]));
     });
     ParallelFor(farRows.size(), 64, [&](size_t r) {
       const Span& sp = farRows[r];

@@ -1,5 +1,9 @@
 // The neighbour graph: symmetric, weights never shorter than the edge, components found.
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <limits>
+#include <random>
+#include <vector>
 #include <vcg_ext/geodesic_domain.h>
 #include "graph_domain.h"
 #include "on_threads.h"
@@ -134,6 +138,25 @@ TEST(NeighbourGraph, EveryArcCarriesItsMetricsWeight) {
         ASSERT_LE(got, want * (1 + 1e-5)) << i << "-" << j;
       }
   }
+}
+
+TEST(SortDistinct, SortsRowsOfEveryLengthAsAComparisonSort) {
+  std::mt19937 rng(3);
+  for (size_t len = 0; len <= 40; ++len)
+    for (int rep = 0; rep < 50; ++rep) {
+      std::vector<int16_t> row;
+      if (rep == 0 && len > 0) row.push_back(std::numeric_limits<int16_t>::max());  // the largest offset
+      if (rep == 1 && len > 0) row.push_back(int16_t(vcg_ext::CompactIndex::kNearMin));  // the smallest
+      while (row.size() < len) {
+        const int16_t v = int16_t(int(rng() % 65536) - 32768);
+        if (v >= vcg_ext::CompactIndex::kNearMin && std::find(row.begin(), row.end(), v) == row.end()) row.push_back(v);
+      }
+      std::shuffle(row.begin(), row.end(), rng);
+      std::vector<int16_t> want = row;
+      std::sort(want.begin(), want.end());
+      vcg_ext::SortDistinct(row.data(), row.size());
+      ASSERT_EQ(row, want) << len;
+    }
 }
 
 }  // namespace neighbour_graph_test
