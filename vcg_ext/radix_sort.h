@@ -139,8 +139,7 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
     // window) by one thread's radix passes over the bits below the window.
     struct Scratch {
       std::vector<std::pair<uint64_t, uint64_t>> kp;
-      std::vector<uint64_t> run, run2;
-      std::vector<size_t> count;
+      std::vector<uint64_t> run;
     };
     auto sortRun = [&](size_t b, size_t e, Scratch& sc) {
       const size_t len = e - b;
@@ -151,24 +150,15 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
         for (size_t i = b; i < e; ++i) packed[i] = sc.kp[i - b].second;
         return;
       }
-      sc.run.resize(len), sc.run2.resize(len);
+      sc.run.resize(len);
       uint64_t all = ~uint64_t(0), any = 0;
       for (size_t j = 0; j < len; ++j) {  // (the key's bits below shift, place in the run)
         const uint64_t w = ((keyOf(size_t(packed[b + j] & kLow)) & below) << 32) | j;
         sc.run[j] = w, all &= w, any |= w;
       }
-      constexpr size_t kBuckets = size_t(1) << kRadixBits;
-      for (int d = 0; d < 32 / kRadixBits; ++d) {
-        const int at = 32 + d * kRadixBits;
-        if ((((all ^ any) >> at) & (kBuckets - 1)) == 0) continue;  // a digit all keys share orders nothing
-        sc.count.assign(kBuckets, 0);
-        for (uint64_t w : sc.run) ++sc.count[(w >> at) & (kBuckets - 1)];
-        for (size_t v = 0, sum = 0; v < kBuckets; ++v) sum += sc.count[v], sc.count[v] = sum - sc.count[v];
-        for (uint64_t w : sc.run) sc.run2[sc.count[(w >> at) & (kBuckets - 1)]++] = w;
-        sc.run.swap(sc.run2);
-      }
-      for (size_t j = 0; j < len; ++j) sc.run2[j] = packed[b + size_t(sc.run[j] & kLow)];
-      std::copy(sc.run2.begin(), sc.run2.begin() + std::ptrdiff_t(len), packed.begin() + std::ptrdiff_t(b));
+      RadixPasses(sc.run, (all ^ any) >> 32);  // inside a loop: on this thread
+      for (size_t j = 0; j < len; ++j) sc.run[j] = packed[b + size_t(sc.run[j] & kLow)];
+      std::copy(sc.run.begin(), sc.run.end(), packed.begin() + std::ptrdiff_t(b));
     };
     const size_t large = std::max<size_t>(size_t(1) << 16, n / (4 * size_t(ThreadCount())));
     std::vector<Scratch> scratch(static_cast<size_t>(ThreadCount()));
