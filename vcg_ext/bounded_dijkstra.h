@@ -55,13 +55,31 @@ class BoundedDijkstra {
       // skip exact: such an edge's sum would land beyond r however it rounds.
       const double eps = 8 * double(std::numeric_limits<Scalar>::epsilon()), room = double(r) - double(top.first);
       const double bound = room * (1 + eps) + eps * double(r), room2 = bound * bound;
-      const Coord* pi = len_.pos ? &(*len_.pos)[size_t(i)] : nullptr;
-      for (int e = g_.offset[i]; e < g_.offset[i + 1]; ++e) {
-        const int j = g_.To(i, e);
-        if (pi && double(vcg::SquaredDistance(*pi, (*len_.pos)[size_t(j)])) > room2) continue;
+      // The row's arcs that may stay within r, gathered first with no branch
+      // on the test (about half pass, in no pattern a branch predicts).
+      const int e0 = g_.offset[i], count = g_.offset[i + 1] - e0;
+      if (row_.size() < size_t(count)) row_.resize(size_t(count)), arc_.resize(size_t(count));
+      int* row = row_.data();
+      int* arc = arc_.data();
+      g_.adj.Get(size_t(e0), count, i, row);
+      int kept = 0;
+      if (len_.pos) {
+        const Coord* pos = len_.pos->data();
+        const Coord pi = pos[size_t(i)];
+        for (int a = 0; a < count; ++a) {
+          const int j = row[a];
+          row[kept] = j, arc[kept] = e0 + a;
+          kept += !(double(vcg::SquaredDistance(pi, pos[size_t(j)])) > room2);
+        }
+      } else {
+        for (int a = 0; a < count; ++a) arc[a] = e0 + a;
+        kept = count;
+      }
+      for (int a = 0; a < kept; ++a) {
+        const int j = row[a];
         Scalar* dj = near_.Find(j);
         if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
-        const Scalar nd = top.first + Length(i, j, e);
+        const Scalar nd = top.first + Length(i, j, arc[a]);
         if (nd <= r && (!dj || nd < *dj)) {
           if (dj) *dj = nd; else near_.Add(j, nd);
           Push(heap_, j, nd);
@@ -216,6 +234,7 @@ class BoundedDijkstra {
 
   NearTable near_;
   RadixHeap<Scalar> heap_;
+  std::vector<int> row_, arc_;  ///< a row's targets and arcs, those kept first
 };
 
 }  // namespace vcg_ext
