@@ -7,8 +7,8 @@
     geodesic-lod tiles/ -o lod/ --levels 10%,2% --workers 4       (lod/level_10pct/, lod/level_2pct/)
     geodesic-lod scan.laz -o scan.copc.laz   (every point, in octree depths that are nested LODs, for viewers)
 
-Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130. Output files
-appear only when complete.
+Bad input gives one line on stderr and exit status 2; Ctrl-C stops with status 130, SIGTERM with 143.
+Output files appear only when complete.
 """
 from __future__ import annotations
 

@@ -44,6 +44,11 @@ def _stop(signum, frame):
     raise KeyboardInterrupt
 
 
+def last_stop() -> int:
+    """The signal that stopped the run (SIGINT where Python's own handler raised the stop)."""
+    return int(_state["signal"])
+
+
 def _lost(unraisable):
     if unraisable.exc_type is not None and issubclass(unraisable.exc_type, KeyboardInterrupt):
         _again(_state["signal"])  # raised in a gc callback or a finaliser: not printed, raised again
@@ -60,7 +65,8 @@ def stopping():
         return
     # A signal the process was started ignoring (a shell's background job) stays ignored.
     previous = {s: signal.signal(s, _stop) for s in _SIGNALS if signal.getsignal(s) is not signal.SIG_IGN}
-    _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook)  # the caller's
+    _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook,  # the caller's
+                  signal=signal.SIGINT)
     sys.unraisablehook = _lost
     try:
         yield
@@ -89,6 +95,7 @@ def held():
         for s, handler in previous.items():
             signal.signal(s, handler)
     if caught:
+        _state["signal"] = caught[0]
         raise KeyboardInterrupt
 
 
