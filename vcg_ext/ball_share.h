@@ -12,6 +12,7 @@
 #include <vector>
 #include <vcg/space/point3.h>
 #include "cell_grid.h"
+#include "parallel.h"
 #include "priority_order.h"
 
 namespace vcg_ext {
@@ -66,9 +67,20 @@ class BallShare {
     const size_t n = pos.size();
     int top = 0;
     for (int v : id) top = std::max(top, v);
+    const size_t m = CellGrid<Scalar>::SubsampleSize(n);
+    if (size_t(top) + 1 == n) {
+      // Ids 0..n-1 (distinct ids, the largest n - 1): an id is its rank, and
+      // the point of rank SubsampleIndex(s, n) is found from its own id, with
+      // no table by id (a random write a point).
+      std::vector<Coord> sub(m);
+      ParallelFor(n, 4096, [&](size_t i) {
+        const uint64_t v = uint64_t(id[i]), s = (v * m + n - 1) / n;  // the least s with s n / m >= v
+        if (s < m && CellGrid<Scalar>::SubsampleIndex(size_t(s), n) == v) sub[size_t(s)] = pos[i];
+      });
+      return sub;
+    }
     std::vector<int> at(size_t(top) + 1, -1);  // point by id
     for (size_t i = 0; i < n; ++i) at[size_t(id[i])] = int(i);
-    const size_t m = CellGrid<Scalar>::SubsampleSize(n);
     std::vector<Coord> sub;
     sub.reserve(m);
     for (size_t v = 0, rank = 0; v < at.size() && sub.size() < m; ++v)
