@@ -56,7 +56,7 @@ class BoundedDijkstra {
       const double eps = 8 * double(std::numeric_limits<Scalar>::epsilon()), room = double(r) - double(top.first);
       const double bound = room * (1 + eps) + eps * double(r), room2 = bound * bound;
       // The row's arcs that may stay within r, gathered first with no branch
-      // on the test (about half pass, in no pattern a branch predicts).
+      // on the test (about a third pass, in no pattern a branch predicts).
       const int e0 = g_.offset[i], count = g_.offset[i + 1] - e0;
       if (row_.size() < size_t(count)) row_.resize(size_t(count)), arc_.resize(size_t(count));
       int* row = row_.data();
