@@ -242,8 +242,8 @@ def too_few_points(n: int, neighbours: int) -> Optional[str]:
     point graph), or None: the one wording of it on every front end."""
     if n > neighbours:
         return None
-    return (f"holds {n} points: at least {neighbours + 1} are needed (the neighbours each normal and the "
-            "geodesics are built from)")
+    return (f"holds {n} point{'s' if n != 1 else ''}: at least {neighbours + 1} are needed (the neighbours each "
+            "normal and the geodesics are built from)")
 
 
 @dataclass(frozen=True)
