@@ -49,7 +49,7 @@ class OutputFolder:
                                       f"{INDEX}: name a folder (such as lod/), or a file *{point_files.COPC_SUFFIX} "
                                       "for one COPC file")
         if not out.exists() and not out.parent.is_dir():
-            raise PointFileError(out, f"the folder {out.parent} does not exist")
+            raise PointFileError(out, point_files.no_folder(out.parent))
         where = out if out.exists() else out.parent
         if not os.access(where, os.W_OK | os.X_OK):
             raise PointFileError(out, f"the folder {where} is not writable")

@@ -82,6 +82,11 @@ def check_not_a_folder(output, input) -> None:
                              f"{out / (src.stem + '_lod' + src.suffix.lower())}")
 
 
+def no_folder(folder: pathlib.Path) -> str:
+    """Why `folder`, which is not a folder, cannot hold an output."""
+    return f"{folder} is a file, not a folder" if folder.exists() else f"the folder {folder} does not exist"
+
+
 def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) -> None:
     """Refuses, before any input is read, outputs that could not be written or would replace a file:
     an unknown or unfitting format, a missing or read-only folder, a name too long, a folder, a name
@@ -101,7 +106,7 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
                 raise PointFileError(out, f"a {kind.upper()} input can be written as {', '.join(first)} or {last}")
         folder = out.parent
         if not folder.is_dir():
-            raise PointFileError(out, f"the folder {folder} does not exist")
+            raise PointFileError(out, no_folder(folder))
         if not os.access(folder, os.W_OK | os.X_OK):
             raise PointFileError(out, f"the folder {folder} is not writable")
         if len(os.fsencode(out.name)) > _name_max(folder):

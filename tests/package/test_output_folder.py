@@ -81,12 +81,15 @@ def test_many_foreign_names_are_shown_three_and_counted(tmp_path):
 
 @pytest.mark.parametrize("what, problem", [("a file", "exists and is not a folder"),
                                            ("a link to nothing", "is a link to no folder"),
-                                           ("a folder in no folder", "does not exist")])
+                                           ("a folder in no folder", "does not exist"),
+                                           ("a folder in a file", "notes is a file, not a folder")])
 def test_a_path_that_cannot_be_a_folder_is_refused(tmp_path, what, problem):
     out = {"a file": tmp_path / "lod", "a link to nothing": tmp_path / "lod",
-           "a folder in no folder": tmp_path / "missing" / "lod"}[what]
+           "a folder in no folder": tmp_path / "missing" / "lod", "a folder in a file": tmp_path / "notes" / "lod"}[what]
     if what == "a file":
         out.write_text("the user's file")
+    elif what == "a folder in a file":
+        out.parent.write_text("the user's file")
     elif what == "a link to nothing":
         out.symlink_to(tmp_path / "gone")
     before = snapshot(tmp_path)

@@ -115,13 +115,15 @@ def test_unreadable_files_are_named(tmp_path, make, problem):
 
 def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
     src = las_cloud(tmp_path / "in.laz")
+    (tmp_path / "notes").write_text("the user's file")
     for out, problem in [(tmp_path / "out.ply", "can be written as .las, .laz or .npy"),
                          (tmp_path / "out.txt", "unknown output format"),
                          (tmp_path / "no" / "out.laz", "does not exist"),
+                         (tmp_path / "notes" / "out.laz", "notes is a file, not a folder"),
                          (tmp_path / "in.laz", "is an input")]:
         with pytest.raises(pf.PointFileError, match=problem):
             pf.check_outputs([src], [out])
-    assert sorted(os.listdir(tmp_path)) == ["in.laz"]
+    assert sorted(os.listdir(tmp_path)) == ["in.laz", "notes"]
 
 
 def test_a_second_ctrl_c_while_partial_files_are_removed_leaves_none(tmp_path, monkeypatch):
