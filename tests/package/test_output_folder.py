@@ -85,7 +85,8 @@ def test_many_foreign_names_are_shown_three_and_counted(tmp_path):
                                            ("a folder in a file", "notes is a file, not a folder")])
 def test_a_path_that_cannot_be_a_folder_is_refused(tmp_path, what, problem):
     out = {"a file": tmp_path / "lod", "a link to nothing": tmp_path / "lod",
-           "a folder in no folder": tmp_path / "missing" / "lod", "a folder in a file": tmp_path / "notes" / "lod"}[what]
+           "a folder in no folder": tmp_path / "missing" / "lod",
+           "a folder in a file": tmp_path / "notes" / "lod"}[what]
     if what == "a file":
         out.write_text("the user's file")
     elif what == "a folder in a file":
