@@ -315,7 +315,7 @@ class GeodesicDomain {
     if (k < 1) throw InputError(field, "must be at least 1 (got " + std::to_string(k) + ")");
     if (size_t(k) >= n)
       throw InputError(field, "must be smaller than the number of points (" + std::to_string(n) + "), got " +
-                                  std::to_string(k));
+                                  std::to_string(k) + ": lower it or give more points");
   }
   static std::string Str(double x) { return std::to_string(x); }
 };

@@ -176,6 +176,12 @@ TEST(LodFilters, BadInputRaisesMLExceptionWithAMessage) {
   Bumpy(m, 10);
   EXPECT_NE(ErrorOf(m, MapSource(m).set("radius", 0)).find("radius must be a positive"), std::string::npos);
   EXPECT_NE(ErrorOf(m, MapSource(m).set("normalneighbors", 100)).find("normalneighbors must be smaller than the number of points (100)"), std::string::npos);
+  Mesh three;  // too few points for the default neighbours: the message says how to go on
+  vcg::tri::Allocator<CMeshO>::AddVertices(three, 3);
+  for (int i = 0; i < 3; ++i) three.vert[i].P() = Point3m(i, i * i, 0);
+  EXPECT_NE(ErrorOf(three, MapSource(three)).find("normalneighbors must be smaller than the number of points (3), got 20: "
+                                                  "lower it or give more points"),
+            std::string::npos);
   EXPECT_NE(ErrorOf(m, MapSource(m).set("graphneighbors", 0)).find("graphneighbors must be at least 1"),
             std::string::npos);
   EXPECT_NE(ErrorOf(m, MapSource(m).set("metric", 9)).find("metric must be one of"), std::string::npos);
