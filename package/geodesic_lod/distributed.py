@@ -184,7 +184,8 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
     ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
         tmp = f"{ids_path}.partial-{os.getpid()}.npy"
-        np.save(tmp, ids)
+        with open(tmp, "wb") as f:
+            point_files.save_npy(f, ids)
         os.replace(tmp, ids_path)
     if d is None:
         return None

@@ -318,7 +318,33 @@ def write(f: BinaryIO, source: LasSource, array: np.ndarray, compress: bool) -> 
     evlrs = VLRList(copy.copy(source.evlrs))
     if evlrs and header.version.minor < 4:  # cannot happen for a file read: EVLRs exist from 1.4
         raise ValueError("EVLRs need LAS 1.4")
-    with laspy.LasWriter(f, header, do_compress=compress, closefd=False) as writer:
-        writer.write_points(laspy.PackedPointRecord(array, header.point_format))
-        if evlrs:
-            writer.write_evlrs(evlrs)
+    out = _WriteErrors(f)
+    try:
+        with laspy.LasWriter(out, header, do_compress=compress, closefd=False) as writer:
+            writer.write_points(laspy.PackedPointRecord(array, header.point_format))
+            if evlrs:
+                writer.write_evlrs(evlrs)
+    except Exception as e:
+        error, out.error = out.error, None  # no cycle through this frame: it would outlive the exit
+        if error is not None and error is not e:
+            raise error from None  # a full disk, not lazrs's "IoError: Failed to call write"
+        raise
+
+
+class _WriteErrors:
+    """A file that keeps the OSError its write raised: lazrs reports it as its own LazrsError, without the
+    error's number or words."""
+
+    def __init__(self, f: BinaryIO):
+        self._f = f
+        self.error: Optional[OSError] = None
+
+    def write(self, b) -> int:
+        try:
+            return self._f.write(b)
+        except OSError as e:
+            self.error = e
+            raise
+
+    def __getattr__(self, name):
+        return getattr(self._f, name)

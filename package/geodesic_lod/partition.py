@@ -113,7 +113,8 @@ def _records_name(folder, piece: int) -> pathlib.Path:
 
 def _save(path: pathlib.Path, array: np.ndarray) -> None:
     tmp = path.with_name(f"{path.name}.partial-{os.getpid()}.npy")
-    np.save(tmp, array)
+    with open(tmp, "wb") as f:
+        point_files.save_npy(f, array)
     os.replace(tmp, path)
 
 

@@ -8,10 +8,12 @@ the name asked for.
 """
 from __future__ import annotations
 
+import io
 import os
 import pathlib
+import warnings
 from dataclasses import dataclass
-from typing import Any, Optional, Sequence
+from typing import Any, BinaryIO, Optional, Sequence
 
 import numpy as np
 
@@ -315,10 +317,37 @@ def write_files(items: Sequence[tuple]) -> None:
         raise
 
 
+def save_npy(f: BinaryIO, array: np.ndarray) -> None:
+    """np.save(f, array, allow_pickle=False), the bytes handed to f's own write: numpy writes a real file
+    with tofile, which reports a full disk as "N requested and M written", without the file system's
+    error. No copy of a C-ordered array."""
+    array = np.asarray(array)
+    if not array.flags.c_contiguous:
+        array = array.copy(order="C")  # not ascontiguousarray: it makes a 0-d array 1-d
+    header = io.BytesIO()
+    d = np.lib.format.header_data_from_array_1_0(array)
+    try:
+        np.lib.format.write_array_header_1_0(header, d)
+    except ValueError:  # past 1.0's 64 kB header, or names beyond Latin-1: numpy's chunks, also by f.write
+        with warnings.catch_warnings():  # "stored in format 2.0": a note for the file's readers, not the user
+            warnings.simplefilter("ignore", UserWarning)
+            np.save(_OwnWrite(f), array, allow_pickle=False)
+        return
+    f.write(header.getvalue())
+    f.write(array.reshape(-1).view(np.uint8).data)
+
+
+class _OwnWrite:
+    """A file that numpy does not take for a real one: it writes by write(), not tofile."""
+
+    def __init__(self, f: BinaryIO):
+        self.write = f.write
+
+
 def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
     if ext == ".npy":
         rows = source.rows.array if source.kind == "las" else source.rows
-        np.save(f, np.asarray(rows[idx]), allow_pickle=False)
+        save_npy(f, np.asarray(rows[idx]))
     elif source.kind == "ply":
         import plyfile
         ply = source.source

@@ -21,7 +21,7 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
-from . import _core, arrays
+from . import _core, arrays, point_files
 from .errors import InputError
 
 OUT, IN, OPEN = _core.TILE_OUT, _core.TILE_IN, _core.TILE_OPEN
@@ -309,9 +309,9 @@ def _write_read(t: TileRead, path: pathlib.Path) -> bool:
         if disk.free - size < SPILL_FREE_SHARE * disk.total:
             return False
         with open(tmp, "wb") as f:
-            np.save(f, np.array(list(parts)))
+            point_files.save_npy(f, np.array(list(parts)))
             for v in parts.values():
-                np.save(f, np.asarray(v), allow_pickle=False)
+                point_files.save_npy(f, np.asarray(v))
         os.replace(tmp, path)
         return True
     except OSError:

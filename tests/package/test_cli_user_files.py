@@ -1,7 +1,10 @@
 """The command on one machine never loses a user's file: no output, derived level name or link may be an
 input, an existing file is replaced only when asked, everything about the outputs is checked before the
-input is read (SIGTERM, like Ctrl-C, leaving no partial file: test_cli.py)."""
+input is read (SIGTERM, like Ctrl-C, leaving no partial file: test_cli.py); a write that fails (a full
+disk, a size limit) is one line and leaves nothing."""
 import os
+import resource
+import subprocess
 
 import laspy
 import numpy as np
@@ -10,7 +13,7 @@ import pytest
 import geodesic_lod as gl
 from geodesic_lod import point_files as pf
 from point_file_inputs import las_cloud, ply_cloud
-from test_cli import digest, run
+from test_cli import COMMAND, digest, run
 
 
 def contents(folder):
@@ -99,4 +102,21 @@ def test_an_empty_output_name_is_refused_not_taken_for_the_current_folder(tmp_pa
     before = contents(tmp_path)
     r = run(src, "-o", "", "--rate", "10%", "-q", *where, cwd=tmp_path)
     assert r.returncode == 2 and "the output's name is empty" in r.stderr, r.stderr
+    assert contents(tmp_path) == before
+
+
+@pytest.mark.parametrize("source, output, size", [
+    ("in.las", "lod.laz", ["--rate", "50%"]), ("in.las", "lod.las", ["--rate", "50%"]),
+    ("in.las", "lod.npy", ["--rate", "50%"]), ("in.ply", "lod.ply", ["--rate", "50%"]),
+    ("in.las", "lod.laz", ["--levels", "50%,20%"]), ("in.las", "lod.copc.laz", [])])
+def test_a_write_that_fails_is_one_line_and_leaves_nothing(tmp_path, source, output, size):
+    # A file size limit fails a write as a full disk does (Python ignores SIGXFSZ: the write raises).
+    (las_cloud if source.endswith(".las") else ply_cloud)(tmp_path / source)
+    before = contents(tmp_path)
+    limit = (tmp_path / source).stat().st_size // 16  # below every LOD, compressed too
+    r = subprocess.run(COMMAND + [str(tmp_path / source), "-o", str(tmp_path / output), "-q"] + size,
+                       capture_output=True, text=True, timeout=300,
+                       preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert "File too large" in r.stderr and "Traceback" not in r.stderr, r.stderr
     assert contents(tmp_path) == before

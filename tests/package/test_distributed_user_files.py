@@ -1,9 +1,12 @@
 """A cluster run never loses a user's file: it refuses an output folder holding anything it did not write
 (files of the user's, links, the inputs), and a failed or interrupted rerun leaves the previous LOD whole.
 It reads every real file one machine reads: the shared LiDAR files (CRS, EVLRs, extra bytes, COPC) give
-one machine's samples, their records and own VLR bytes."""
+one machine's samples, their records and own VLR bytes. A write that fails (a full disk, a size limit) is
+one line naming its cause and leaves no folder."""
 import json
 import os
+import resource
+import subprocess
 
 import laspy
 import numpy as np
@@ -14,6 +17,7 @@ from geodesic_lod import distributed as dist
 from geodesic_lod import point_files as pf
 from conftest import bumpy_sphere
 from test_distributed import RADIUS, client, cloud, files_under, write_parts  # noqa: F401 (fixtures)
+from test_cli import COMMAND
 from test_las_files import CORPUS, corpus_file, own_records
 
 
@@ -97,6 +101,18 @@ def test_a_first_run_that_fails_leaves_no_folder(cloud, client, tmp_path):
     with pytest.raises(RuntimeError):
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=Failing(client, RuntimeError("x")),
                        tile_points=6000)
+    assert not (tmp_path / "lod").exists()
+
+
+def test_a_write_that_fails_on_the_cluster_is_one_line_naming_its_cause(cloud, tmp_path):
+    # A file size limit fails the writes as a full disk does (Python ignores SIGXFSZ: the write raises);
+    # numpy reports its own short write as "N requested and M written", without the cause.
+    limit = 64 * 1024
+    r = subprocess.run(COMMAND + [str(cloud[0]), "-o", str(tmp_path / "lod"), "--rate", "50%", "--workers", "1",
+                                  "-q"], capture_output=True, text=True, timeout=300,
+                       preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert "File too large" in r.stderr and "Traceback" not in r.stderr, r.stderr
     assert not (tmp_path / "lod").exists()
 
 

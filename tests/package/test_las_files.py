@@ -1,7 +1,9 @@
 """geodesic_lod.las_files on real files and on damaged ones: every file of ../shared/data/lidar/ (CRS as
 GeoTIFF keys and WKT, EVLRs, extra bytes, COPC) is sampled by the command with its records, VLRs and
 EVLRs kept byte for byte; a file that lies about its records or cannot be written back is refused, naming
-it, before any work."""
+it, before any work; a full disk is the OSError it is, LAS or LAZ."""
+import errno
+import io
 import os
 import pathlib
 import struct
@@ -11,6 +13,7 @@ import numpy as np
 import pytest
 
 import geodesic_lod as gl
+from geodesic_lod import las_files, point_files
 from common_inputs import SHARED_DATA
 from point_file_inputs import las_cloud
 from test_cli import run
@@ -264,3 +267,26 @@ def test_the_command_sizes_the_decoders_pool_to_its_threads_unless_the_environme
     monkeypatch.setenv(las_files.POOL_SIZE, "2")
     assert cli.main([str(path), "-o", str(tmp_path / "b.laz"), "--rate", "10%", "--threads", "3", "--quiet"]) == 0
     assert os.environ[las_files.POOL_SIZE] == "2"
+
+
+class FullDisk(io.BytesIO):
+    """A file whose writes fail once `room` bytes are in it, as on a full disk."""
+
+    def __init__(self, room):
+        super().__init__()
+        self.room = room
+
+    def write(self, b):
+        if self.tell() + len(memoryview(b).cast("B")) > self.room:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return super().write(b)
+
+
+@pytest.mark.parametrize("compress", [True, False], ids=["laz", "las"])
+@pytest.mark.parametrize("room", [100, 3000, 20000])
+def test_a_full_disk_is_the_oserror_it_is(tmp_path, compress, room):
+    # lazrs reports a failed write as its own LazrsError("IoError: ..."): the command printed a traceback.
+    source = point_files.read(las_cloud(tmp_path / "in.las"))
+    with pytest.raises(OSError) as e:
+        las_files.write(FullDisk(room), source.source, source.rows.array, compress=compress)
+    assert e.value.errno == errno.ENOSPC

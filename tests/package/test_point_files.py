@@ -150,3 +150,18 @@ def test_a_second_ctrl_c_while_partial_files_are_removed_leaves_none(tmp_path, m
     with pytest.raises(KeyboardInterrupt):
         pf.write_files([(tmp_path / "a.npy", write), (tmp_path / "b.npy", stopped), (tmp_path / "c.npy", write)])
     assert calls and leftovers(tmp_path) == [] and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("array", [
+    np.arange(10.0), np.zeros((5, 3), np.float32), np.float64(3.5), np.zeros(0, np.uint64), np.array(["a", "bcd"]),
+    np.zeros(3, dtype=[("X", "<i4"), ("Reflektanz_ä", "u1"), ("c", "u1", (2,))]),
+    np.zeros(2, dtype=[(f"f{i}", "u1") for i in range(4000)]),  # a header past format 1.0's 64 kB
+    np.arange(24.0).reshape(4, 6)[:, ::2], np.asfortranarray(np.arange(12.0).reshape(3, 4))],
+    ids=["float64", "2d", "0d", "empty", "strings", "records", "huge header", "strided", "fortran"])
+@pytest.mark.filterwarnings("ignore:Stored array in format 2.0")  # np.save's, beside ours
+def test_save_npy_writes_what_np_save_does(tmp_path, array):
+    path = tmp_path / "a.npy"
+    with open(path, "wb") as f:
+        pf.save_npy(f, array)
+    np.save(tmp_path / "b.npy", np.ascontiguousarray(array) if array.ndim else array, allow_pickle=False)
+    assert path.read_bytes() == (tmp_path / "b.npy").read_bytes()
