@@ -179,6 +179,9 @@ def _run_on_cluster(args, request: dict) -> int:
             except OSError:
                 raise ValueError(f"--scheduler {args.scheduler}: no Dask scheduler answered within "
                                  f"{SCHEDULER_TIMEOUT} s") from None
+            except ValueError as e:  # Dask's reading of the address
+                raise ValueError(f"--scheduler {args.scheduler}: not a scheduler's address, such as "
+                                 f"tcp://10.0.0.5:8786 ({e})") from None
         else:
             import os
             workers = args.workers or max(1, min(4, os.cpu_count() or 1))

@@ -173,6 +173,9 @@ BAD = [
      "--worker-memory goes with a cluster run"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--scheduler", "tcp://127.0.0.1:9",
                 "--worker-memory", "2GB"], "--worker-memory goes with the cluster the command starts"),
+    *[(lambda d, a=address: [ply_cloud(d / "in.ply"), "-o", "lod", "--rate", "5%", "--scheduler", a],
+       f"--scheduler {address}: not a scheduler's address, such as tcp://10.0.0.5:8786")
+      for address in ("tcp://127.0.0.1:notaport", "http://127.0.0.1:8786", "localhost")],
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--adaptivity", "-2"],
      "error: --adaptivity must be a non-negative"),  # the option, not the file
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "5%", "--visit-order", "first"],
