@@ -17,6 +17,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "parallel.h"
+#include "places_within.h"
 #include "radix_sort.h"
 
 namespace vcg_ext {
@@ -140,14 +141,13 @@ class CellGrid {
         candidates += size_t(at[b + 1] - at[b]);
       });
       // The block's points, copied once for all the cell's balls (coordinates
-      // apart, so the test below runs on plain arrays), then each ball's
-      // offsets within it gathered with no branch on the test (a third of the
-      // candidates pass it, in no pattern a branch predicts) and handed to g
-      // in the block's order.
-      thread_local std::vector<Scalar> block, inside;
-      if (block.size() < 3 * candidates) block.resize(3 * candidates), inside.resize(3 * candidates);
-      Scalar *bx = block.data(), *by = bx + candidates, *bz = by + candidates;
-      Scalar *ox = inside.data(), *oy = ox + candidates, *oz = oy + candidates;
+      // apart, so the distances below run on plain arrays, in vector
+      // instructions), then each ball's places found with no branch on the
+      // test (PlacesWithin) and their offsets handed to g in the block's order.
+      thread_local std::vector<Scalar> block;
+      thread_local std::vector<int> places;
+      if (block.size() < 4 * candidates) block.resize(4 * candidates), places.resize(candidates + 3);
+      Scalar *bx = block.data(), *by = bx + candidates, *bz = by + candidates, *d2 = bz + candidates;
       auto gather = [&](auto&& read) {  // read(t): the t-th point of the ranges
         size_t u = 0;
         for (int k = 0; k < m; ++k)
@@ -163,14 +163,16 @@ class CellGrid {
       for (int r = start_[c]; r < start_[c + 1]; ++r) {
         const Coord p = pos[size_t(pts_[size_t(r)])];
         f(size_t(r), [&](double r2, auto&& g) {
-          const Scalar within = Scalar(r2), px = p[0], py = p[1], pz = p[2];
-          size_t kept = 0;
+          const Scalar px = p[0], py = p[1], pz = p[2];
           for (size_t t = 0; t < candidates; ++t) {
             const Scalar qx = bx[t] - px, qy = by[t] - py, qz = bz[t] - pz;
-            ox[kept] = qx, oy[kept] = qy, oz[kept] = qz;
-            kept += qx * qx + qy * qy + qz * qz <= within;  // Point3::SquaredNorm's sum, in its order
+            d2[t] = qx * qx + qy * qy + qz * qz;  // Point3::SquaredNorm's sum, in its order
           }
-          for (size_t i = 0; i < kept; ++i) g(vcg::Point3d(ox[i], oy[i], oz[i]));
+          const size_t kept = PlacesWithin(d2, candidates, Scalar(r2), places.data());
+          for (size_t i = 0; i < kept; ++i) {
+            const size_t t = size_t(places[i]);
+            g(vcg::Point3d(bx[t] - px, by[t] - py, bz[t] - pz));
+          }
         });
       }
       const size_t done = size_t(start_[c + 1] - start_[c]);

@@ -10,13 +10,11 @@
 #include <numeric>
 #include <utility>
 #include <vector>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "cell_grid.h"
 #include "compact_index.h"
 #include "parallel.h"
+#include "places_within.h"
 #include "progress.h"
 #include "realloc_array.h"
 
@@ -116,7 +114,7 @@ class KnnTable {
               if (size_t(s) <= r && r < size_t(t2)) selfAt = nb + (r - size_t(s)), centre = r;
               runs.emplace_back(s, t2), nb += size_t(t2 - s);
             });
-            if (bx.size() < nb)  // grown only; cand has room for the 3 Within may write past its count
+            if (bx.size() < nb)  // grown only; cand has room for the 3 PlacesWithin may write past its count
               bx.resize(nb), by.resize(nb), bz.resize(nb), bi.resize(nb), d2.resize(nb), cand.resize(nb + 4);
             size_t at = 0;
             for (const auto& run : runs)
@@ -136,7 +134,7 @@ class KnnTable {
           // point's k-th distance, a little enlarged, usually bounds them tighter.
           size_t found = 0;
           for (double bound : {std::min(m * m, 1.44 * hint), m * m}) {
-            found = Within(d2.data(), nb, bound, cand.data());
+            found = PlacesWithin(d2.data(), nb, bound, cand.data());
             if (found >= size_t(k)) break;
           }
           if (found < size_t(k)) continue;  // some of the k nearest may lie beyond the block
@@ -211,38 +209,6 @@ class KnnTable {
   }
 
  private:
-  // The places c < nb with d2[c] <= bound, increasing, into cand (which has
-  // room for nb + 3); returns how many. Four at a time where SSE2 is: two
-  // compares make a 4-bit mask, whose places a table holds, stored whole.
-  static size_t Within(const double* d2, size_t nb, double bound, int* cand) {
-    size_t found = 0, c = 0;
-#if defined(__SSE2__)
-    static const struct Lanes {
-      __m128i at[16];
-      Lanes() {
-        for (int mask = 0; mask < 16; ++mask) {
-          int lane[4] = {0, 0, 0, 0}, n = 0;
-          for (int b = 0; b < 4; ++b)
-            if (mask >> b & 1) lane[n++] = b;
-          at[mask] = _mm_setr_epi32(lane[0], lane[1], lane[2], lane[3]);
-        }
-      }
-    } lanes;
-    const __m128d b = _mm_set1_pd(bound);
-    for (; c + 4 <= nb; c += 4) {
-      const int mask = _mm_movemask_pd(_mm_cmple_pd(_mm_loadu_pd(d2 + c), b)) |
-                       _mm_movemask_pd(_mm_cmple_pd(_mm_loadu_pd(d2 + c + 2), b)) << 2;
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(cand + found), _mm_add_epi32(_mm_set1_epi32(int(c)), lanes.at[mask]));
-      found += size_t((0x4332322132212110ULL >> (4 * mask)) & 0xF);  // the bits set in mask
-    }
-#endif
-    for (; c < nb; ++c) {
-      cand[found] = int(c);
-      found += d2[c] <= bound;
-    }
-    return found;
-  }
-
   // The k smallest of (d[c], key[c]) for c in cand[0..found) (distinct keys),
   // in order: out gets those c. Returns the k-th d. Few candidates (a point
   // usually has about 1.5 k) are ranked by counting, each one's rank being how
