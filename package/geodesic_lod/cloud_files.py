@@ -74,13 +74,28 @@ def check_finite(path, points: np.ndarray) -> None:
                                                "coordinates")
 
 
+def _writable_together(path: str, signature: tuple, first: Source) -> bool:
+    """Whether a file of this signature can be written with the first file's header and records: the same
+    signature, or for LAS files the same one but for the CRS's bytes, the CRS itself the same (one
+    survey's tiles re-saved by other software: WKT 1 or 2, GeoTIFF keys counted otherwise)."""
+    if signature == first.signature:
+        return True
+    if signature[0] != "las" or signature[:-1] != first.signature[:-1]:
+        return False
+    try:
+        a, b = (las_files.open_source(p).header.parse_crs() for p in (path, first.path))
+    except Exception:  # a record pyproj cannot read (laspy's or pyproj's error): only equal bytes match
+        return False
+    return a is not None and b is not None and a == b
+
+
 def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
     """The files in order with their first ids; refuses files that cannot be written together."""
     out, first = [], 0
     for path, s in zip(paths, surveys):
         if s["count"] == 0:
             continue
-        if out and s["signature"] != out[0].signature:
+        if out and not _writable_together(path, s["signature"], out[0]):
             what = "point format, extra dimensions, scale, offset or CRS" if s["kind"] == "las" else "fields"
             raise point_files.PointFileError(path, f"its {what} differ from {out[0].path}'s: the files cannot "
                                                    "be sampled as one cloud")

@@ -119,6 +119,30 @@ def test_files_of_other_fields_or_another_crs_are_refused_naming_the_file(tmp_pa
         one_cloud([str(a), str(tmp_path / "b.laz")])
 
 
+def with_wkt(path, out, wkt: str):
+    """The LAS file at path written to out with its WKT record replaced by wkt."""
+    las = laspy.read(str(path))
+    for v in las.header.vlrs:
+        if v.record_id == 2112:
+            v.string = wkt
+    las.write(str(out))
+    return str(out)
+
+
+def test_one_crs_written_two_ways_is_one_cloud_and_two_crss_are_not(tmp_path):
+    # Tiles of one survey re-saved by other software carry the same CRS in other bytes (WKT 1 or 2,
+    # GeoTIFF keys counted otherwise): the CRS decides, not its encoding; the first file's records are kept.
+    from pyproj import CRS
+    a = las_cloud(tmp_path / "a.laz", n=500)
+    utm32 = CRS.from_epsg(25832)
+    paths = [with_wkt(a, tmp_path / "wkt1.laz", utm32.to_wkt("WKT1_GDAL")),
+             with_wkt(a, tmp_path / "wkt2.laz", utm32.to_wkt())]
+    assert [s.path for s in one_cloud(paths)] == paths
+    other = with_wkt(a, tmp_path / "utm33.laz", CRS.from_epsg(25833).to_wkt())
+    with pytest.raises(pf.PointFileError, match="utm33.laz: its point format, extra dimensions, scale, offset or CRS"):
+        one_cloud(paths + [other])
+
+
 @pytest.mark.parametrize("kind", KINDS)
 def test_a_region_holds_exactly_the_points_within_it_in_id_order(tmp_path, kind):
     paths = split_cloud(tmp_path / "in", kind)
