@@ -337,7 +337,8 @@ def call_core(fn, *args):
         return fn(*args)
     except ValueError as e:  # the core raises ValueError for bad input only
         if len(e.args) == 2 and e.args[0] in _FIELD_WORDS:
-            raise InputError(f"{_FIELD_WORDS[e.args[0]]} {e.args[1]}") from None
+            subject = _FIELD_WORDS[e.args[0]]
+            raise InputError(f"{subject} {e.args[1]}", subject, e.args[1]) from None
         raise InputError(str(e)) from None
 
 

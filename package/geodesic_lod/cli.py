@@ -461,7 +461,7 @@ def main(argv=None) -> int:
             try:
                 chosen, lod = _run(args, request, source, bar if bar.bar is not None else None)
             except ValueError as e:  # the input's data or a value that depends on it
-                raise point_files.PointFileError(source.path, str(e)) from None
+                raise point_files.PointFileError.of(source.path, e) from None
             bar.close()
             return _done(args, _write_levels(source, paths, chosen) + _choices_line(args, lod), start)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks

@@ -153,6 +153,6 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
     except PointFileError:
         raise
     except ValueError as e:  # the input's data or a value that depends on it
-        raise PointFileError(source.path, str(e)) from None
+        raise PointFileError.of(source.path, e) from None
     point_files.write_copc(source, output, lod)
     return lod

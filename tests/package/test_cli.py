@@ -188,6 +188,8 @@ BAD = [
      "tiny.npy: holds 3 points: at least 21 are needed"),
     (lambda d: [np.save(d / "one.npy", bumpy_sphere(1)) or d / "one.npy", "-o", "o.npy", "--rate", "50%"],
      "one.npy: holds 1 point: at least 21 are needed"),
+    (lambda d: [np.save(d / "same.npy", np.ones((300, 3))) or d / "same.npy", "-o", "o.npy", "--rate", "10%"],
+     "same.npy: holds 300 points at one position: there is no surface to sample"),  # not "same.npy: points holds"
 ]
 
 
