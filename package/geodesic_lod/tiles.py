@@ -387,14 +387,21 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
         core = box.core_mask(points, cloud)
         if not core.any():
             return None
-        problem = arrays.too_few_points(len(points), neighbours)
-        if problem:  # a stray point far from the rest: read as far as its neighbours
+        problem, tile_domain = arrays.too_few_points(len(points), neighbours), None
+        if not problem:
+            try:
+                tile_domain = _core.tile_domain(points, normals, domain, threads, None)
+            except ValueError as e:  # the core's (field, problem): every point read at one position
+                if len(e.args) != 2 or e.args[0] != "Points":
+                    raise
+                problem = e.args[1]
+        if problem:  # a stray point, or a pile of one point's copies, far from the rest: read further
             if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
                 raise InputError(f"the cloud {problem}")
             halo *= 4
             continue
         t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
-                     _core.tile_domain(points, normals, domain, threads, None))
+                     tile_domain)
         if reads is not None:
             reads.put(job, tile, t, folder)
         return t

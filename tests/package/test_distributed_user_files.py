@@ -171,3 +171,21 @@ def test_a_stray_point_far_away_is_sampled_as_on_one_machine(client, tmp_path):
     assert len(index["tiles"]) == 2  # the stray point has a tile of its own
     got = np.concatenate([np.load(tmp_path / "lod" / t["file"]) for t in index["tiles"]])
     assert sorted(map(tuple, got)) == sorted(map(tuple, p[gl.poisson_lod(p, radius=0.5).indices]))
+
+
+def test_a_pile_of_one_points_returns_far_away_is_sampled_as_on_one_machine(client, tmp_path):
+    # The pile has a tile of its own; one machine samples the whole cloud, which is not at one position.
+    p = bumpy_sphere(6000) * 10
+    p[17:57] = p[17] + 1e6
+    np.save(tmp_path / "pile.npy", p)
+    index = dist.lod_files([str(tmp_path / "pile.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1,
+                           tile_points=1000)
+    assert len(index["tiles"]) == 2
+    got = np.concatenate([np.load(tmp_path / "lod" / t["file"]) for t in index["tiles"]])
+    assert sorted(map(tuple, got)) == sorted(map(tuple, p[gl.poisson_lod(p, radius=0.5).indices]))
+
+
+def test_a_cloud_at_one_position_is_named_as_on_one_machine(client, tmp_path):
+    np.save(tmp_path / "same.npy", np.ones((300, 3)))
+    with pytest.raises(gl.InputError, match="^the cloud holds 300 points at one position: there is no surface"):
+        dist.lod_files([str(tmp_path / "same.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1)
