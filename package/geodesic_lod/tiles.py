@@ -483,5 +483,6 @@ def in_visiting_order(ids: np.ndarray, seed: int) -> np.ndarray:
 def spacing_of(box: Box, n: int) -> float:
     """A rough point spacing of n points in the box: its two larger sides' area shared among them (a
     surface's)."""
-    extent = np.sort(box.hi - box.lo)
-    return math.sqrt(max(extent[2] * extent[1], 1e-300) / n)
+    with np.errstate(over="ignore"):  # a box past float64's range: inf (the domain's check names it)
+        extent = [float(e) for e in np.sort(box.hi - box.lo)]
+    return math.sqrt(max(extent[2] * extent[1], 1e-300) / n)  # Python floats: an overflow is inf, no warning

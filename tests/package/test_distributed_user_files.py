@@ -189,3 +189,12 @@ def test_a_cloud_at_one_position_is_named_as_on_one_machine(client, tmp_path):
     np.save(tmp_path / "same.npy", np.ones((300, 3)))
     with pytest.raises(gl.InputError, match="^the cloud holds 300 points at one position: there is no surface"):
         dist.lod_files([str(tmp_path / "same.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1)
+
+
+@pytest.mark.filterwarnings("error::RuntimeWarning")  # one line on the command line: no numpy overflow warning
+def test_a_cloud_too_large_for_distances_is_named_with_no_warning(client, tmp_path):
+    p = bumpy_sphere(300)
+    p[5] = [1e308, -1e308, 0]
+    np.save(tmp_path / "huge.npy", p)
+    with pytest.raises(gl.InputError, match="^the cloud holds coordinates too large for any distance"):
+        dist.lod_files([str(tmp_path / "huge.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1)
