@@ -183,10 +183,7 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
     None: not written), and with `ids_path` their ids for the next level."""
     ids = np.empty(0, np.uint64) if d is None else np.sort(np.concatenate([d.samples, settled]).astype(np.uint64))
     if ids_path is not None:
-        tmp = f"{ids_path}.partial-{os.getpid()}.npy"
-        with open(tmp, "wb") as f:
-            point_files.save_npy(f, ids)
-        os.replace(tmp, ids_path)
+        point_files.save_npy_as(ids_path, ids)
     if d is None:
         return None
     if path is None:

@@ -12,7 +12,6 @@ holds exactly the points of the tile with its box, and any region's points come 
 """
 from __future__ import annotations
 
-import os
 import pathlib
 import time
 from dataclasses import dataclass, field
@@ -111,13 +110,6 @@ def _records_name(folder, piece: int) -> pathlib.Path:
     return pathlib.Path(folder) / f"p{piece:07d}.records.npy"
 
 
-def _save(path: pathlib.Path, array: np.ndarray) -> None:
-    tmp = path.with_name(f"{path.name}.partial-{os.getpid()}.npy")
-    with open(tmp, "wb") as f:
-        point_files.save_npy(f, array)
-    os.replace(tmp, path)
-
-
 @give_back
 def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: Grid, folder: str,
           threads: Optional[int] = None) -> dict:
@@ -143,7 +135,7 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
         scaling, kept = None, xyz
     records = np.ascontiguousarray(records)
-    _save(_records_name(folder, number), records)
+    point_files.save_npy_as(_records_name(folder, number), records)
     written = records.nbytes
     key = grid.key_of(xyz)
     order, key = _by_key(key)  # by cell, then block, then id
@@ -160,7 +152,7 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         if normals is not None:
             arrays["normals"] = normals[a:b]
         for what, array in arrays.items():
-            _save(_name(folder, c, number, what), np.ascontiguousarray(array))
+            point_files.save_npy_as(_name(folder, c, number, what), np.ascontiguousarray(array))
             written += array.nbytes
         columns = [kept[a:b, k] for k in range(3)]  # a column's min is several times faster than min(axis=0)
         lo, hi = [np.array([v.min() for v in columns]), np.array([v.max() for v in columns])]

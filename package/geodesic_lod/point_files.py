@@ -337,6 +337,16 @@ def save_npy(f: BinaryIO, array: np.ndarray) -> None:
     f.write(array.reshape(-1).view(np.uint8).data)
 
 
+def save_npy_as(path, array: np.ndarray) -> None:
+    """save_npy into a file beside path named for this process, renamed to path once complete (the run's
+    own work files, which one run writes at a time)."""
+    path = pathlib.Path(path)
+    tmp = path.with_name(f"{path.name}.partial-{os.getpid()}.npy")
+    with open(tmp, "wb") as f:
+        save_npy(f, array)
+    os.replace(tmp, path)
+
+
 class _OwnWrite:
     """A file that numpy does not take for a real one: it writes by write(), not tofile."""
 
