@@ -4,7 +4,9 @@
 // at near positions, and a cell's points contiguous. Cells keep the side asked
 // for however far apart the points lie: a key holds a cell's coordinates modulo
 // 2^21, so cells 2^21 sides apart share a key (a far outlier adds a point to
-// some cell's block, not a coarser grid for everyone).
+// some cell's block, not a coarser grid for everyone). A block's cells are
+// found in short lists by column where the box is a surface's, else by a
+// search of the sorted keys.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -45,9 +47,12 @@ class CellGrid {
     key_.resize(start_.size());
     ParallelFor(start_.size(), 4096, [&](size_t c) { key_[c] = keyOf(size_t(pts_[size_t(start_[c])])); });
     start_.push_back(int(pts_.size()));
+    if (!pos.empty()) IndexColumns(CellOf(box.max));
   }
 
   double CellSide() const { return h_; }
+  /// Whether cells are found by column (IndexColumns) rather than by a search of the keys.
+  bool ByColumns() const { return !colStart_.empty(); }
   size_t size() const { return pts_.size(); }
   /// The most points under one key: what a block search can cost.
   size_t LargestCell() const {
@@ -216,6 +221,16 @@ class CellGrid {
   // Calls f(cell number) for the non-empty cells within `ring` cells of c.
   template <class F>
   void ForBlockCells(const Cell& c, int ring, F&& f) const {
+    if (!colStart_.empty()) {
+      for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
+        for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
+          for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
+            if (x < 0 || y < 0 || z < 0) continue;
+            const size_t at = InColumn({x, y, z});
+            if (at != kNoCell) f(at);
+          }
+      return;
+    }
     const size_t centre = size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
     for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
       for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
@@ -225,6 +240,54 @@ class CellGrid {
           const size_t at = Seek(k, centre);
           if (at < key_.size() && key_[at] == k) f(at);
         }
+  }
+
+  // Where the box spans at most kColumnsPerCell columns a non-empty cell (a
+  // surface's box), the cells are also listed by column along the box's axis
+  // of fewest cells, where a surface crosses a column in one or a few: a
+  // block's 27 cells are then found in their columns' short lists, where
+  // searching the sorted keys (a few mispredicted steps each) was most of
+  // the visiting order's ball pass. The same cells in the same order: where
+  // keys could alias (2^21 cells along an axis, the rings included) there is
+  // no such index. 4 bytes a column and 8 a cell; O(cells + columns), one thread.
+  static constexpr size_t kColumnsPerCell = 8;
+  static constexpr size_t kNoCell = ~size_t(0);
+  void IndexColumns(const Cell& last) {
+    constexpr int64_t kLimit = (int64_t(1) << kBits) - 4;  // KnnTable's rings reach 3 cells beyond
+    std::array<int64_t, 3> cells;
+    for (int a = 0; a < 3; ++a) {
+      if (!(last[a] >= 0 && last[a] < kLimit)) return;
+      cells[a] = last[a] + 1;
+    }
+    const int along = int(std::min_element(cells.begin(), cells.end()) - cells.begin());
+    axis_ = {(along + 1) % 3, (along + 2) % 3, along};
+    for (int a = 0; a < 3; ++a) extent_[size_t(a)] = cells[size_t(axis_[size_t(a)])];
+    const uint64_t columns = uint64_t(extent_[0]) * uint64_t(extent_[1]);
+    if (columns > kColumnsPerCell * key_.size() + 4096) return;  // sparse: a far outlier, scattered clumps
+    auto coordinate = [&](size_t c, int axis) { return int64_t(Compact(key_[c] >> axis)); };
+    auto column = [&](size_t c) {
+      return size_t(coordinate(c, axis_[0]) * extent_[1] + coordinate(c, axis_[1]));
+    };
+    colStart_.assign(size_t(columns) + 1, 0);
+    for (size_t c = 0; c < key_.size(); ++c) ++colStart_[column(c) + 1];
+    for (size_t k = 1; k < colStart_.size(); ++k) colStart_[k] += colStart_[k - 1];
+    colW_.resize(key_.size()), colCell_.resize(key_.size());
+    // In key order: along a column the Morton key grows with the third coordinate.
+    for (size_t c = 0; c < key_.size(); ++c) {
+      const int e = colStart_[column(c)]++;
+      colW_[size_t(e)] = int(coordinate(c, axis_[2])), colCell_[size_t(e)] = int(c);
+    }
+    for (size_t k = colStart_.size() - 1; k > 0; --k) colStart_[k] = colStart_[k - 1];  // back to each column's first
+    colStart_[0] = 0;
+  }
+  // The number of cell q (coordinates at least 0), or kNoCell where it is empty.
+  size_t InColumn(const Cell& q) const {
+    const int64_t a = q[size_t(axis_[0])], b = q[size_t(axis_[1])], w = q[size_t(axis_[2])];
+    if (a >= extent_[0] || b >= extent_[1] || w >= extent_[2]) return kNoCell;
+    const size_t col = size_t(a * extent_[1] + b);
+    for (int e = colStart_[col], end = colStart_[col + 1]; e < end; ++e)
+      if (colW_[size_t(e)] >= w) return colW_[size_t(e)] == w ? size_t(colCell_[size_t(e)]) : kNoCell;
+    return kNoCell;
   }
   // The first cell whose key is at least k, searched outwards from cell
   // `from` in doubling steps: a block's cells mostly lie near its centre's in
@@ -252,6 +315,15 @@ class CellGrid {
     v = (v | v << 2) & 0x1249249249249249ULL;
     return v;
   }
+  static uint64_t Compact(uint64_t v) {  // every third bit, from the lowest, to the low 21 bits
+    v &= 0x1249249249249249ULL;
+    v = (v | v >> 2) & 0x10c30c30c30c30c3ULL;
+    v = (v | v >> 4) & 0x100f00f00f00f00fULL;
+    v = (v | v >> 8) & 0x1f0000ff0000ffULL;
+    v = (v | v >> 16) & 0x1f00000000ffffULL;
+    v = (v | v >> 32) & 0x1fffff;
+    return v;
+  }
   static uint64_t Key(const Cell& c) { return Spread(c[0]) | Spread(c[1]) << 1 | Spread(c[2]) << 2; }
 
   vcg::Point3d origin_;
@@ -259,6 +331,11 @@ class CellGrid {
   std::vector<uint64_t> key_;  ///< non-empty cells, ascending
   std::vector<int> start_;     ///< per cell, its first position in cell order; one past the end last
   std::vector<int> pts_;       ///< point numbers in cell order
+  std::array<int, 3> axis_ = {0, 1, 2};       ///< the columns' axes, then the axis along them
+  std::array<int64_t, 3> extent_ = {0, 0, 0};  ///< cells along each of axis_
+  std::vector<int> colStart_;  ///< per column (a * extent_[1] + b), its first entry; one past the end last; empty: none
+  std::vector<int> colW_;      ///< per entry, the cell's coordinate along the columns, ascending in each
+  std::vector<int> colCell_;   ///< per entry, the cell's number
 };
 
 }  // namespace vcg_ext

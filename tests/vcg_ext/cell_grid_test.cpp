@@ -1,7 +1,9 @@
 // vcg_ext/cell_grid.h: the cell order is a permutation with each cell's points
 // contiguous, and a block of cells holds every point nearer than its margin,
-// also with a far outlier (whose cell shares keys modulo 2^21); a ball holds
-// the points, or a subset's points, within its radius.
+// also with a far outlier (whose cell shares keys modulo 2^21); a block is
+// exactly the non-empty cells within its ring, in x, y, z order, whether cells
+// are found by column or by their keys; a ball holds the points, or a subset's
+// points, within its radius.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <random>
@@ -55,6 +57,63 @@ TEST(CellGrid, ABlockHoldsEveryPointNearerThanItsMargin) {
         const double margin = grid.Margin(pos[q], c, ring);
         for (size_t j = 0; j < pos.size(); ++j)
           if (vcg::Distance(pos[q], pos[j]) < margin) EXPECT_EQ(block.count(int(j)), 1u) << q << " " << j;
+      }
+    }
+  }
+}
+
+// Shapes whose boxes are indexed by column along each axis (a plane, a wall, a
+// strip, a sphere), and boxes too sparse for it (two clumps far apart, a far
+// outlier) or wider than 2^21 cells: every block is the non-empty cells within
+// the ring, each once, in the order of their x, y, z.
+TEST(CellGrid, ABlockIsTheNonEmptyCellsWithinItsRingInOrder) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0, 1);
+  auto shape = [&](int kind) {
+    std::vector<Coord> pos(2500);
+    for (size_t i = 0; i < pos.size(); ++i) {
+      const double a = u(rng), b = u(rng);
+      switch (kind) {
+        case 0: pos[i] = Coord(a, b, 0.05 * u(rng)); break;            // a plane: columns along z
+        case 1: pos[i] = Coord(b, 0.03 * u(rng), a); break;            // a wall: along y
+        case 2: pos[i] = Coord(0.02 * u(rng), 4 * a, 0.1 * b); break;  // a strip: along x
+        case 3: {                                                      // a sphere
+          const double z = 2 * a - 1, t = 2 * M_PI * b, s = std::sqrt(1 - z * z);
+          pos[i] = Coord(s * std::cos(t), s * std::sin(t), z);
+          break;
+        }
+        case 4: pos[i] = i % 2 ? Coord(a, b, 0) : Coord(a + 50, b - 40, 30); break;  // two clumps
+        default: pos[i] = i == 7 ? Coord(3e6, -2e6, 5e5) : Coord(a, b, 0.1 * u(rng));  // an outlier
+      }
+    }
+    return pos;
+  };
+  for (int kind = 0; kind < 6; ++kind) {
+    const std::vector<Coord> pos = shape(kind);
+    const Grid grid(pos, 0.06);
+    EXPECT_EQ(grid.ByColumns(), kind < 4) << kind;
+    std::vector<Grid::Cell> cellOf(pos.size());
+    for (size_t j = 0; j < pos.size(); ++j) cellOf[j] = grid.CellOf(pos[j]);
+    for (size_t q = 0; q < pos.size(); q += 11) {
+      const Grid::Cell c = cellOf[q];
+      for (int ring : {0, 1, 3}) {
+        std::vector<Grid::Cell> cells;  // in the order the block gives them
+        std::multiset<int> block;
+        grid.ForBlock(c, ring, [&](int b, int e) {
+          cells.push_back(grid.CellOf(pos[size_t(grid.Point(size_t(b)))]));
+          for (int r = b; r < e; ++r) {
+            block.insert(grid.Point(size_t(r)));
+            if (kind != 5) EXPECT_EQ(cellOf[size_t(grid.Point(size_t(r)))], cells.back());
+          }
+        });
+        if (kind == 5) continue;  // the outlier's cell shares keys with some near cell
+        EXPECT_TRUE(std::is_sorted(cells.begin(), cells.end())) << kind << " " << q;
+        std::multiset<int> expected;
+        for (size_t j = 0; j < pos.size(); ++j)
+          if (std::abs(cellOf[j][0] - c[0]) <= ring && std::abs(cellOf[j][1] - c[1]) <= ring &&
+              std::abs(cellOf[j][2] - c[2]) <= ring)
+            expected.insert(int(j));
+        EXPECT_EQ(block, expected) << kind << " " << q << " ring " << ring;
       }
     }
   }
