@@ -192,10 +192,9 @@ def _run_on_cluster(args, request: dict) -> int:
         link = None if args.quiet else distributed.dashboard_link(client)
         if link:
             print(f"{PROG}: Dask dashboard at {link}", file=sys.stderr)
-        if not client.scheduler_info()["workers"]:  # workers may join later: say so, whatever --quiet says
+        if args.scheduler and not client.scheduler_info()["workers"]:  # the job waits: say so, whatever --quiet says
             print(f"{PROG}: the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)",
                   file=sys.stderr, flush=True)
-            client.wait_for_workers(1)
         if not args.quiet:
             from tqdm import tqdm
             bar = tqdm(total=1, desc="tiles", unit="task", file=sys.stderr, leave=False)

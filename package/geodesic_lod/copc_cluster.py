@@ -28,9 +28,10 @@ from . import tile_points as tile_points_
 from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
-from .distributed import (Job, Ticks, _ids_file, check_worker_memory, cluster_choices, domain_fields, finer_samples,
-                          forget_reads, poisson_run, write_tile)
+from .distributed import (Job, Ticks, _ids_file, cluster_choices, domain_fields, finer_samples, forget_reads,
+                          poisson_run, write_tile)
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
+from .worker_check import check_worker_memory
 
 MAX_TILE_DEPTH = 7  # tiles are nodes of at most this depth: 8^7 of them
 

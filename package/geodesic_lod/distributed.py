@@ -38,6 +38,7 @@ from .docstrings import documented
 from .errors import ClusterJobError, InputError
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
 from .task_memory import TRIM, USERS_TRIM, give_back, process_rss, worker_memory_limit
+from .worker_check import check_worker_memory
 
 WORK = ".levels"   # each level's samples per tile, while the next level is made
 CELLS = ".cells"   # the input decoded once, cut into the tiles' cells (partition.py)
@@ -517,28 +518,6 @@ def _subsample_of_cell(cells: partition.Partition, cell: int, ids: np.ndarray) -
         xyz.append(np.asarray(x)[mine])
     return (np.concatenate(got) if got else np.empty(0, np.uint64),
             np.concatenate(xyz) if xyz else np.empty((0, 3)))
-
-
-def check_worker_memory(client) -> None:
-    """Refuses workers whose memory limit their own footprint already fills past Dask's pause
-    threshold: they would pause before any task and the job would wait for ever. A worker lost while
-    asked (its nanny restarts it past its limit) is refused the same way."""
-    import dask
-    pause = dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0
-    workers = client.scheduler_info()["workers"]
-    used = client.run(process_rss, on_error="return")
-    for addr, w in workers.items():
-        limit = w.get("memory_limit") or 0
-        rss = used.get(addr, 0)
-        if not limit:
-            continue
-        if isinstance(rss, BaseException):
-            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: "
-                                  f"the worker was lost before any task ({rss}); give workers more memory")
-        if rss >= pause * limit:
-            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
-                                  f"takes {rss / 1e6:.0f} MB before any task; give workers at least "
-                                  f"{2 * rss / 1e6:.0f} MB")
 
 
 def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, threads, progress):

@@ -3,7 +3,7 @@ the metric, the run) and the defaults read from vcg_ext's Param structs. ``docum
 function its docstring."""
 from __future__ import annotations
 
-from . import _core, tile_points
+from . import _core, tile_points, worker_check
 
 _D = _core.DomainParam()
 _SCATTERED = _core.SCATTERED_ABOVE  # the automatic choices' threshold (vcg_ext/scatter_share.h)
@@ -369,7 +369,9 @@ TEXTS = {
         {tile_points.MINIMUM}. Default {tile_points.DEFAULT:,}.
     client : dask.distributed.Client
         The cluster (see ``local_cluster``). A cluster with no worker yet is waited for, as Dask waits:
-        workers may join later.
+        workers may join later; where the last was lost unexpectedly (a nanny stops a worker past its
+        memory limit) and none joins within {worker_check.LOST_WORKER_WAIT:g} s, or one is lost meanwhile, a
+        ClusterJobError.
     threads : int, optional
         Threads per task (default: all the worker machine's cores).
     progress : callable, optional

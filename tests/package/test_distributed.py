@@ -21,6 +21,7 @@ from dask.distributed import Client
 import geodesic_lod as gl
 from geodesic_lod import distributed as dist
 from geodesic_lod import point_files as pf
+from geodesic_lod import worker_check
 from conftest import bumpy_sphere
 
 PARTS, RADIUS = 5, 0.5
@@ -405,6 +406,31 @@ def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_p
     with dist.local_cluster(1, memory_limit="50MB") as cluster, Client(cluster) as c:
         with pytest.raises(gl.ClusterJobError, match=r"a worker's memory limit \(50 MB\) is below what it needs"):
             dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
+    assert not (tmp_path / "lod").exists()
+
+
+def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(cloud, tmp_path):
+    """The nanny stops a worker past its limit (and the cluster may start another, stopped at once): with
+    none left when the job starts, the job names the loss rather than waiting for ever on tasks no worker
+    runs."""
+    with dist.local_cluster(1, memory_limit="50MB") as cluster, Client(cluster) as c:
+        deadline = time.monotonic() + 30
+        while c.scheduler_info()["workers"] and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not c.scheduler_info()["workers"], "the worker was not lost: nothing to test"
+        raised = []
+
+        def job():
+            try:
+                dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
+            except Exception as e:  # noqa: BLE001 (checked below)
+                raised.append(e)
+        t = threading.Thread(target=job, daemon=True)
+        t.start()
+        t.join(worker_check.LOST_WORKER_WAIT + 60)
+        assert not t.is_alive(), "the job waited for a worker that will not come"
+    assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
+    assert "lost" in str(raised[0]) and "give workers more memory" in str(raised[0]), raised
     assert not (tmp_path / "lod").exists()
 
 

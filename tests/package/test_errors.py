@@ -87,6 +87,9 @@ class _Client:
     def scheduler_info(self):
         return {"workers": {"tcp://127.0.0.1:1": {"memory_limit": self.limit}}}
 
+    def get_events(self, topic):
+        return []  # no worker joined or left since the scheduler started
+
     def map(self, fn, *args, **kw):
         from dask.distributed import KilledWorker
         raise KilledWorker(f"{fn.__name__}-0", "tcp://127.0.0.1:1", 3)

@@ -1,0 +1,64 @@
+"""Whether a cluster's workers can run a job, asked before any task: a worker whose memory limit its own
+footprint already fills past Dask's pause threshold would pause before any task, and a job on a cluster
+whose workers are lost (a nanny stops a worker past its limit) would wait for ever on tasks no worker runs.
+"""
+from __future__ import annotations
+
+import time
+from typing import Optional
+
+from .errors import ClusterJobError
+from .task_memory import process_rss
+
+# How long a cluster whose last worker was lost unexpectedly is given to start another (a nanny
+# restarts a worker it stopped within seconds) before the job names the loss.
+LOST_WORKER_WAIT = 30.0
+
+
+def check_worker_memory(client) -> None:
+    """Refuses workers whose memory limit their own footprint already fills past Dask's pause
+    threshold: they would pause before any task and the job would wait for ever. A cluster with no
+    worker yet is waited for (workers may join later), but not for ever where the last was lost
+    unexpectedly (LOST_WORKER_WAIT), nor past a worker lost meanwhile or while asked: a nanny stops a
+    worker past its limit, and stops one started again at once."""
+    import dask
+    pause = dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0
+    events = _worker_events(client)
+    since = events[-1][0] if events else float("-inf")  # on the scheduler's clock
+    workers = client.scheduler_info()["workers"]
+    start = time.monotonic()
+    while not workers:
+        events = _worker_events(client)
+        if (any(t > since and _lost(e) for t, e in events)
+                or (events and _lost(events[-1][1]) and time.monotonic() - start > LOST_WORKER_WAIT)):
+            raise ClusterJobError("the cluster's workers are lost before any task (a worker stopped unexpectedly, "
+                                  "as its nanny stops one past its memory limit); give workers more memory")
+        time.sleep(0.25)
+        workers = client.scheduler_info()["workers"]
+    used = client.run(process_rss, on_error="return")
+    for addr, w in workers.items():
+        limit = w.get("memory_limit") or 0
+        rss = used.get(addr)
+        if not limit or (rss is None and not any(t > since and _lost(e, addr) for t, e in _worker_events(client))):
+            continue  # no limit, or scaled away
+        if rss is None or isinstance(rss, BaseException):
+            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: "
+                                  f"the worker was lost before any task ({rss or 'it stopped'}); give workers more "
+                                  "memory")
+        if rss >= pause * limit:
+            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
+                                  f"takes {rss / 1e6:.0f} MB before any task; give workers at least "
+                                  f"{2 * rss / 1e6:.0f} MB")
+
+
+def _worker_events(client) -> list:
+    """The scheduler's (time, event) of workers joining and leaving, oldest first."""
+    return [(t, e) for t, e in client.get_events("all")
+            if isinstance(e, dict) and e.get("action") in ("add-worker", "remove-worker")]
+
+
+def _lost(event: dict, worker: Optional[str] = None) -> bool:
+    """Whether the event is the removal of a worker (of `worker`, if given) the scheduler did not expect
+    (stopped by its nanny, or crashed; a cluster scaled down expects it)."""
+    return (event.get("action") == "remove-worker" and event.get("expected") is False
+            and worker in (None, event.get("worker")))
