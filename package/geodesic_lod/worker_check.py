@@ -1,6 +1,7 @@
 """Whether a cluster's workers can run a job, asked before any task: a worker whose memory limit its own
-footprint already fills past Dask's pause threshold would pause before any task, and a job on a cluster
-whose workers are lost (a nanny stops a worker past its limit) would wait for ever on tasks no worker runs.
+footprint (with what every task imports) already fills past Dask's pause threshold would pause before any
+task, and a job on a cluster whose workers are lost (a nanny stops a worker past its limit) would wait for
+ever on tasks no worker runs.
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ def check_worker_memory(client) -> None:
                                   "as its nanny stops one past its memory limit); give workers more memory")
         time.sleep(0.25)
         workers = client.scheduler_info()["workers"]
-    used = client.run(process_rss, on_error="return")
+    used = client.run(task_footprint, on_error="return")
     for addr, w in workers.items():
         limit = w.get("memory_limit") or 0
         rss = used.get(addr)
@@ -49,6 +50,20 @@ def check_worker_memory(client) -> None:
             raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
                                   f"takes {rss / 1e6:.0f} MB before any task; give workers at least "
                                   f"{2 * rss / 1e6:.0f} MB")
+
+
+def task_footprint() -> int:
+    """This process's resident bytes once it holds what every task imports (the tasks' module with the
+    package's core, laspy and its LAZ codec): a worker's size before its first task's data. Measured bare,
+    a worker could pass and then pause for ever at its first task, what the task imported crossing its
+    pause threshold."""
+    import laspy  # noqa: F401
+    try:
+        import lazrs  # noqa: F401
+    except ImportError:  # LAS files only
+        pass
+    from . import distributed  # noqa: F401
+    return process_rss()
 
 
 def _worker_events(client) -> list:

@@ -22,6 +22,7 @@ import geodesic_lod as gl
 from geodesic_lod import distributed as dist
 from geodesic_lod import point_files as pf
 from geodesic_lod import worker_check
+from geodesic_lod.task_memory import process_rss
 from conftest import bumpy_sphere
 
 PARTS, RADIUS = 5, 0.5
@@ -409,6 +410,38 @@ def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_p
     assert not (tmp_path / "lod").exists()
 
 
+def job_errors(client, folder, out, seconds):
+    """What a job on `client` raised, in a thread: it must end within `seconds`, not wait for ever."""
+    raised = []
+
+    def job():
+        try:
+            dist.lod_files([str(folder)], out, radius=RADIUS, client=client, tile_points=6000)
+        except Exception as e:  # noqa: BLE001 (the caller checks it)
+            raised.append(e)
+    t = threading.Thread(target=job, daemon=True)
+    t.start()
+    t.join(seconds)
+    assert not t.is_alive(), "the job waited for a worker that will never run its tasks"
+    return raised
+
+
+def test_a_worker_memory_below_what_a_task_imports_is_named_at_once(cloud, tmp_path):
+    """A limit whose pause threshold lies between a bare worker's footprint and that of a worker holding
+    what every task imports: the worker would pause at its first task, for ever."""
+    with dist.local_cluster(1) as cluster, Client(cluster) as c:
+        bare = next(iter(c.run(process_rss).values()))
+        ready = next(iter(c.run(worker_check.task_footprint).values()))
+    assert ready > bare + 4e6, (bare, ready)  # else no limit lies between them here
+    pause = dask.config.get("distributed.worker.memory.pause")
+    limit = int((bare + ready) / 2 / pause)
+    with dist.local_cluster(1, memory_limit=limit) as cluster, Client(cluster) as c:
+        raised = job_errors(c, cloud[0], tmp_path / "lod", 120)
+    assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
+    assert "before any task" in str(raised[0]), raised
+    assert not (tmp_path / "lod").exists()
+
+
 def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(cloud, tmp_path):
     """The nanny stops a worker past its limit (and the cluster may start another, stopped at once): with
     none left when the job starts, the job names the loss rather than waiting for ever on tasks no worker
@@ -418,17 +451,7 @@ def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(c
         while c.scheduler_info()["workers"] and time.monotonic() < deadline:
             time.sleep(0.05)
         assert not c.scheduler_info()["workers"], "the worker was not lost: nothing to test"
-        raised = []
-
-        def job():
-            try:
-                dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=c, tile_points=6000)
-            except Exception as e:  # noqa: BLE001 (checked below)
-                raised.append(e)
-        t = threading.Thread(target=job, daemon=True)
-        t.start()
-        t.join(worker_check.LOST_WORKER_WAIT + 60)
-        assert not t.is_alive(), "the job waited for a worker that will not come"
+        raised = job_errors(c, cloud[0], tmp_path / "lod", worker_check.LOST_WORKER_WAIT + 60)
     assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
     assert "lost" in str(raised[0]) and "give workers more memory" in str(raised[0]), raised
     assert not (tmp_path / "lod").exists()
