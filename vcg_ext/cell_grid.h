@@ -246,7 +246,7 @@ class CellGrid {
   // surface's box), the cells are also listed by column along the box's axis
   // of fewest cells, where a surface crosses a column in one or a few: a
   // block's 27 cells are then found in their columns' short lists, where
-  // searching the sorted keys (a few mispredicted steps each) was most of
+  // searching the sorted keys (a few mispredicted steps each) was much of
   // the visiting order's ball pass. The same cells in the same order: where
   // keys could alias (2^21 cells along an axis, the rings included) there is
   // no such index. 4 bytes a column and 8 a cell; O(cells + columns), one thread.
