@@ -28,13 +28,17 @@ def check_worker_memory(client) -> None:
     since = events[-1][0] if events else float("-inf")  # on the scheduler's clock
     workers = client.scheduler_info()["workers"]
     start = time.monotonic()
+    polls = 0
     while not workers:
-        events = _worker_events(client)
-        if (any(t > since and _lost(e) for t, e in events)
-                or (events and _lost(events[-1][1]) and time.monotonic() - start > LOST_WORKER_WAIT)):
-            raise ClusterJobError("the cluster's workers are lost before any task (a worker stopped unexpectedly, "
-                                  "as its nanny stops one past its memory limit); give workers more memory")
+        if polls % 4 == 0:  # the whole event log, once a second: a long-lived scheduler keeps many
+            events = _worker_events(client)
+            if (any(t > since and _lost(e) for t, e in events)
+                    or (events and _lost(events[-1][1]) and time.monotonic() - start > LOST_WORKER_WAIT)):
+                raise ClusterJobError("the cluster's workers are lost before any task (a worker stopped "
+                                      "unexpectedly, as its nanny stops one past its memory limit); give workers "
+                                      "more memory")
         time.sleep(0.25)
+        polls += 1
         workers = client.scheduler_info()["workers"]
     used = client.run(task_footprint, on_error="return")
     for addr, w in workers.items():
