@@ -221,25 +221,20 @@ class CellGrid {
   // Calls f(cell number) for the non-empty cells within `ring` cells of c.
   template <class F>
   void ForBlockCells(const Cell& c, int ring, F&& f) const {
-    if (!colStart_.empty()) {
-      for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
-        for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
-          for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
-            if (x < 0 || y < 0 || z < 0) continue;
-            const size_t at = InColumn({x, y, z});
-            if (at != kNoCell) f(at);
-          }
-      return;
-    }
-    const size_t centre = size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
+    const bool byColumns = !colStart_.empty();
+    const size_t centre = byColumns ? 0 : size_t(std::lower_bound(key_.begin(), key_.end(), Key(c)) - key_.begin());
     for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x)
       for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y)
         for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
           if (x < 0 || y < 0 || z < 0) continue;
-          const uint64_t k = Key({x, y, z});
-          const size_t at = Seek(k, centre);
-          if (at < key_.size() && key_[at] == k) f(at);
+          const size_t at = byColumns ? InColumn({x, y, z}) : ByKey(Key({x, y, z}), centre);
+          if (at != kNoCell) f(at);
         }
+  }
+  // The number of the cell of key k (searched outwards from cell `centre`), or kNoCell where it is empty.
+  size_t ByKey(uint64_t k, size_t centre) const {
+    const size_t at = Seek(k, centre);
+    return at < key_.size() && key_[at] == k ? at : kNoCell;
   }
 
   // Where the box spans at most kColumnsPerCell columns a non-empty cell (a
