@@ -164,7 +164,7 @@ class GeodesicDomain {
       // it, when the table has shrunk to what the graph and the walk read (at
       // the peak, the walk's queue and levels would add about 20 bytes a point).
       if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
-      std::vector<bool> oneWay;
+      typename NeighbourGraph<Scalar>::ArcBits oneWay;
       auto findOneWay = [&] {
         if (!graph) return;
         oneWay = NeighbourGraph<Scalar>::OneWayArcs(knn, p.graphNeighbours, progress.Sub(55, 75));

@@ -81,17 +81,20 @@ class NeighbourGraph {
   /// the same bytes. Each row is kNN(i) plus the points having i among their
   /// k nearest but not among i's: no duplicates to sort out, no pair list.
   static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, Progress progress = Progress(nullptr)) {
-    std::vector<bool> oneWay = OneWayArcs(knn, k, progress.Sub(0, 50));
+    ArcBits oneWay = OneWayArcs(knn, k, progress.Sub(0, 50));
     return FromKnn(std::move(knn), k, std::move(oneWay), progress.Sub(50, 100));
   }
 
-  /// Per arc i -> knn(i)[c] of the first k columns, at i k + c: whether the
-  /// table has no reverse arc (the arcs FromKnn adds to other rows). One bit
-  /// each. O(n k^2), on all threads; it only reads the table.
-  static std::vector<bool> OneWayArcs(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
+  /// One bit per arc i -> knn(i)[c] of the first k columns, bit i k + c.
+  typedef std::vector<uint64_t> ArcBits;
+
+  /// Per arc of the first k columns: whether the table has no reverse arc
+  /// (the arcs FromKnn adds to other rows). O(n k^2), on all threads; it only
+  /// reads the table.
+  static ArcBits OneWayArcs(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
     const size_t n = knn.size();
     // Chunks start at multiples of 1024 rows, so no two threads write the same word.
-    std::vector<bool> oneWay(n * k);
+    ArcBits oneWay((n * size_t(k) + 63) / 64);
     ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
       std::vector<int> row(static_cast<size_t>(k));
       for (size_t i = b; i < e; ++i) {
@@ -106,7 +109,8 @@ class NeighbourGraph {
           } else {
             for (int d = 0; d < k; ++d) found |= knn.At(size_t(j), d) == int(i);
           }
-          oneWay[i * k + c] = !found;
+          const size_t bit = i * size_t(k) + size_t(c);
+          oneWay[bit >> 6] |= uint64_t(!found) << (bit & 63);
         }
       }
     });
@@ -114,7 +118,7 @@ class NeighbourGraph {
   }
 
   /// FromKnn with the table's OneWayArcs(knn, k) found before.
-  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, std::vector<bool> oneWay,
+  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, ArcBits oneWay,
                                 Progress progress = Progress(nullptr)) {
     knn.KeepColumns(k);
     const size_t n = knn.size();
@@ -124,11 +128,9 @@ class NeighbourGraph {
     NeighbourGraph g;
     g.offset.assign(n + 1, 0);
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i)
-        for (int c = 0; c < k; ++c)
-          if (oneWay[i * k + c]) {
-            __atomic_fetch_add(&g.offset[knn.At(i, c) + 1], 1, __ATOMIC_RELAXED);
-          }
+      ForEachArc(oneWay, b, e, k, [&](size_t i, int c) {
+        __atomic_fetch_add(&g.offset[knn.At(i, c) + 1], 1, __ATOMIC_RELAXED);
+      });
     });
     int64_t total = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -159,16 +161,14 @@ class NeighbourGraph {
     FarEntries added;
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
       std::vector<CompactIndex::Far>& mine = added.Mine();
-      for (size_t i = b; i < e; ++i)
-        for (int c = 0; c < k; ++c)
-          if (oneWay[i * k + c]) {
-            const int j = tableArc(int(i), g.offset[i] + c);
-            const int slot = __atomic_fetch_add(&fill[size_t(j)], 1, __ATOMIC_RELAXED);
-            g.adj.Put(size_t(slot), j, int(i), mine);
-          }
+      ForEachArc(oneWay, b, e, k, [&](size_t i, int c) {
+        const int j = tableArc(int(i), g.offset[i] + c);
+        const int slot = __atomic_fetch_add(&fill[size_t(j)], 1, __ATOMIC_RELAXED);
+        g.adj.Put(size_t(slot), j, int(i), mine);
+      });
       added.Add();
     });
-    oneWay = std::vector<bool>();
+    oneWay = ArcBits();
     fill = std::vector<int>();
     {
       std::vector<CompactIndex::Far> more = added.Take(), both;
@@ -278,6 +278,23 @@ class NeighbourGraph {
         if (To(int(i), e) < int(i)) sets.Unite(int(i), To(int(i), e));  // each edge once
     });
     return int(sets.Count());
+  }
+
+ private:
+  // f(i, c) for each set bit of the rows [b, e), in order, a word at a time:
+  // most arcs have their reverse, and a test of each bit mispredicts often.
+  template <class F>
+  static void ForEachArc(const ArcBits& bits, size_t b, size_t e, int k, F&& f) {
+    const size_t lo = b * size_t(k), hi = e * size_t(k);
+    for (size_t w = lo >> 6; w < (hi + 63) >> 6; ++w) {
+      uint64_t word = bits[w];
+      if (w == lo >> 6) word &= ~uint64_t(0) << (lo & 63);
+      if (w == hi >> 6 && (hi & 63)) word &= (uint64_t(1) << (hi & 63)) - 1;
+      for (; word; word &= word - 1) {
+        const size_t bit = (w << 6) + size_t(__builtin_ctzll(word));
+        f(bit / size_t(k), int(bit % size_t(k)));
+      }
+    }
   }
 };
 

@@ -37,6 +37,37 @@ TEST(NeighbourGraph, SymmetricAndContainsEveryKnnEdge) {
   }
 }
 
+// Rows span several of the threads' 1024-row chunks, and k = 7 puts row ends
+// inside the one-way bits' 64-bit words.
+TEST(NeighbourGraph, RowsAreTheSymmetricKnnOnAnyThreadCount) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<vcg::Point3f> pos(5000);
+  for (auto& q : pos) q = vcg::Point3f(u(rng), u(rng), 0.1f * u(rng));
+  const int k = 7;
+  auto knn = vcg_ext::KnnTable<float>::Compute(pos, k);
+  std::vector<std::vector<int>> expected(pos.size());
+  for (size_t i = 0; i < pos.size(); ++i)
+    for (int c = 0; c < k; ++c) {
+      expected[i].push_back(knn.At(i, c));
+      expected[size_t(knn.At(i, c))].push_back(int(i));
+    }
+  for (auto& row : expected) {
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+  }
+  for (int threads : {1, 2, 3}) {
+    auto g = test::OnThreads(threads, [&] { return vcg_ext::NeighbourGraph<float>::FromKnn(vcg_ext::KnnTable<float>(knn), k); });
+    ASSERT_EQ(g.size(), pos.size());
+    for (size_t i = 0; i < pos.size(); ++i) {
+      std::vector<int> row;
+      for (int e = g.offset[i]; e < g.offset[i + 1]; ++e) row.push_back(g.To(int(i), e));
+      std::sort(row.begin(), row.end());
+      ASSERT_EQ(row, expected[i]) << "row " << i << " on " << threads << " threads";
+    }
+  }
+}
+
 TEST(NeighbourGraph, WeightsAreNeverShorterThanTheEdge) {
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
