@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <new>
+#include <utility>
 #include <vector>
 #include "parallel.h"
 #include "progress.h"
@@ -60,44 +61,59 @@ class PoissonDisk {
   /// `order`, searching the disks of the next points `wanted(i)` still accepts
   /// in batches on all threads, then calls take(i, disk) for each in order
   /// (wanted(i) may have turned false meanwhile). `done()` counts the points
-  /// settled so far, for the batch size and progress.
+  /// settled so far, for the batch size and progress. wanted, take and done
+  /// run on the calling thread only, beside other threads' disk searches.
   template <class DiskSearch, class Wanted, class Take, class Done>
   static void InOrder(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
                       Take take, Done done, Progress progress) {
     const int threads = ThreadCount();
     PerThread<DiskSearch> searches(disk);
-    std::vector<int> cand;
-    std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
+    struct Batch {
+      std::vector<int> cand;
+      std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
+    } batches[3];
     size_t o = 0, searched = 0, reached = 0;
     const size_t m0 = order.size();
-    while (o < m0) {
+    // The next candidates in the order that wanted(i) accepts so far.
+    auto gather = [&](Batch& b) {
       // Batches small enough that their disks rarely overlap: their total
       // expected size is at most an eighth of the points still uncovered.
       const size_t left = n - std::min(n, done());
       const size_t perDisk = searched ? std::max<size_t>(1, reached / searched) : n;
-      const size_t batch = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, left / (8 * perDisk)));
-      cand.clear();
-      for (; o < m0 && cand.size() < batch; ++o)
-        if (wanted(order[o])) cand.push_back(order[o]);
-      if (members.size() < cand.size()) members.resize(cand.size());
-      const long long m = (long long)cand.size();
+      const size_t size = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, left / (8 * perDisk)));
+      b.cand.clear();
+      for (; o < m0 && b.cand.size() < size; ++o)
+        if (wanted(order[o])) b.cand.push_back(order[o]);
+      if (b.members.size() < b.cand.size()) b.members.resize(b.cand.size());
+    };
+    auto takeAll = [&](Batch& b) {
+      for (size_t c = 0; c < b.cand.size(); ++c) {
+        searched += 1, reached += b.members[c].size();
+        take(b.cand[c], b.members[c]);
+      }
+      b.cand.clear();
+    };
+    // While the threads search a batch's disks, the calling thread first takes
+    // the batch before it and gathers the one after: the walk's serial part
+    // overlaps the searches. A candidate the batch being searched then covers
+    // is dropped with its disk, as one covered by an earlier one of its batch.
+    Batch *prev = &batches[0], *cur = &batches[1], *next = &batches[2];
+    gather(*cur);
+    while (!cur->cand.empty() || !prev->cand.empty()) {
       std::atomic<bool> outOfMemory{false};  // a search's bad_alloc, rethrown after the loop
-      ParallelFor(size_t(m), 8, [&](size_t c) {
+      ParallelForBeside([&] { takeAll(*prev), gather(*next); }, cur->cand.size(), 8, [&](size_t c) {
         DiskSearch& search = searches.Mine();
-        std::vector<int>& list = members[c];
+        std::vector<int>& list = cur->members[c];
         list.clear();
         try {
-          search.Visit(cand[c], radius, [&](int i, double) { list.push_back(i); });
+          search.Visit(cur->cand[c], radius, [&](int i, double) { list.push_back(i); });
         } catch (const std::bad_alloc&) {
           outOfMemory = true;
         }
       });
       if (outOfMemory) throw std::bad_alloc();
-      for (size_t c = 0; c < cand.size(); ++c) {
-        searched += 1, reached += members[c].size();
-        take(cand[c], members[c]);
-      }
       progress(std::min(n, done()), n, "Poisson-disk sampling");
+      std::swap(prev, cur), std::swap(cur, next);
     }
   }
 

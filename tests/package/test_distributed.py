@@ -453,7 +453,11 @@ def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(c
         assert not c.scheduler_info()["workers"], "the worker was not lost: nothing to test"
         raised = job_errors(c, cloud[0], tmp_path / "lod", worker_check.LOST_WORKER_WAIT + 60)
     assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
-    assert "lost" in str(raised[0]) and "give workers more memory" in str(raised[0]), raised
+    # On a busy machine the nanny may have started another worker by the time the job asks: then
+    # that worker's limit is named, with what it takes before any task.
+    message = str(raised[0])
+    assert ("lost" in message and "give workers more memory" in message) or (
+        "before any task" in message and "give workers at least" in message), raised
     assert not (tmp_path / "lod").exists()
 
 

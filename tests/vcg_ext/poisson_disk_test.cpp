@@ -4,6 +4,7 @@
 #include <set>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace poisson_disk_test {
@@ -193,6 +194,36 @@ TEST(PoissonDisk, EuclideanDisksHoldTheirCentreRimAndCopiesAtAnyRadius) {
   ball.Visit(int(std::find(d.points.vertIndex.begin(), d.points.vertIndex.end(), 0) - d.points.vertIndex.begin()),
              vcg::Distance(m.vert[0].P(), m.vert[1].P()), [&](int i, float) { rim.insert(d.points.vertIndex[i]); });
   EXPECT_EQ(rim, (std::set<int>{0, 1, 8})) << "the centre and both neighbours on the rim";
+}
+
+// Batches of disks searched beside the walk's taking and gathering give the
+// samples and owners of the plain walk, one point at a time, on any threads.
+TEST(PoissonDisk, BatchedWalkIsThePlainWalkOnAnyThreadCount) {
+  test::TMesh m;
+  Bumpy(m, 150);
+  const Domain d = Build(m, Metric::CurvatureDensity);
+  const double r = 0.02;
+  const std::vector<int> order = LOD::VisitingOrder(d, 7, {}, vcg_ext::VisitOrder::Random);
+  std::vector<int> samples, owner(d.size(), -1);
+  d.WithSearch([&](auto& search) {
+    for (int i : order) {
+      if (owner[size_t(i)] >= 0) continue;
+      search.Visit(i, float(r), [&](int j, double) {
+        if (owner[size_t(j)] < 0) owner[size_t(j)] = int(samples.size());
+      });
+      samples.push_back(i);
+    }
+  });
+  ASSERT_GT(samples.size(), 1000u) << "enough disks for many batches";
+  vcg_ext::PoissonDisk::Param pp;
+  pp.radius = r;
+  pp.order = &order;
+  for (int threads : {1, 2, 3}) {
+    vcg_ext::PoissonDisk::Result got;
+    test::OnThreads(threads, [&] { d.WithSearch([&](auto& search) { got = vcg_ext::PoissonDisk::Compute(d.size(), search, pp); }); });
+    EXPECT_EQ(got.samples, samples) << threads << " threads";
+    EXPECT_EQ(got.owner, owner) << threads << " threads";
+  }
 }
 
 }  // namespace poisson_disk_test
