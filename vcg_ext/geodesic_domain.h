@@ -164,7 +164,7 @@ class GeodesicDomain {
       // it, when the table has shrunk to what the graph and the walk read (at
       // the peak, the walk's queue and levels would add about 20 bytes a point).
       if (graph) knn.KeepColumns(std::max(p.graphNeighbours, PointNormals<Scalar>::OrientColumns(np)));
-      typename NeighbourGraph<Scalar>::ArcBits oneWay;
+      typename NeighbourGraph<Scalar>::OneWay oneWay;
       auto findOneWay = [&] {
         if (!graph) return;
         oneWay = NeighbourGraph<Scalar>::OneWayArcs(knn, p.graphNeighbours, progress.Sub(55, 75));
@@ -183,7 +183,7 @@ class GeodesicDomain {
       if (graph) {
         d.graph = NeighbourGraph<Scalar>::FromKnn(std::move(knn), p.graphNeighbours, std::move(oneWay),
                                                   progress.Sub(75, 95));
-        // On all threads, after the walk: beside it, the one-way arcs alone take about as long.
+        // On all threads, after the walk (longer than what the graph finds beside it).
         d.components = d.graph.ComponentCount();
       }
     }

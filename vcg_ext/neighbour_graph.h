@@ -81,20 +81,25 @@ class NeighbourGraph {
   /// the same bytes. Each row is kNN(i) plus the points having i among their
   /// k nearest but not among i's: no duplicates to sort out, no pair list.
   static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, Progress progress = Progress(nullptr)) {
-    ArcBits oneWay = OneWayArcs(knn, k, progress.Sub(0, 50));
+    OneWay oneWay = OneWayArcs(knn, k, progress.Sub(0, 50));
     return FromKnn(std::move(knn), k, std::move(oneWay), progress.Sub(50, 100));
   }
 
-  /// One bit per arc i -> knn(i)[c] of the first k columns, bit i k + c.
-  typedef std::vector<uint64_t> ArcBits;
+  /// The arcs of the first k columns that the table has no reverse of (the
+  /// arcs FromKnn adds to other rows).
+  struct OneWay {
+    std::vector<uint64_t> bits;  ///< per arc i -> knn(i)[c], bit i k + c: one-way
+    std::vector<int> added;      ///< per point j, at j + 1: the one-way arcs to j
+  };
 
-  /// Per arc of the first k columns: whether the table has no reverse arc
-  /// (the arcs FromKnn adds to other rows). O(n k^2), on all threads; it only
-  /// reads the table.
-  static ArcBits OneWayArcs(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
+  /// The table's one-way arcs. O(n k^2), on all threads; it only reads the
+  /// table, so it can run beside the normals' orientation walk.
+  static OneWay OneWayArcs(const KnnTable<Scalar>& knn, int k, Progress progress = Progress(nullptr)) {
     const size_t n = knn.size();
+    OneWay w;
     // Chunks start at multiples of 1024 rows, so no two threads write the same word.
-    ArcBits oneWay((n * size_t(k) + 63) / 64);
+    w.bits.assign((n * size_t(k) + 63) / 64, 0);
+    w.added.assign(n + 1, 0);
     ParallelChunks(n, progress, "Building the neighbour graph", [&](size_t b, size_t e) {
       std::vector<int> row(static_cast<size_t>(k));
       for (size_t i = b; i < e; ++i) {
@@ -110,28 +115,23 @@ class NeighbourGraph {
             for (int d = 0; d < k; ++d) found |= knn.At(size_t(j), d) == int(i);
           }
           const size_t bit = i * size_t(k) + size_t(c);
-          oneWay[bit >> 6] |= uint64_t(!found) << (bit & 63);
+          w.bits[bit >> 6] |= uint64_t(!found) << (bit & 63);
+          if (!found) __atomic_fetch_add(&w.added[size_t(j) + 1], 1, __ATOMIC_RELAXED);
         }
       }
     });
-    return oneWay;
+    return w;
   }
 
   /// FromKnn with the table's OneWayArcs(knn, k) found before.
-  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, ArcBits oneWay,
-                                Progress progress = Progress(nullptr)) {
+  static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, OneWay oneWay, Progress progress = Progress(nullptr)) {
     knn.KeepColumns(k);
     const size_t n = knn.size();
     // Rows get their one-way arcs from other rows: counted and placed with
     // atomic steps, in an order that varies with the threads, then each row is
     // sorted, so the graph does not.
     NeighbourGraph g;
-    g.offset.assign(n + 1, 0);
-    ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
-      ForEachArc(oneWay, b, e, k, [&](size_t i, int c) {
-        __atomic_fetch_add(&g.offset[knn.At(i, c) + 1], 1, __ATOMIC_RELAXED);
-      });
-    });
+    g.offset = std::move(oneWay.added);
     int64_t total = 0;
     for (size_t i = 0; i < n; ++i) {
       total += g.offset[i + 1] + k;
@@ -161,14 +161,14 @@ class NeighbourGraph {
     FarEntries added;
     ParallelChunks(n, Progress(nullptr), "", [&](size_t b, size_t e) {
       std::vector<CompactIndex::Far>& mine = added.Mine();
-      ForEachArc(oneWay, b, e, k, [&](size_t i, int c) {
+      ForEachArc(oneWay.bits, b, e, k, [&](size_t i, int c) {
         const int j = tableArc(int(i), g.offset[i] + c);
         const int slot = __atomic_fetch_add(&fill[size_t(j)], 1, __ATOMIC_RELAXED);
         g.adj.Put(size_t(slot), j, int(i), mine);
       });
       added.Add();
     });
-    oneWay = ArcBits();
+    oneWay.bits = std::vector<uint64_t>();
     fill = std::vector<int>();
     {
       std::vector<CompactIndex::Far> more = added.Take(), both;
@@ -284,7 +284,7 @@ class NeighbourGraph {
   // f(i, c) for each set bit of the rows [b, e), in order, a word at a time:
   // most arcs have their reverse, and a test of each bit mispredicts often.
   template <class F>
-  static void ForEachArc(const ArcBits& bits, size_t b, size_t e, int k, F&& f) {
+  static void ForEachArc(const std::vector<uint64_t>& bits, size_t b, size_t e, int k, F&& f) {
     const size_t lo = b * size_t(k), hi = e * size_t(k);
     for (size_t w = lo >> 6; w < (hi + 63) >> 6; ++w) {
       uint64_t word = bits[w];
