@@ -127,8 +127,8 @@ class NeighbourGraph {
   static NeighbourGraph FromKnn(KnnTable<Scalar>&& knn, int k, OneWay oneWay, Progress progress = Progress(nullptr)) {
     knn.KeepColumns(k);
     const size_t n = knn.size();
-    // Rows get their one-way arcs from other rows: counted and placed with
-    // atomic steps, in an order that varies with the threads, then each row is
+    // Rows get their one-way arcs from other rows: counted (OneWayArcs) and
+    // placed with atomic steps, in an order that varies with the threads, then each row is
     // sorted, so the graph does not.
     NeighbourGraph g;
     g.offset = std::move(oneWay.added);
