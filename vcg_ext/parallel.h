@@ -324,10 +324,14 @@ void ParallelFor(size_t n, size_t grain, F&& f) {
 
 /// ParallelFor(n, grain, f) whose calling thread first runs `serial`, a pass
 /// that overlaps the loop (it must not touch what f does): the other threads
-/// start on the rows at once. With one thread, `serial` then the rows.
+/// start on the rows at once. With one thread, or rows for one thread only
+/// (as ParallelFor, no thread is woken for less than a grain each), `serial`
+/// then the rows.
 template <class Serial, class F>
 void ParallelForBeside(Serial&& serial, size_t n, size_t grain, F&& f) {
-  detail::Rows(n > 0 ? ThreadCount() : 1, serial, n, std::max<size_t>(1, grain), f);
+  grain = std::max<size_t>(1, grain);
+  detail::Rows(int(std::max<size_t>(1, std::min<size_t>(size_t(ThreadCount()), (n + grain - 1) / grain))), serial, n,
+               grain, f);
 }
 
 /// One object per thread: the given one for thread 0, copies for the others

@@ -66,7 +66,7 @@ TEST(Parallel, ALoopBesideASerialPassVisitsEveryIndexOnceWhileThePassRunsOnTheCa
     OnThreads(threads, [&] {
       for (size_t n : {0, 1, 7, 100003}) {
         std::vector<std::atomic<int>> seen(n);
-        std::atomic<size_t> rowsDuringPass{0};
+        std::atomic<size_t> rowsDuringPass{0}, rowsElsewhere{0};
         std::atomic<bool> passStarted{false}, passDone{false};
         int passes = 0;
         const std::thread::id caller = std::this_thread::get_id();
@@ -84,8 +84,11 @@ TEST(Parallel, ALoopBesideASerialPassVisitsEveryIndexOnceWhileThePassRunsOnTheCa
               while (!passStarted.load()) std::this_thread::yield();  // rows are quick: start them inside the pass
               seen[i].fetch_add(1);
               if (!passDone.load()) rowsDuringPass.fetch_add(1);
+              if (std::this_thread::get_id() != caller) rowsElsewhere.fetch_add(1);
             });
         EXPECT_EQ(passes, 1);
+        // Rows of one grain wake no other thread (as ParallelFor): the pass, then the rows.
+        if (n <= 8) EXPECT_EQ(rowsElsewhere.load(), 0u) << threads << " " << n;
         std::vector<int> out;
         for (auto& s : seen) out.push_back(s.load());
         EXPECT_EQ(out, std::vector<int>(n, 1)) << threads << " " << n;
