@@ -153,6 +153,8 @@ class ThreadTeam {
   /// (-1 where that is not known): the workers avoid it (AvoidsCallerCpu)
   /// while the machine is not oversubscribed.
   int CallerCpu() const { return callerCpu_; }
+  /// The workers so far, each started with its thread-local data made.
+  int Workers() const { return started_.load(std::memory_order_acquire); }
 
   /// Whether other work leaves no core partly free: `runnable` tasks on the
   /// machine, `ours` of them this team's threads, `cores` the caller may use.
@@ -175,6 +177,12 @@ class ThreadTeam {
 
  private:
   // The workers for `threads` in all (the caller is one); fewer if the system refuses a thread.
+  // A new worker has made its thread-local data when Grow returns: glibc
+  // allocates a loaded plugin's thread-local block at a thread's first use of
+  // it and aborts the process where that fails, so it is made while the memory
+  // that let the thread start is there, not at the worker's first job, which
+  // may come much later (a helper skips the jobs done before it starts), when a
+  // large input has used the memory up and a clear error was due.
   int Grow(int threads) {
     while (int(workers_.size()) + 1 < threads) {
       try {
@@ -184,6 +192,7 @@ class ThreadTeam {
         break;
       }
     }
+    Await([&] { return started_.load(std::memory_order_acquire) == int(workers_.size()); }, done_);
     return std::min(threads, int(workers_.size()) + 1);
   }
 
@@ -231,6 +240,12 @@ class ThreadTeam {
   }
 
   void Work(int w) {
+    detail::Place() = {0, 1, false};  // the thread-local block, made now (Grow)
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      started_.fetch_add(1, std::memory_order_release);
+    }
+    done_.notify_all();
     uint64_t seen = 0;
     for (;;) {
       Await([&] { return generation_.load(std::memory_order_acquire) != seen; }, wake_);
@@ -265,6 +280,7 @@ class ThreadTeam {
     new (&wake_) std::condition_variable;
     new (&done_) std::condition_variable;
     pending_ = 0;
+    started_ = 0;
     size_ = 1;
     placedFor_ = -1;
     pid_ = getpid();
@@ -276,6 +292,7 @@ class ThreadTeam {
   std::condition_variable wake_, done_;
   std::atomic<uint64_t> generation_{0};
   std::atomic<int> pending_{0};
+  std::atomic<int> started_{0};  // workers that have made their thread-local data
   int size_ = 1, asked_ = 1;  // the workers running the job, and its t's in all
   bool optional_ = false, closed_ = false;  // helpers optional; and job(0) has returned (under m_)
   std::function<void(int)> job_;

@@ -193,6 +193,21 @@ TEST(Parallel, ThreadsLoopingAtOnceEachGetTheirOwnTeam) {
   });
 }
 
+// A worker's thread-local data is made when the worker starts, before its
+// first loop returns, even where the caller does the loop's rows before any
+// helper wakes: made later, with the memory used up, glibc would abort.
+TEST(Parallel, ANewTeamsWorkersHaveStartedWhenItsFirstLoopReturns) {
+  std::thread caller([] {  // a thread of its own: a new team
+    int workers = -1;
+    OnThreads(3, [&] {
+      vcg_ext::ThreadTeam::Mine().Run(3, [](int) {}, true);
+      workers = vcg_ext::ThreadTeam::Mine().Workers();
+    });
+    EXPECT_EQ(workers, 2);
+  });
+  caller.join();
+}
+
 // A thread that finishes its share first waits for the others without
 // spinning: on a busy machine the one it waits for needs that core. Here the
 // calling thread sleeps 20 ms in each of 40 loops while the worker, done at
