@@ -1,0 +1,98 @@
+"""Adaptivity a of the curvature-density metric by the geodesics: our default Poisson LOD (exact count,
+seed 0, the prominent points first) at each a, on tuning models only (none is in the quality tables),
+scored by the quality benchmark's reconstruction error (bench/quality.py), divided by the error at the
+default a. Meshes run fast marching over their triangles (the tuning terrain crop and the mesh
+benchmark's tuning dragon), raw scans the point graph (the tuning dragon scans), as the filter takes them.
+
+Eq. 1 measures a clean mesh's shape but also a raw scan's noise (its normals from 10 neighbours): the
+question is whether one a serves both.
+
+usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python adaptivity_tuning.py
+       (writes docs/adaptivity_tuning.json and docs/adaptivity_tuning.md)
+"""
+import math
+import time
+
+import numpy as np
+
+from host import load_plugin
+from quality_config import DEFAULT_ADAPTIVITY, TUNE_RATES, TUNING_MESHES, TUNING_MODELS
+from results import DOCS, save
+
+SWEEP = [0.0, 1.0, 3.0, 5.0, 10.0, 20.0, 30.0]
+MODELS = [*TUNING_MODELS, *TUNING_MESHES]
+
+
+def lod(model, faces, target, a):
+    from geodesic_lod import _core, arrays
+    p, n, f, _ = arrays.input_arrays(model.points, model.normals, faces)
+    param = _core.PoissonParam()
+    param.domain = arrays.DomainOptions().param(len(p), f is not None)
+    param.domain.adaptivity = a
+    param.sample_num = target
+    t = time.perf_counter()
+    idx = np.asarray(_core.poisson_lod(p, n, f, param, None, None)["indices"])
+    return idx, time.perf_counter() - t
+
+
+def geomean(xs):
+    return math.exp(sum(math.log(x) for x in xs) / len(xs))
+
+
+def main():
+    import quality  # pymeshlab: the page alone (page()) does without it
+    load_plugin()  # the reconstruction error's measure
+    rows = []
+    for key in MODELS:
+        model = quality.Model(key)
+        faces = model.ms.current_mesh().face_matrix() if model.faces else None
+        geodesics = "triangles" if faces is not None else "point graph"
+        for rate in TUNE_RATES:
+            target = int(round(rate * len(model.points)))
+            row = dict(model=key, geodesics=geodesics, rate=rate, target=target, runs={})
+            for a in SWEEP:
+                idx, seconds = lod(model, faces, target, a)
+                err, _ = quality.reconstruction_error(model, dict(points=model.points[idx], normals=model.normals[idx]))
+                row["runs"][f"{a:g}"] = dict(count=len(idx), seconds=seconds, recon_mean=err["mean"])
+            rows.append(row)
+            print(row, flush=True)
+    save("adaptivity_tuning", rows)
+    text = page(rows)
+    (DOCS / "adaptivity_tuning.md").write_text(text)
+    print(text)
+
+
+def ratio(row, a):
+    return row["runs"][f"{a:g}"]["recon_mean"] / row["runs"][f"{DEFAULT_ADAPTIVITY:g}"]["recon_mean"]
+
+
+def page(rows):
+    """docs/adaptivity_tuning.md from the rows."""
+    head = ["model", "geodesics", "rate", f"a = {DEFAULT_ADAPTIVITY:g} (‰)"] + \
+        [f"a = {a:g}" for a in SWEEP if a != DEFAULT_ADAPTIVITY]
+    lines = [
+        "# Adaptivity a by the geodesics", "",
+        "Written by `bench/adaptivity_tuning.py` (`docs/adaptivity_tuning.json`): our default Poisson LOD "
+        "(curvature-density metric, exact count, seed 0, the prominent points first) at each a on the tuning "
+        "models, scored by the quality benchmark's reconstruction error ([benchmarks.md](benchmarks.md)); "
+        f"each cell is the error at a over the error at a = {DEFAULT_ADAPTIVITY:g}, the default (below 1: "
+        "lower). Meshes take fast marching over their triangles, raw scans the point graph, as the filter "
+        "takes them. None of these models is in the quality tables.", "",
+        "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for r in rows:
+        cells = [r["model"], r["geodesics"], f"{r['rate']:.0%}",
+                 f"{1000 * r['runs'][f'{DEFAULT_ADAPTIVITY:g}']['recon_mean']:.3f}"]
+        cells += [f"{ratio(r, a):.3f}" for a in SWEEP if a != DEFAULT_ADAPTIVITY]
+        lines.append("| " + " | ".join(cells) + " |")
+    lines += ["", "Geometric mean of the ratio over each kind's models and rates, and its largest:", "",
+              "| geodesics | " + " | ".join(f"a = {a:g}" for a in SWEEP) + " |", "|" + "---|" * (len(SWEEP) + 1)]
+    for kind in sorted({r["geodesics"] for r in rows}):
+        mine = [r for r in rows if r["geodesics"] == kind]
+        lines.append(f"| {kind} | " + " | ".join(
+            f"{geomean([ratio(r, a) for r in mine]):.3f} (largest {max(ratio(r, a) for r in mine):.3f})"
+            for a in SWEEP) + " |")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    main()
