@@ -11,9 +11,6 @@ usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python adaptivity_tun
        (writes docs/adaptivity_tuning.json and docs/adaptivity_tuning.md)
 """
 import math
-import time
-
-import numpy as np
 
 from host import load_plugin
 from quality_config import DEFAULT_ADAPTIVITY, TUNE_RATES, TUNING_MESHES, TUNING_MODELS
@@ -21,18 +18,6 @@ from results import DOCS, save
 
 SWEEP = [0.0, 1.0, 3.0, 5.0, 10.0, 20.0, 30.0]
 MODELS = [*TUNING_MODELS, *TUNING_MESHES]
-
-
-def lod(model, faces, target, a):
-    from geodesic_lod import _core, arrays
-    p, n, f, _ = arrays.input_arrays(model.points, model.normals, faces)
-    param = _core.PoissonParam()
-    param.domain = arrays.DomainOptions().param(len(p), f is not None)
-    param.domain.adaptivity = a
-    param.sample_num = target
-    t = time.perf_counter()
-    idx = np.asarray(_core.poisson_lod(p, n, f, param, None, None)["indices"])
-    return idx, time.perf_counter() - t
 
 
 def geomean(xs):
@@ -45,13 +30,12 @@ def main():
     rows = []
     for key in MODELS:
         model = quality.Model(key)
-        faces = model.ms.current_mesh().face_matrix() if model.faces else None
-        geodesics = "triangles" if faces is not None else "point graph"
+        geodesics = "triangles" if model.faces else "point graph"
         for rate in TUNE_RATES:
             target = int(round(rate * len(model.points)))
             row = dict(model=key, geodesics=geodesics, rate=rate, target=target, runs={})
             for a in SWEEP:
-                idx, seconds = lod(model, faces, target, a)
+                idx, seconds = model.ours_indices(target, faces=True, adaptivity=a)
                 err, _ = quality.reconstruction_error(model, dict(points=model.points[idx], normals=model.normals[idx]))
                 row["runs"][f"{a:g}"] = dict(count=len(idx), seconds=seconds, recon_mean=err["mean"])
             rows.append(row)

@@ -21,9 +21,10 @@ import doc_tables
 import surface_distance
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quadric_count import quadric_to_count
+from quality_config import TUNING_MESHES
 
 MODELS = {"dragon (100k vertices)": "dragon_100k.ply", "bunny (35k vertices)": "bunny_35k.ply"}
-TUNING_MODELS = {"dragon (437k vertices, tuning)": "dragon_437k.ply"}  # chose the default placement
+TUNING_MODELS = {"dragon (437k vertices, tuning)": TUNING_MESHES["dragon, 437k mesh"]}  # chose the default placement
 RATES = [0.10, 0.05, 0.02]
 COUNT_TOLERANCE = 0.01
 

@@ -102,6 +102,22 @@ class Model:
         best["search_seconds"] = sum(spent)
         return best
 
+    def ours_indices(self, target, faces=False, **fields):
+        """Our Poisson LOD of `target` points by the Python API (the rows it keeps, and the seconds):
+        over the model's triangles when `faces`, else its points; `fields` set PoissonParam's
+        (order, prominence_noise) or its domain's (adaptivity)."""
+        from geodesic_lod import _core, arrays
+        tri = self.ms.mesh(0).face_matrix() if faces and self.faces else None
+        p, n, f, _ = arrays.input_arrays(self.points, self.normals, tri)
+        param = _core.PoissonParam()
+        param.domain = arrays.DomainOptions().param(len(p), f is not None)
+        param.sample_num = target
+        for name, value in fields.items():
+            setattr(param.domain if hasattr(param.domain, name) else param, name, value)
+        t = time.perf_counter()
+        idx = np.asarray(_core.poisson_lod(p, n, f, param, None, None)["indices"])
+        return idx, time.perf_counter() - t
+
     # --- MeshLab ------------------------------------------------------------------------
     # Both by our radius search: generate_simplified_point_cloud ignores exactnumflag (it sets
     # the radius before testing it for 0), and one search for both keeps their times alike.

@@ -7,7 +7,6 @@ usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py
        (writes docs/visit_order.json, or docs/visit_order_tuning.json)
 """
 import argparse
-import time
 
 import numpy as np
 
@@ -18,20 +17,6 @@ from results import publish
 
 RATES = [0.10, 0.05, 0.02]
 NOISE_SWEEP = [0, 1, 2, 3]
-
-
-def lod(model, target, order, noise=None):
-    from geodesic_lod import _core, arrays
-    p, n, _, _ = arrays.input_arrays(model.points, model.normals, None)
-    param = _core.PoissonParam()
-    param.domain = arrays.DomainOptions().param(len(p), False)
-    param.sample_num = target
-    param.order = order
-    if noise is not None:
-        param.prominence_noise = noise
-    t = time.perf_counter()
-    idx = np.asarray(_core.poisson_lod(p, n, None, param, None, None)["indices"])
-    return idx, time.perf_counter() - t
 
 
 def main():
@@ -50,7 +35,8 @@ def main():
             target = int(round(rate * len(model.points)))
             row = dict(model=key, rate=rate, target=target)
             for name, order, noise in runs:
-                idx, seconds = lod(model, target, order, noise)
+                idx, seconds = model.ours_indices(target, order=order,
+                                                  **({} if noise is None else dict(prominence_noise=noise)))
                 err, _ = quality.reconstruction_error(model, dict(points=model.points[idx],
                                                                   normals=model.normals[idx]))
                 row[name] = dict(count=len(idx), seconds=seconds, recon_mean=err["mean"])
