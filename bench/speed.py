@@ -2,7 +2,9 @@
 and MeshLab's own Point Cloud Simplification (generate_simplified_point_cloud) at the same
 count, on synthetic scans (bench/make_scan.py) of 1M to 14M points.
 
-Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of that process):
+Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of that process); ours,
+MeshLab and lod_cli run --repeats times, interleaved, and the run of median time is reported with the
+range beside it (this machine's speed drifts within minutes):
   ours, normals estimated   pymeshlab, the scan without normals
   ours, 10% asked           the same, asked for 10% of the points (samplerate=10: an exact count, the
                             radius searched), what a user asking for a share waits for
@@ -20,7 +22,7 @@ Every measurement runs in a fresh process (peak memory is the kernel's VmHWM of 
                             holds at the machine's measured copy bandwidth
 The disk radius r = 0.00283 sqrt(1e6 / n) gives about 10% of the points on these scans.
 
-usage: bench/speed.py [--sizes 1e6 5e6 14e6] [--scans DIR] [--timeout S] [--peer-timeout S] > run.jsonl
+usage: bench/speed.py [--sizes 1e6 5e6 14e6] [--repeats 3] [--scans DIR] [--timeout S] [--peer-timeout S] > run.jsonl
        bench/speed.py --replot FILE   (the table and plot again, from a run's log; docs/benchmarks-speed.jsonl is the last)
 writes docs/benchmarks-speed.md and docs/images/speed_vs_size.png; each size's results are also
 printed as one JSON line (the log).
@@ -167,11 +169,29 @@ def fmt(r, key, f):
     return "did not finish" if r is None else f.format(r[key])
 
 
+def median_run(runs):
+    """The run of median time (the lower middle of an even count); a run that did not finish counts as
+    the slowest, so None where at least half did not."""
+    done = sorted((r for r in runs if r), key=lambda r: r["time"])
+    middle = (len(runs) - 1) // 2
+    return done[middle] if middle < len(done) else None
+
+
+def fmt_time(r, kind):
+    """A median time with the range of its runs beside it, where there were several."""
+    times = r.get("times", {}).get(kind, [])
+    cell = fmt(r[kind], "time", "{:.1f} s")
+    if r[kind] and len(times) > 1:
+        cell += f" ({min(times):.1f}-{max(times):.1f})"
+    return cell
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--one", nargs=4, metavar=("KIND", "PLY", "N", "COUNT"), help=argparse.SUPPRESS)
     ap.add_argument("--floor", type=int, metavar="N", help=argparse.SUPPRESS)
     ap.add_argument("--sizes", type=float, nargs="+", default=[1e6, 5e6, 14e6])
+    ap.add_argument("--repeats", type=int, default=3, help="interleaved runs of ours, MeshLab and lod_cli")
     ap.add_argument("--scans", default="/tmp/geodesic-lod-scans")
     ap.add_argument("--timeout", type=float, default=900)
     ap.add_argument("--peer-timeout", type=float, default=300)
@@ -196,12 +216,16 @@ def main():
     rows = []
     for n in map(int, args.sizes):
         bare, withn = scan_file(scans, n, False), scan_file(scans, n, True)
-        est = measure(me + ["ours", bare, str(n), "0"], args.timeout)
-        asked = measure(me + ["ours_rate", bare, str(n), "0"], args.timeout)
-        given = measure(me + ["ours", withn, str(n), "0"], args.timeout)
-        count = est["samples"] if est else int(0.1 * n)
-        ml = measure(me + ["meshlab", bare, str(n), str(count)], args.timeout)
-        cli = measure_cli(bare, n, args.timeout)
+        runs = {kind: [] for kind in ("est", "asked", "given", "meshlab", "cli")}
+        for _ in range(args.repeats):
+            runs["est"].append(measure(me + ["ours", bare, str(n), "0"], args.timeout))
+            runs["asked"].append(measure(me + ["ours_rate", bare, str(n), "0"], args.timeout))
+            runs["given"].append(measure(me + ["ours", withn, str(n), "0"], args.timeout))
+            est = runs["est"][0]
+            count = est["samples"] if est else int(0.1 * n)
+            runs["meshlab"].append(measure(me + ["meshlab", bare, str(n), str(count)], args.timeout))
+            runs["cli"].append(measure_cli(bare, n, args.timeout))
+        est, asked, given, ml, cli = (median_run(runs[kind]) for kind in runs)
         peers = {}
         for method in PEERS if PEER_TOOL.is_file() else []:
             if any(method in r["peers"] and r["peers"][method] is None for r in rows):
@@ -209,19 +233,29 @@ def main():
             peers[method] = measure_peer(method, withn, count, str(scans / "peer_out.ply"), args.peer_timeout)
         floor = measure([sys.executable, __file__, "--floor", str(n)], args.timeout)
         rows.append({"n": n, "est": est, "asked": asked, "given": given, "meshlab": ml, "cli": cli, "peers": peers,
-                     "floor": floor, "peer_timeout": args.peer_timeout})
+                     "floor": floor, "peer_timeout": args.peer_timeout,
+                     "times": {kind: [r["time"] for r in rs if r] for kind, rs in runs.items()}})
         print(json.dumps(rows[-1]), flush=True)
 
     write_table(rows)
     plot(rows)
 
 
+def repeats_text(rows):
+    n = max((len(t) for r in rows for t in r.get("times", {}).values()), default=1)
+    if n < 2:
+        return "One run of each."
+    return (f"Ours, MeshLab and lod_cli ran {n} times each, interleaved: a time is the run of median time, "
+            "the range of the runs in brackets; samples, peaks, loads and stages are that run's.")
+
+
 def write_table(rows):
     lines = ["# Speed and memory against size", "",
              "Generated by `bench/speed.py` on the synthetic scans of `bench/make_scan.py` (a height field with",
-             "smooth hills, a detailed half and noise), on this project's 2-core test machine. Each cell is one",
+             "smooth hills, a detailed half and noise), on this project's 2-core test machine. Each run is a",
              "fresh process; time is the filter alone (the scan already loaded), peak is the process's peak",
-             "resident memory (VmHWM), bytes/point is (peak - after loading) / points. Load is the 1-minute load",
+             "resident memory (VmHWM), bytes/point is (peak - after loading) / points. " + repeats_text(rows) +
+             " Load is the 1-minute load",
              "average when the run started (2 cores: above 2, other work was competing). MeshLab is asked",
              "for ours' sample count (`exactnumflag=False`, its faster mode) and returns about 20% more.", "",
              f"Ours, {ASKED_RATE:g}% asked, is the filter given `samplerate={ASKED_RATE:g}`: an exact count, its "
@@ -238,9 +272,9 @@ def write_table(rows):
         cbpp = "" if not cli else f"{(cli['peak_mb'] - cli['loaded_mb']) * 2**20 / r['n']:.0f}"
         loads = "/".join(f"{x['load']:.1f}" for x in (est, given, ml, cli) if x)
         lines.append(f"| {r['n'] / 1e6:g}M | {fmt(est, 'samples', '{:d}')} / {fmt(ml, 'samples', '{:d}')} | "
-                     f"{fmt(est, 'time', '{:.1f} s')} | {fmt(asked, 'time', '{:.1f} s')} | "
-                     f"{fmt(given, 'time', '{:.1f} s')} | {fmt(ml, 'time', '{:.1f} s')} | {ratio} | "
-                     f"{fmt(est, 'peak_mb', '{:.0f} MB')} | {bpp} | {fmt(cli, 'time', '{:.1f} s')} | "
+                     f"{fmt_time(r, 'est')} | {fmt_time(r, 'asked')} | "
+                     f"{fmt_time(r, 'given')} | {fmt_time(r, 'meshlab')} | {ratio} | "
+                     f"{fmt(est, 'peak_mb', '{:.0f} MB')} | {bpp} | {fmt_time(r, 'cli')} | "
                      f"{fmt(cli, 'peak_mb', '{:.0f} MB')} | {cbpp} | {loads} |")
     if any(r.get("peers") for r in rows):
         lines += ["", "Peers (`bench/peers/peer_simplify`, the scan with normals, asked for ours' count; the grid-like "
