@@ -3,10 +3,12 @@ Open3D's simplifications at the same sample counts, each scored by the error of 
 reconstructed from it (MeshLab's screened Poisson, the same settings for every method) and by
 a reconstruction-free measure. Writes docs/benchmarks.md and its plots (bench/quality_report.py).
 
-usage: bench/run_quality [--quick] [--no-tuning] [--report-only] [--fresh]
+usage: bench/run_quality [--quick] [--no-tuning] [--report-only] [--from-page] [--fresh]
 Every run is cached in out/bench/runs/ (one JSON file per model, method and rate), keyed by
 everything that changes its result (bench/quality_cache.py): a second call only runs what is missing
-or stale, and the report leaves out stale rows. --fresh clears the cache first. What is run, and with
+or stale, and the report leaves out stale rows. --fresh clears the cache first. --from-page rewrites
+the report from docs/benchmarks.json, the rows the page was last written from (where no cache is at
+hand: the other scripts' sections, such as the visiting order's, then follow their own runs). What is run, and with
 which parameters, is in bench/quality_config.py.
 """
 import argparse
@@ -271,6 +273,8 @@ def main():
     ap.add_argument("--quick", action="store_true", help=f"models {QUICK_MODELS}, rates {QUICK_RATES}")
     ap.add_argument("--no-tuning", action="store_true", help="skip the sweeps of a and c, and the seeds")
     ap.add_argument("--report-only", action="store_true", help="only rewrite the report from the cache")
+    ap.add_argument("--from-page", action="store_true",
+                    help="only rewrite the report from the rows it was last written from (docs/benchmarks.json)")
     ap.add_argument("--fresh", action="store_true", help="clear the cache of runs first")
     ap.add_argument("--plugin", default=str(PLUGIN))
     ap.add_argument("--peer-tool", default=str(PEER_TOOL))
@@ -284,6 +288,10 @@ def main():
     rates = QUICK_RATES if args.quick else RATES
     start = time.perf_counter()
     log = lambda s: print(f"[{time.perf_counter() - start:6.0f} s] {s}", flush=True)
+    if args.from_page:
+        quality_report.write(quality_report.page_runs(), models, rates, measure_name(), log,
+                             tuning_models=tuning_models)
+        return
     if not args.report_only:
         run_all(cache, args.peer_tool, models, rates, list(METHODS), log)
         if not args.no_tuning:

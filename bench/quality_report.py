@@ -38,7 +38,7 @@ def visit_order_section(docs):
     the prominent points first, on the tuning models (the noise discount swept) and on the reported ones."""
     lines = ["## Tuning the visiting order", "",
              "`bench/visit_order.py` (`--tune` on the tuning models): our default Poisson LOD (exact count, "
-             "seed 0) visiting the points in the paper's random order and by prominence "
+             "seed 0; meshes over their triangles, raw scans on the point graph, as the filter runs them) visiting the points in the paper's random order and by prominence "
              "(`vcg_ext/prominence.h`; on the tuning models with each noise discount, in standard errors), scored "
              "by the reconstruction error above. Below 1: lower than random order's. The default visits the "
              "prominent points first, discount 2."]
@@ -448,6 +448,12 @@ def mean_rank(runs, models, rates, what):
         for i, (_, m) in enumerate(ordered):
             ranks[m].append(i + 1)
     return {m: (np.mean(v) if v else np.nan, len(v)) for m, v in ranks.items()}
+
+
+def page_runs(doc_path=DOC):
+    """The runs a page was written from, as write() takes them: the rows it keeps beside the page."""
+    rows = json.loads(pathlib.Path(doc_path).with_suffix(".json").read_text())
+    return {(r["model"], r["method"], r["rate"]): r for r in rows}
 
 
 def write(runs, models, rates, measure, log, stale=0, doc_path=DOC, tuning_models=()):

@@ -1,7 +1,9 @@
 """Which point a Poisson disk keeps: our default sampler (curvature-density metric, exact count, seed 0)
 visiting points in random order against by prominence (vcg_ext/prominence.h), on the quality
-benchmark's models and normals, scored by its reconstruction error (bench/quality.py). With --tune: the
-prominence's noise discount swept on the quality benchmark's tuning models instead.
+benchmark's models and normals, scored by its reconstruction error (bench/quality.py). Meshes run fast
+marching over their triangles, raw scans the point graph, as the filter takes them. With --tune: the
+prominence's noise discount swept on the tuning models instead (the quality benchmark's and the mesh
+benchmark's tuning mesh).
 
 usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py [--tune]
        (writes docs/visit_order.json, or docs/visit_order_tuning.json)
@@ -12,7 +14,7 @@ import numpy as np
 
 import quality
 from host import load_plugin
-from quality_config import MODELS, TUNING_MODELS
+from quality_config import MODELS, TUNING_MESHES, TUNING_MODELS
 from results import publish
 
 RATES = [0.10, 0.05, 0.02]
@@ -29,13 +31,13 @@ def main():
     runs += ([(f"noise {k:g}", _core.VisitOrder.Prominence, k) for k in NOISE_SWEEP] if tune
              else [("prominence", _core.VisitOrder.Prominence, None)])
     rows = []
-    for key in (TUNING_MODELS if tune else MODELS):
+    for key in ([*TUNING_MODELS, *TUNING_MESHES] if tune else MODELS):
         model = quality.Model(key)
         for rate in RATES:
             target = int(round(rate * len(model.points)))
             row = dict(model=key, rate=rate, target=target)
             for name, order, noise in runs:
-                idx, seconds = model.ours_indices(target, order=order,
+                idx, seconds = model.ours_indices(target, faces=True, order=order,
                                                   **({} if noise is None else dict(prominence_noise=noise)))
                 err, _ = quality.reconstruction_error(model, dict(points=model.points[idx],
                                                                   normals=model.normals[idx]))

@@ -107,3 +107,11 @@ def test_against_meshlab_each_cell_is_over_its_simplification_with_every_point_b
     assert lines[2] == (f"| bunny | 10% | {ours:.3f} | {other:.3f} ({config.METHODS[lowest].label}) | {every:.3f} |")
     assert lines[3].startswith(f"| bunny | 2% | {1e-4 / 5e-4:.3f} |")
     assert "### Against MeshLab point cloud simplification" in write(tmp_path, runs)
+
+
+def test_a_page_written_again_from_its_rows_is_the_same_page(tmp_path):
+    first = write(tmp_path, tiny_runs())
+    doc = tmp_path / "docs" / "benchmarks.md"
+    runs = quality_report.page_runs(doc)
+    assert len(runs) == len(tiny_runs())
+    assert write(tmp_path, runs) == first
