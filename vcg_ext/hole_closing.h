@@ -2,9 +2,9 @@
 #define VCG_EXT_HOLE_CLOSING_H
 // Closes the small holes a mesh LOD has where its input has none: a loop of
 // border edges (edges of one triangle) of at most kMaxLoop edges, none of
-// whose vertices may stay open (a region on the input's own border) and no
-// two of whose edges are one triangle's (an island's rim is no hole), is
-// filled by ear cutting, the shortest new edge first, oriented as the
+// whose vertices may stay open (a region on the input's own border) and that
+// is no island's rim (a part of at most kMaxLoop triangles, one of them
+// holding two of its edges), is filled by ear cutting, the shortest new edge first, oriented as the
 // triangles around it. A loop through a vertex on two holes, or one whose
 // ears would all repeat an edge the mesh has, stays open: no edge ever ends
 // up in more than two triangles. Cost: O(triangles log triangles), and
@@ -18,6 +18,7 @@
 #include <vector>
 #include <vcg/space/point3.h>
 #include "triangle_borders.h"
+#include "union_find.h"
 
 namespace vcg_ext {
 
@@ -36,8 +37,20 @@ class HoleClosing {
     std::map<int, std::vector<std::pair<int, size_t>>> out;  // per vertex, (the hole's next vertex, the triangle)
     for (const auto& e : TriangleBorders::Edges(faces)) out[e.v].emplace_back(e.u, e.face);
     std::set<std::pair<int, int>> edges;  // every edge of the mesh, lower end first
-    for (const auto& t : faces)
-      for (size_t e = 0; e < 3; ++e) edges.emplace(std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]));
+    // The parts the triangles make, joined by their edges: a sliver whose tip
+    // is on a hole holds two of its edges, as an island's triangles do, but
+    // lies in a part of many triangles.
+    UnionFind parts(faces.size());
+    std::map<std::pair<int, int>, size_t> firstOf;  // per edge, a triangle holding it
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (size_t e = 0; e < 3; ++e) {
+        const int a = faces[f][e], b = faces[f][(e + 1) % 3];
+        edges.emplace(std::min(a, b), std::max(a, b));
+        const auto seen = firstOf.emplace(std::make_pair(std::min(a, b), std::max(a, b)), f);
+        if (!seen.second) parts.Unite(int(f), int(seen.first->second));
+      }
+    std::map<int, size_t> partSize;
+    for (size_t f = 0; f < faces.size(); ++f) ++partSize[parts.Find(int(f))];
     std::set<int> traced;
     size_t closed = 0;
     for (const auto& start : out) {
@@ -53,7 +66,8 @@ class HoleClosing {
         v = it->second[0].first;
         closes = v == s;
       }
-      if (!closes || loop.size() < 3 || loop.size() > kMaxLoop || beside.size() != loop.size()) continue;
+      if (!closes || loop.size() < 3 || loop.size() > kMaxLoop) continue;
+      if (beside.size() != loop.size() && partSize[parts.Find(int(*beside.begin()))] <= kMaxLoop) continue;  // an island
       if (std::any_of(loop.begin(), loop.end(), [&](int v) { return stayOpen[size_t(v)] != 0; })) continue;
       std::vector<std::array<int, 3>> fill;
       if (Fill(pos, loop, edges, fill)) {

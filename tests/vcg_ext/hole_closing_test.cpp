@@ -49,6 +49,22 @@ TEST(HoleClosing, AMissingTriangleComesBackOrientedAsItsNeighbours) {
   }
 }
 
+// A sliver whose tip lies on a hole holds two of the hole's edges, as an
+// island's triangles do; in a part of many triangles it is no island.
+TEST(HoleClosing, AHoleBesideASliverCloses) {
+  Points pos;
+  Triangles top, bottom;
+  Bipyramid(4, pos, top, bottom);
+  pos.push_back(0.45 * pos[0] + 0.45 * pos[4] + 0.1 * pos[1]);  // 6: inside top[0], near its edge 0-4
+  Triangles tri = {{0, 6, 4}};  // the sliver; top[0] minus it is the hole 0, 1, 4, 6
+  tri.insert(tri.end(), top.begin() + 1, top.end());
+  tri.insert(tri.end(), bottom.begin(), bottom.end());
+  ASSERT_FALSE(ClosedAndOriented(tri));
+  EXPECT_EQ(Closing::Compute(pos, std::vector<char>(pos.size(), 0), tri), 1u);
+  EXPECT_EQ(tri.size(), 10u);
+  EXPECT_TRUE(ClosedAndOriented(tri));
+}
+
 TEST(HoleClosing, LoopsUpToTheLongestCloseLongerOnesStayOpen) {
   for (int n : {3, 5, int(Closing::kMaxLoop), int(Closing::kMaxLoop) + 1}) {
     Points pos;
