@@ -35,6 +35,20 @@ def test_cells_are_ratios_to_the_default_and_the_summary_their_geometric_mean():
     assert means[base] == 1.0
 
 
+def test_a_meshs_output_is_shown_as_its_mean_over_the_defaults_beside_its_maximum():
+    base = tuning.SWEEP.index(tuning.DEFAULT_ADAPTIVITY)
+    r = row("a mesh", "triangles", 0.05, [1.0] * len(tuning.SWEEP))
+    for k, a in enumerate(tuning.SWEEP):
+        r["runs"][f"{a:g}"].update(hausdorff_mean=0.5 + 0.1 * k, hausdorff_max=3.0 + k)
+    text = tuning.page([r, row("a scan", "point graph", 0.05, [1.0] * len(tuning.SWEEP))])
+    line = next(line for line in text.splitlines() if line.startswith("| a mesh | 5% | ") and "(max" in line)
+    cells = line.strip("| ").split(" | ")[2:]
+    assert [float(c.split(" (")[0]) for c in cells] == pytest.approx(
+        [(0.5 + 0.1 * k) / (0.5 + 0.1 * base) for k in range(len(tuning.SWEEP))], abs=5e-4)
+    assert [float(c.split("max ")[1].rstrip(")")) for c in cells] == [3.0 + k for k in range(len(tuning.SWEEP))]
+    assert not any(line.startswith("| a scan | 5% | ") and "(max" in line for line in text.splitlines())
+
+
 def test_the_committed_page_is_its_rows():
     docs = ROOT / "docs"
     rows = json.loads((docs / "adaptivity_tuning.json").read_text())
