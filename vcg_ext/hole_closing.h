@@ -4,8 +4,8 @@
 // border edges (edges of one triangle) of at most kMaxLoop edges, none of
 // whose vertices may stay open (a region on the input's own border) and that
 // is no island's rim (a part of at most kMaxLoop triangles, one of them
-// holding two of its edges), is filled by ear cutting, the shortest new edge first, oriented as the
-// triangles around it. A loop through a vertex on two holes, or one whose
+// holding two of its edges), is filled by ear cutting, the shortest new edge
+// first, oriented as the triangles around it. A loop through a vertex on two holes, or one whose
 // ears would all repeat an edge the mesh has, stays open: no edge ever ends
 // up in more than two triangles. Cost: O(triangles log triangles), and
 // O(kMaxLoop^2) per loop.
@@ -36,21 +36,18 @@ class HoleClosing {
     // A hole runs its border edges backwards: the triangle filling it next to u -> v has v -> u.
     std::map<int, std::vector<std::pair<int, size_t>>> out;  // per vertex, (the hole's next vertex, the triangle)
     for (const auto& e : TriangleBorders::Edges(faces)) out[e.v].emplace_back(e.u, e.face);
-    std::set<std::pair<int, int>> edges;  // every edge of the mesh, lower end first
+    Edges edges;
     // The parts the triangles make, joined by their edges: a sliver whose tip
     // is on a hole holds two of its edges, as an island's triangles do, but
     // lies in a part of many triangles.
     UnionFind parts(faces.size());
-    std::map<std::pair<int, int>, size_t> firstOf;  // per edge, a triangle holding it
     for (size_t f = 0; f < faces.size(); ++f)
       for (size_t e = 0; e < 3; ++e) {
-        const int a = faces[f][e], b = faces[f][(e + 1) % 3];
-        edges.emplace(std::min(a, b), std::max(a, b));
-        const auto seen = firstOf.emplace(std::make_pair(std::min(a, b), std::max(a, b)), f);
+        const auto seen = edges.emplace(Key(faces[f][e], faces[f][(e + 1) % 3]), f);
         if (!seen.second) parts.Unite(int(f), int(seen.first->second));
       }
-    std::map<int, size_t> partSize;
-    for (size_t f = 0; f < faces.size(); ++f) ++partSize[parts.Find(int(f))];
+    std::vector<size_t> partSize(faces.size(), 0);  // per part's root
+    for (size_t f = 0; f < faces.size(); ++f) ++partSize[size_t(parts.Find(int(f)))];
     std::set<int> traced;
     size_t closed = 0;
     for (const auto& start : out) {
@@ -67,10 +64,11 @@ class HoleClosing {
         closes = v == s;
       }
       if (!closes || loop.size() < 3 || loop.size() > kMaxLoop) continue;
-      if (beside.size() != loop.size() && partSize[parts.Find(int(*beside.begin()))] <= kMaxLoop) continue;  // an island
+      if (beside.size() != loop.size() && partSize[size_t(parts.Find(int(*beside.begin())))] <= kMaxLoop)
+        continue;  // an island
       if (std::any_of(loop.begin(), loop.end(), [&](int v) { return stayOpen[size_t(v)] != 0; })) continue;
       std::vector<std::array<int, 3>> fill;
-      if (Fill(pos, loop, edges, fill)) {
+      if (Fill(pos, loop, faces.size(), edges, fill)) {
         faces.insert(faces.end(), fill.begin(), fill.end());
         ++closed;
       }
@@ -79,12 +77,16 @@ class HoleClosing {
   }
 
  private:
-  // Ear cutting of `loop` (its edges run as the filling triangles do); adds the new edges to `edges`.
-  // False, with nothing added, when no ear has an edge the mesh lacks.
-  static bool Fill(const std::vector<vcg::Point3<Scalar>>& pos, std::vector<int> loop,
-                   std::set<std::pair<int, int>>& edges, std::vector<std::array<int, 3>>& fill) {
+  /// Per edge of the mesh (its lower end first), a triangle holding it.
+  typedef std::map<std::pair<int, int>, size_t> Edges;
+  static std::pair<int, int> Key(int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); }
+
+  // Ear cutting of `loop` (its edges run as the filling triangles do), the
+  // triangles to be appended from index `first`; adds the new edges to
+  // `edges`. False, with nothing added, when no ear has an edge the mesh lacks.
+  static bool Fill(const std::vector<vcg::Point3<Scalar>>& pos, std::vector<int> loop, size_t first, Edges& edges,
+                   std::vector<std::array<int, 3>>& fill) {
     std::vector<std::pair<int, int>> added;
-    auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
     while (loop.size() > 3) {
       const size_t n = loop.size();
       size_t best = n;
@@ -92,7 +94,7 @@ class HoleClosing {
       for (size_t i = 0; i < n; ++i) {
         const int a = loop[i], c = loop[(i + 2) % n];
         const double len = double((pos[size_t(c)] - pos[size_t(a)]).SquaredNorm());
-        if (len < shortest && !edges.count(key(a, c))) {
+        if (len < shortest && !edges.count(Key(a, c))) {
           shortest = len;
           best = i;
         }
@@ -103,9 +105,9 @@ class HoleClosing {
         return false;
       }
       const int a = loop[best], b = loop[(best + 1) % n], c = loop[(best + 2) % n];
+      edges.emplace(Key(a, c), first + fill.size());
+      added.push_back(Key(a, c));
       fill.push_back({a, b, c});
-      edges.insert(key(a, c));
-      added.push_back(key(a, c));
       loop.erase(loop.begin() + std::ptrdiff_t((best + 1) % n));
     }
     fill.push_back({loop[0], loop[1], loop[2]});
