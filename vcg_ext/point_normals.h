@@ -127,8 +127,11 @@ class PointNormals {
         [&] {
           beside();
           try {
-            for (; !walked.load(std::memory_order_acquire); std::this_thread::sleep_for(kWaitStep))
+            // At least one look: a stop request made by now is heard however soon the walk ended.
+            for (;; std::this_thread::sleep_for(kWaitStep)) {
               progress(0, 1, kWhat);
+              if (walked.load(std::memory_order_acquire)) break;
+            }
           } catch (...) {
             stop = true;  // the walk ends at its next look
             throw;

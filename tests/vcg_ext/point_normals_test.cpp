@@ -1,4 +1,6 @@
 // Normals: the input's where valid, else estimated, unit and consistently (outward) oriented.
+#include <chrono>
+#include <thread>
 #include <gtest/gtest.h>
 #include <vcg_ext/point_normals.h>
 #include <vcg_ext/point_set.h>
@@ -70,7 +72,7 @@ TEST(PointNormals, OrientOnTheTablesFirstColumnsGivesComputesNormals) {
 
 // The walk takes one thread for O(n) steps (over a second at 14M points):
 // a stop request (Ctrl-C, Cancel) must end it, while the pass beside it runs
-// and after that pass is done.
+// and after that pass is done; and be heard where the walk ends first.
 bool StopAtOnce(int, const char*) { return false; }
 TEST(PointNormals, OrientHearsAStopRequestDuringTheWalk) {
   test::TMesh m;
@@ -79,15 +81,21 @@ TEST(PointNormals, OrientHearsAStopRequestDuringTheWalk) {
   const Normals::Param p{20, false};
   const auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 20);
   for (int threads : {1, 2}) {
-    auto r = Normals::Estimate(ps.pos, ps.normal, knn, p);
-    bool besideRan = false;
-    EXPECT_THROW(test::OnThreads(threads, [&] {
-                   Normals::Orient(ps.pos, knn, p, r, [&] { besideRan = true; }, vcg_ext::Progress(StopAtOnce));
-                   return 0;
-                 }),
-                 vcg_ext::Cancelled)
-        << threads;
-    EXPECT_TRUE(besideRan) << threads;  // what runs beside the walk is left to finish
+    for (auto besideTakes : {std::chrono::milliseconds(0), std::chrono::milliseconds(200)}) {
+      auto r = Normals::Estimate(ps.pos, ps.normal, knn, p);
+      bool besideRan = false;
+      auto beside = [&] {
+        std::this_thread::sleep_for(besideTakes);  // 200 ms: longer than this walk
+        besideRan = true;
+      };
+      EXPECT_THROW(test::OnThreads(threads, [&] {
+                     Normals::Orient(ps.pos, knn, p, r, beside, vcg_ext::Progress(StopAtOnce));
+                     return 0;
+                   }),
+                   vcg_ext::Cancelled)
+          << threads << " " << besideTakes.count();
+      EXPECT_TRUE(besideRan) << threads;  // what runs beside the walk is left to finish
+    }
   }
 }
 
