@@ -23,7 +23,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, cloud_files, las_files, partition, point_files, stop_signals, tiles
+from . import arrays, cloud_files, las_files, partition, point_files, stop_signals, tiles, worker_check
 from . import tile_points as tile_points_
 from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
@@ -187,7 +187,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     tile_points = tile_points_.checked(tile_points)
     check_worker_memory(client)
     start = time.perf_counter()
-    srcs = cloud_files.sources(paths, client.gather(client.map(cloud_files.survey, paths, pure=False)))
+    srcs = cloud_files.sources(paths, worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False)))
     total = sum(s.count for s in srcs)
     out = pathlib.Path(output)
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
@@ -203,8 +203,8 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         hi = np.max([b[2] for b in cells.bounds.values()], axis=0)
         octree = Octree.of_bounds(lo, hi)
         keys = sorted(cells.cells)
-        counts = client.gather(client.map(_node_counts, [cells] * len(keys), keys, [octree] * len(keys),
-                                          pure=False))
+        counts = worker_check.gather(client, client.map(_node_counts, [cells] * len(keys), keys,
+                                                        [octree] * len(keys), pure=False))
         per_depth = [_add_counts([c[t] for c in counts]) for t in range(MAX_TILE_DEPTH + 1)]
         t = next((t for t, (_, c) in enumerate(per_depth) if c.max() <= tile_points), MAX_TILE_DEPTH)
         keys = [int(k) for k in per_depth[t][0]]
@@ -213,7 +213,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         choices = cluster_choices(client, cells, domain, visit_order, total)
         job = Job(srcs, cloud, 0.0, seed, choices.domain, threads, 0.0, cells)
         n = len(keys)
-        stats = client.gather(client.map(_depth_stats, [job] * n, boxes, pure=False))
+        stats = worker_check.gather(client, client.map(_depth_stats, [job] * n, boxes, pure=False))
         depths = depth_count(stats, t)
         radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
@@ -230,13 +230,14 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
             folder.mkdir()
             owned = [np.empty(0, np.uint64) if p is None else run.settled[np.isin(run.settled, p.open_ids)]
                      for p in run.parts]
-            client.gather(client.map(write_tile, [job] * n, run.decisions, owned, [None] * n,
+            worker_check.gather(client, client.map(write_tile, [job] * n, run.decisions, owned, [None] * n,
                                      [str(_ids_file(folder, k)) for k in range(n)], pure=False))
             levels[d] = (str(folder), boxes)
             job = dataclasses.replace(job, within=levels[d])
         job = dataclasses.replace(job, within=None)
         part_paths = [str(work / f"part_{k:05d}.laz-chunks") for k in range(n)]
-        parts = client.gather(client.map(_write_part, [job] * n, boxes, [levels] * n, part_paths, pure=False))
+        parts = worker_check.gather(client, client.map(_write_part, [job] * n, boxes, [levels] * n, part_paths,
+                                                       pure=False))
         client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
         shallow = [np.concatenate([p["shallow"][i] for p in parts]) for i in range(4)]
         by_id = np.argsort(shallow[3], kind="stable")  # a node keeps its records in id order

@@ -31,7 +31,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, stop_signals, tiles
+from . import _core, arrays, cloud_files, core_diagonal, partition, point_files, stop_signals, tiles, worker_check
 from . import tile_points as tile_points_
 from .cloud_files import Source
 from .docstrings import documented
@@ -292,10 +292,11 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs, visit_order=visit_order), seed, adaptivity, domain,
                           tile_points, client, threads, progress)
-    except KilledWorker as e:
-        raise ClusterJobError(f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times: a "
-                          f"worker's memory may be too small for tiles of {tile_points} points; lower tile_points "
-                          "or give workers more memory") from None
+    except (KilledWorker, worker_check.WorkersLost) as e:
+        lost = (f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times"
+                if isinstance(e, KilledWorker) else e.what)
+        raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points; lower "
+                              "tile_points or give workers more memory") from None
 
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:
@@ -345,20 +346,19 @@ def sample_count(d: Optional[tiles.Decision]) -> int:
 def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     """One Poisson run over every tile; `where`: per tile, the worker that last decided it (and keeps its
     read), where its task goes again if that worker is free, updated."""
-    from dask.distributed import as_completed
     ticks.expect(len(boxes))
     start = time.perf_counter()
     decisions = [client.submit(decide_tile, job, b, pure=False, **({"workers": where[k], "allow_other_workers": True}
                                                                    if k in where else {}))
                  for k, b in enumerate(boxes)]
-    for _ in as_completed(decisions):
+    for _ in worker_check.completed(client, decisions):
         ticks()
     decided = time.perf_counter()
     held = client.who_has(decisions)
     where.update({k: list(held[f.key])[:1] for k, f in enumerate(decisions) if held.get(f.key)})
-    parts = client.gather(client.map(seams, decisions, pure=False))
+    parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
     settled = tiles.settle([p for p in parts if p is not None], job.seed)
-    count = sum(client.gather(client.map(sample_count, decisions, pure=False))) + len(settled)
+    count = sum(worker_check.gather(client, client.map(sample_count, decisions, pure=False))) + len(settled)
     return _Run(job.radius, decisions, parts, settled, int(count),
                 {"tiles": decided - start, "seams": time.perf_counter() - decided})
 
@@ -389,7 +389,6 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
                   spacing: float, ticks: Ticks, where: dict) -> float:
     """The count search's first radius from the pilot disks of every tile (as poisson_lod's, to the bit), or
     0 to start from the guess. The tiles' reads serve the runs after it."""
-    from dask.distributed import as_completed
     radius = _core.PILOT_REACH * guess
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
@@ -397,11 +396,11 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     parts = [client.submit(pilot_tile, job, b, radius, below, pure=False,
                            **({"workers": where[k], "allow_other_workers": True} if k in where else {}))
              for k, b in enumerate(boxes)]
-    for _ in as_completed(parts):
+    for _ in worker_check.completed(client, parts):
         ticks()
     held = client.who_has(parts)
     where.update({k: list(held[f.key])[:1] for k, f in enumerate(parts) if held.get(f.key)})
-    got = [p for p in client.gather(parts) if p is not None]
+    got = [p for p in worker_check.gather(client, parts) if p is not None]
     if not got:
         return 0.0
     offsets, start = [], 0
@@ -425,8 +424,8 @@ def _core_diagonal(client, cells: partition.Partition, cloud: tiles.Box, total: 
     keys = sorted(cells.cells)
 
     def run_pass(targets, gather):
-        parts = client.gather(client.map(_cell_pass, [cells] * len(keys), keys, [targets] * len(keys),
-                                         [gather] * len(keys), pure=False))
+        parts = worker_check.gather(client, client.map(_cell_pass, [cells] * len(keys), keys,
+                                                       [targets] * len(keys), [gather] * len(keys), pure=False))
         merged = [core_diagonal.merge_unique([p[0][k] for p in parts]) if gather else sum(p[0][k] for p in parts)
                   for k in range(len(targets))]
         return (merged, sum(p[1] for p in parts), np.min([p[2] for p in parts], axis=0),
@@ -499,8 +498,8 @@ def _cluster_subsample(client, cells: partition.Partition, total: int) -> np.nda
     """The points of ``_core.cell_side_subsample(total)``, in id order, from the cells."""
     ids = _core.cell_side_subsample(total)
     keys = sorted(cells.cells)
-    parts = client.gather(client.map(_subsample_of_cell, [cells] * len(keys), keys, [ids] * len(keys),
-                                     pure=False))
+    parts = worker_check.gather(client, client.map(_subsample_of_cell, [cells] * len(keys), keys,
+                                                   [ids] * len(keys), pure=False))
     got = np.concatenate([p[0] for p in parts])
     xyz = np.concatenate([p[1] for p in parts])[np.argsort(got, kind="stable")]
     if len(got) != len(ids):
@@ -522,7 +521,7 @@ def _subsample_of_cell(cells: partition.Partition, cell: int, ids: np.ndarray) -
 
 def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, threads, progress):
     check_worker_memory(client)
-    surveys = client.gather(client.map(cloud_files.survey, paths, pure=False))
+    surveys = worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False))
     srcs = cloud_files.sources(paths, surveys)
     cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
                                     sum(s.count for s in srcs), tile_points)
@@ -619,7 +618,6 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
 def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_dir, ticks: Ticks) -> dict:
     """Writes one level's tiles into `folder`, a new one (and its samples' ids per tile into `ids_dir`); its
     index entry. Files left half-written by tasks lost with their worker are removed."""
-    from dask.distributed import as_completed
     parts, settled = run.parts, run.settled
     owned = [np.empty(0, np.uint64) if p is None else settled[np.isin(settled, p.open_ids)] for p in parts]
     folder.mkdir(exist_ok=True)
@@ -631,9 +629,9 @@ def _write_level(client, job: Job, run: _Run, boxes, folder: pathlib.Path, ids_d
     ticks.expect(len(boxes))
     start = time.perf_counter()
     written = client.map(write_tile, [job] * len(boxes), run.decisions, owned, names, id_names, pure=False)
-    for _ in as_completed(written):
+    for _ in worker_check.completed(client, written):
         ticks()
-    results = client.gather(written)
+    results = worker_check.gather(client, written)
     writing = time.perf_counter() - start
     entry = {"samples": 0, "radius": run.radius,
              "open_points": int(sum(len(p.open_ids) for p in parts if p is not None)),

@@ -371,7 +371,8 @@ TEXTS = {
         The cluster (see ``local_cluster``). A cluster with no worker yet is waited for, as Dask waits:
         workers may join later; where the last was lost unexpectedly (a nanny stops a worker past its
         memory limit) and none joins within {worker_check.LOST_WORKER_WAIT:g} s, or one is lost meanwhile, a
-        ClusterJobError.
+        ClusterJobError. So too where the last worker is lost during the job and none joins within
+        {worker_check.LOST_WORKER_WAIT:g} s (a nanny may fail to start its worker again).
     threads : int, optional
         Threads per task (default: all the worker machine's cores).
     progress : callable, optional
@@ -391,7 +392,7 @@ TEXTS = {
     InputError
         A bad argument, input file or output folder (PointFileError names the file).
     ClusterJobError
-        Workers too small for their tiles.
+        Workers too small for their tiles, or lost with none to take their place.
 
     Examples
     --------

@@ -19,7 +19,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import _core, cloud_files, las_files, point_files, tiles
+from . import _core, cloud_files, las_files, point_files, tiles, worker_check
 from .task_memory import give_back
 
 BLOCKS = 8  # blocks per axis of a cell: a halo reads the blocks of its neighbours it reaches, not whole cells
@@ -377,7 +377,6 @@ def make(client, srcs: Sequence[cloud_files.Source], grid: Grid, folder: pathlib
          ticks=None, threads: Optional[int] = None) -> Partition:
     """Runs ``split`` on every piece of every file, each on `threads` threads: the job's partition in
     `folder` (made here)."""
-    from dask.distributed import as_completed
     start = time.perf_counter()
     folder.mkdir(parents=True, exist_ok=True)
     work = pieces(srcs, piece_points)
@@ -385,10 +384,10 @@ def make(client, srcs: Sequence[cloud_files.Source], grid: Grid, folder: pathlib
         ticks.expect(len(work))
     futures = client.map(split, [srcs] * len(work), work, range(len(work)), [grid] * len(work),
                          [str(folder)] * len(work), threads=threads, pure=False)
-    for _ in as_completed(futures):
+    for _ in worker_check.completed(client, futures):
         if ticks is not None:
             ticks()
-    p = collect(folder, grid, client.gather(futures))
+    p = collect(folder, grid, worker_check.gather(client, futures))
     p.seconds = time.perf_counter() - start
     return p
 

@@ -1,7 +1,9 @@
 """Whether a cluster's workers can run a job, asked before any task: a worker whose memory limit its own
 footprint (with what every task imports) already fills past Dask's pause threshold would pause before any
 task, and a job on a cluster whose workers are lost (a nanny stops a worker past its limit) would wait for
-ever on tasks no worker runs.
+ever on tasks no worker runs. During the job, ``completed`` and ``gather`` wait for its tasks as Dask's
+``as_completed`` and ``Client.gather`` do, but not for ever where the last worker was lost: a nanny may fail
+to start its worker again, or start one that is stopped at once.
 """
 from __future__ import annotations
 
@@ -14,6 +16,17 @@ from .task_memory import process_rss
 # How long a cluster whose last worker was lost unexpectedly is given to start another (a nanny
 # restarts a worker it stopped within seconds) before the job names the loss.
 LOST_WORKER_WAIT = 30.0
+POLL = 1.0  # seconds between looks at the cluster while a job's tasks are pending
+MAX_TRY = 64.0  # seconds, the longest a gather waits before it looks at the cluster again
+
+
+class WorkersLost(ClusterJobError):
+    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT: `what`
+    happened, which a caller that knows the job's tiles may word its own advice to."""
+
+    def __init__(self, what: str):
+        super().__init__(f"{what}; give workers more memory")
+        self.what = what
 
 
 def check_worker_memory(client) -> None:
@@ -81,3 +94,53 @@ def _lost(event: dict, worker: Optional[str] = None) -> bool:
     (stopped by its nanny, or crashed; a cluster scaled down expects it)."""
     return (event.get("action") == "remove-worker" and event.get("expected") is False
             and worker in (None, event.get("worker")))
+
+
+class _Watch:
+    """Raises WorkersLost once the cluster has had no worker for LOST_WORKER_WAIT, its last one lost
+    unexpectedly (a cluster scaled down to none waits for workers to join)."""
+
+    def __init__(self, client):
+        self.client, self.alone_since = client, None
+
+    def look(self) -> None:
+        if self.client.scheduler_info()["workers"]:
+            self.alone_since = None
+            return
+        now = time.monotonic()
+        if self.alone_since is None:
+            self.alone_since = now
+        elif now - self.alone_since > LOST_WORKER_WAIT:
+            events = _worker_events(self.client)
+            if events and _lost(events[-1][1]):
+                raise WorkersLost(f"the cluster's last worker was lost during the job (it stopped unexpectedly, as "
+                                  f"its nanny stops one past its memory limit) and none joined within "
+                                  f"{LOST_WORKER_WAIT:g} s")
+
+
+def completed(client, futures):
+    """Each of `futures` as it finishes or errs, as Dask's ``as_completed``; WorkersLost where none can."""
+    from dask.distributed import TimeoutError, wait
+    pending, watch = list(futures), _Watch(client)
+    while pending:
+        try:
+            done, not_done = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            watch.look()
+            continue
+        yield from done
+        pending = list(not_done)
+
+
+def gather(client, futures) -> list:
+    """``client.gather(futures)`` (raising the first task's error), or WorkersLost where no task can finish:
+    a result whose worker was lost is computed again, by a worker that may never come. Each try is given
+    twice as long as the last (a large result takes its time) while the cluster has workers."""
+    from dask.distributed import TimeoutError
+    futures, watch, timeout = list(futures), _Watch(client), POLL
+    while True:
+        try:
+            return client.sync(lambda: client.gather(futures, asynchronous=True), callback_timeout=timeout)
+        except TimeoutError:
+            watch.look()
+            timeout = POLL if watch.alone_since is not None else min(2 * timeout, MAX_TRY)

@@ -154,12 +154,15 @@ def test_the_first_radius_over_laz_files_is_one_machines(monkeypatch, tmp_path):
     srcs = cloud_files.sources(paths, [cloud_files.survey(p) for p in paths])
     cloud = tiles.Box(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0))
 
-    class InThisProcess:  # the client's map and gather, run here
+    class InThisProcess:  # the client's map, gather and sync, run here
         def map(self, fn, *args, pure=True):
             return [fn(*a) for a in zip(*args)]
 
-        def gather(self, futures):
+        def gather(self, futures, asynchronous=None):
             return futures
+
+        def sync(self, fn, callback_timeout=None):
+            return fn()
     grid = partition.Grid(cloud.lo, cloud.hi, (2, 2, 1))
     (tmp_path / "cells").mkdir()
     cells = partition.collect(tmp_path / "cells", grid, [partition.split(srcs, w, k, grid, str(tmp_path / "cells"))

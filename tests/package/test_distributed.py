@@ -354,13 +354,15 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
 
 
 def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(tmp_path):
-    """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up.
-    The tile is large enough that even loading its read (written before a kill) passes the limit."""
+    """A real limit: Dask's nanny kills a worker above its memory limit and reruns the task until it gives up
+    (or, on a loaded machine, fails to start the worker again). The tile is large enough that even loading its
+    read (written before a kill) passes the limit. The smaller tiles run on a cluster of the same limit."""
     folder = write_parts(tmp_path / "big", bumpy_sphere(1_500_000) * 10, parts=2)
     with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
         with pytest.raises(gl.ClusterJobError, match="too small for tiles of 2000000 points; lower tile_points"):
             dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=2_000_000, client=c, threads=1)
         assert not (tmp_path / "lod").exists()
+    with dist.local_cluster(1, memory_limit="200MB") as cluster, Client(cluster) as c:
         index = dist.lod_files([str(folder)], tmp_path / "lod", radius=0.2, tile_points=100_000, client=c, threads=1)
     assert index["samples"] > 0 and len(index["tiles"]) >= 15
 
@@ -458,6 +460,37 @@ def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(c
     message = str(raised[0])
     assert ("lost" in message and "give workers more memory" in message) or (
         "before any task" in message and "give workers at least" in message), raised
+    assert not (tmp_path / "lod").exists()
+
+
+def test_a_cluster_whose_last_worker_is_lost_during_the_job_is_named_not_waited_on(cloud, tmp_path):
+    """A nanny whose worker stopped may fail to start another (it logs "Failed to restart worker"): the
+    job's tasks then wait for a worker that never comes, and the job names the loss instead."""
+    with dist.local_cluster(1) as cluster, Client(cluster) as c:
+        nanny = next(iter(cluster.workers.values()))
+
+        async def no_restart():
+            raise RuntimeError("the worker could not be started again")
+        nanny.instantiate = no_restart
+        raised = []
+
+        def job():
+            try:
+                dist.lod_files([str(cloud[0])], tmp_path / "lod", levels=["20%", "5%"], tolerance=2.0,
+                               tile_points=6000, client=c, threads=1)
+            except Exception as e:  # noqa: BLE001 (checked below)
+                raised.append(e)
+        t = threading.Thread(target=job, daemon=True)
+        t.start()
+        deadline = time.monotonic() + 60
+        while not any(c.processing().values()) and t.is_alive() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert t.is_alive(), "the job ended before any task ran: nothing to test"
+        os.kill(nanny.pid, signal.SIGKILL)
+        t.join(worker_check.LOST_WORKER_WAIT + 60)
+        assert not t.is_alive(), "the job waited for a worker that will never run its tasks"
+    assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
+    assert "lost" in str(raised[0]) and "lower tile_points" in str(raised[0]), raised
     assert not (tmp_path / "lod").exists()
 
 
