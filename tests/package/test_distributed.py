@@ -338,10 +338,11 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
     check_equal(tmp_path / "lod", points, records, 0)
 
 
-def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(cloud, client, tmp_path):
+def dying(client):
+    """The client as it answers when a tile's worker keeps dying (Dask's KilledWorker)."""
     from dask.distributed import KilledWorker
 
-    class Dying:  # the client as it answers when a tile's worker keeps dying (Dask's KilledWorker)
+    class Dying:
         def __getattr__(self, name):
             return getattr(client, name)
 
@@ -349,8 +350,27 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
             if fn is dist.decide_tile:
                 raise KilledWorker("decide_tile-0", "tcp://127.0.0.1:1", 3)
             return client.submit(fn, *args, **kw)
+    return Dying()
+
+
+def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(cloud, client, tmp_path):
     with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 6000 points"):
-        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=Dying())
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=dying(client))
+
+
+def test_a_cluster_jobs_advice_names_the_commands_options(cloud, client, tmp_path):
+    """The command words a cluster job's advice in its own options: --tile-points, and --worker-memory
+    where it starts the cluster (a user's cluster gets its memory elsewhere)."""
+    from geodesic_lod import cli
+    with pytest.raises(gl.ClusterJobError) as tile:
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=dying(client))
+    lost = worker_check.WorkersLost("the cluster's last worker was lost")
+    for message in (str(tile.value), str(lost)):
+        own, theirs = cli.command_words(message, own_cluster=True), cli.command_words(message, own_cluster=False)
+        assert "--worker-memory" in own and "--worker-memory" not in theirs, (own, theirs)
+        for words in (own, theirs):
+            assert "tile_points" not in words.replace("--tile-points", ""), words
+    assert "lower --tile-points" in cli.command_words(str(tile.value), own_cluster=True)
 
 
 def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(tmp_path):
