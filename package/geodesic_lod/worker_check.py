@@ -119,17 +119,19 @@ class _Watch:
 
 
 def completed(client, futures):
-    """Each of `futures` as it finishes or errs, as Dask's ``as_completed``; WorkersLost where none can."""
-    from dask.distributed import TimeoutError, wait
-    pending, watch = list(futures), _Watch(client)
-    while pending:
-        try:
-            done, not_done = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
-        except TimeoutError:
-            watch.look()
-            continue
-        yield from done
-        pending = list(not_done)
+    """Each of `futures` as it finishes, errs or is cancelled, as Dask's ``as_completed``; WorkersLost where
+    none can. O(1) a future: each reports itself (a callback on the client's thread)."""
+    import queue
+    futures, done, watch = list(futures), queue.SimpleQueue(), _Watch(client)
+    for f in futures:
+        f.add_done_callback(done.put)
+    for _ in futures:
+        while True:
+            try:
+                yield done.get(timeout=POLL)
+                break
+            except queue.Empty:
+                watch.look()
 
 
 def gather(client, futures) -> list:
