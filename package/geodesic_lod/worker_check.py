@@ -17,7 +17,8 @@ from .task_memory import process_rss
 # restarts a worker it stopped within seconds) before the job names the loss.
 LOST_WORKER_WAIT = 30.0
 POLL = 1.0  # seconds between looks at the cluster while a job's tasks are pending
-MAX_TRY = 64.0  # seconds, the longest a gather waits before it looks at the cluster again
+# A gather's first try, in seconds, and its longest: one cut short starts its transfers again.
+FIRST_TRY, MAX_TRY = 8.0, 64.0
 
 
 class WorkersLost(ClusterJobError):
@@ -139,7 +140,7 @@ def gather(client, futures) -> list:
     a result whose worker was lost is computed again, by a worker that may never come. Each try is given
     twice as long as the last (a large result takes its time) while the cluster has workers."""
     from dask.distributed import TimeoutError
-    futures, watch, timeout = list(futures), _Watch(client), POLL
+    futures, watch, timeout = list(futures), _Watch(client), FIRST_TRY
     while True:
         try:
             return client.sync(lambda: client.gather(futures, asynchronous=True), callback_timeout=timeout)
