@@ -185,6 +185,11 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # the orders one machine takes
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
+    with worker_check.tiles_lost(tile_points):
+        return _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress)
+
+
+def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress) -> dict:
     check_worker_memory(client)
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False)))
@@ -219,8 +224,9 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
         visit = choices.order
-        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
-        halo = tiles.first_halo(radii[0], spacing, visit)
+        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth. With no
+        # depth (the root node takes every point, as on one machine) there is no Poisson run.
+        halo = tiles.first_halo(radii[0], spacing, visit) if depths else None
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
             job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),
@@ -231,7 +237,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
             owned = [np.empty(0, np.uint64) if p is None else run.settled[np.isin(run.settled, p.open_ids)]
                      for p in run.parts]
             worker_check.gather(client, client.map(write_tile, [job] * n, run.decisions, owned, [None] * n,
-                                     [str(_ids_file(folder, k)) for k in range(n)], pure=False))
+                                                   [str(_ids_file(folder, k)) for k in range(n)], pure=False))
             levels[d] = (str(folder), boxes)
             job = dataclasses.replace(job, within=levels[d])
         job = dataclasses.replace(job, within=None)

@@ -272,8 +272,6 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
               max_runs: Optional[int] = None, seed: int = 0, metric: str = arrays.DEFAULT_METRIC,
               adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity, tile_points: int = tile_points_.DEFAULT, client=None,
               threads: Optional[int] = None, progress=None, visit_order: str = arrays.DEFAULT_VISIT_ORDER) -> dict:
-    from dask.distributed import KilledWorker
-
     paths = cloud_files.expand_inputs(inputs)
     out = OutputFolder(out_dir, paths)
     given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
@@ -288,15 +286,10 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # a cluster takes every order one machine takes
-    try:
+    with worker_check.tiles_lost(tile_points):
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs, visit_order=visit_order), seed, adaptivity, domain,
                           tile_points, client, threads, progress)
-    except (KilledWorker, worker_check.WorkersLost) as e:
-        lost = (f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times"
-                if isinstance(e, KilledWorker) else e.what)
-        raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points; lower "
-                              "tile_points or give workers more memory") from None
 
 
 def cluster_tolerance(tolerance, name: str = "tolerance") -> float:

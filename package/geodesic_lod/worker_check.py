@@ -8,6 +8,7 @@ to start its worker again, or start one that is stopped at once.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from typing import Optional
 
 from .errors import ClusterJobError
@@ -147,3 +148,17 @@ def gather(client, futures) -> list:
         except TimeoutError:
             watch.look()
             timeout = POLL if watch.alone_since is not None else min(2 * timeout, MAX_TRY)
+
+
+@contextmanager
+def tiles_lost(tile_points: int):
+    """A job's tasks lost with their workers (Dask's KilledWorker: one task, several times; WorkersLost: the
+    last worker) as a ClusterJobError naming the tile size, the first thing to lower."""
+    from dask.distributed import KilledWorker
+    try:
+        yield
+    except (KilledWorker, WorkersLost) as e:
+        lost = (f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times"
+                if isinstance(e, KilledWorker) else e.what)
+        raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points; lower "
+                              "tile_points or give workers more memory") from None

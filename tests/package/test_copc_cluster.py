@@ -12,7 +12,7 @@ from geodesic_lod import copc_cluster
 from geodesic_lod import distributed as dist
 from point_file_inputs import wavy_strip
 from test_cli import names, run
-from test_distributed import write_parts
+from test_distributed import dying, write_parts
 
 KEY_ORDERS = ["prominence", "rims"]
 
@@ -90,6 +90,27 @@ def test_any_tiling_gives_the_single_machine_nodes(strip, client, tmp_path, tile
     assert made["depths"] >= 3 and (made["tiles"] > 1) == (tile_points < 30000)
     assert nodes(tmp_path / "lod.copc.laz") == one
     assert names(tmp_path) == ["lod.copc.laz"]
+
+
+def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(strip, client, tmp_path):
+    parts, _ = strip
+    with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 7000 points"):
+        copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=7000, client=dying(client))
+    assert names(tmp_path) == []
+
+
+@pytest.mark.parametrize("tile_points", [6000, 10 ** 6])
+def test_a_cloud_the_root_node_takes_whole_is_the_single_machine_file(client, tmp_path, tile_points):
+    """No Poisson depth (the root node within its budget takes every point): the file one machine writes."""
+    from conftest import bumpy_sphere
+    parts = write_parts(tmp_path / "parts", bumpy_sphere(24000) * 10)
+    records = np.concatenate([laspy.read(str(f)).points.array for f in sorted(parts.glob("*.laz"))])
+    las = laspy.read(str(parts / "part0.laz"))
+    las.points = laspy.PackedPointRecord(records, las.point_format)
+    las.write(str(tmp_path / "all.laz"))
+    assert not gl.write_copc(tmp_path / "all.laz", tmp_path / "one.copc.laz").radii, "has depths: nothing to test"
+    made = copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=tile_points, client=client)
+    assert made["depths"] == 0 and nodes(tmp_path / "lod.copc.laz") == nodes(tmp_path / "one.copc.laz")
 
 
 @pytest.mark.parametrize("order", KEY_ORDERS)
