@@ -158,7 +158,8 @@ def tiles_lost(tile_points: int):
     try:
         yield
     except (KilledWorker, WorkersLost) as e:
-        lost = (f"a tile's task ({getattr(e, 'task', '?')}) was lost with its worker several times"
-                if isinstance(e, KilledWorker) else e.what)
+        kind = str(getattr(e, "task", "?")).split("-")[0]  # Dask's key less its unique token
+        lost = (f"a tile's task ({kind}) was lost with its worker several times" if isinstance(e, KilledWorker)
+                else e.what)
         raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points; lower "
                               "tile_points or give workers more memory") from None

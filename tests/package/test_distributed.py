@@ -354,7 +354,8 @@ def dying(client):
 
 
 def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(cloud, client, tmp_path):
-    with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 6000 points"):
+    with pytest.raises(gl.ClusterJobError, match=r"a tile's task \(decide_tile\) was lost with its worker several "
+                                                 "times: a worker's memory may be too small for tiles of 6000 points"):
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=dying(client))
 
 
