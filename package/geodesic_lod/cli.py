@@ -38,14 +38,10 @@ def _fail(message):
     sys.exit(EXIT_BAD_INPUT)
 
 
-def command_words(message: str, own_cluster: bool) -> str:
+def command_words(e: ClusterJobError, own_cluster: bool) -> str:
     """A cluster job's error in the command's words: its options for the API's arguments, and where the
     command starts the cluster, the option that sets its workers' memory."""
-    message = message.replace("lower tile_points", "lower --tile-points")
-    if own_cluster:
-        message = message.replace("give workers more memory", "give workers more memory (--worker-memory)")
-        message = message.replace("give workers at least", "give workers (--worker-memory) at least")
-    return message
+    return e.worded("--tile-points", "--worker-memory" if own_cluster else None)
 
 
 def _count(text: str, name: str) -> int:
@@ -474,7 +470,7 @@ def main(argv=None) -> int:
             bar.close()
             return _done(args, _write_levels(source, paths, chosen) + _choices_line(args, lod), start)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
-            _fail(command_words(str(e), not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
+            _fail(command_words(e, not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()

@@ -35,4 +35,22 @@ class PointFileError(InputError):
 
 class ClusterJobError(RuntimeError):
     """A cluster job that failed for a reason of the cluster's: workers too small for their tiles, or
-    lost again and again."""
+    lost again and again. `problem` says what happened; the remedy is kept apart, for each front end to
+    word in its own options (`worded`): lower the tile size where `lower_tiles`, and give the workers more
+    memory, at least `memory` bytes where that is known."""
+
+    def __init__(self, problem: str, lower_tiles: bool = False, memory: Optional[float] = None):
+        self.problem, self.lower_tiles, self.memory = problem, lower_tiles, memory
+        super().__init__(self.worded())
+
+    def __reduce__(self):
+        return ClusterJobError, (self.problem, self.lower_tiles, self.memory)
+
+    def worded(self, tile_option: str = "tile_points", memory_option: Optional[str] = None) -> str:
+        """The error with its remedy in a front end's words: its name for the tile size, and the option
+        that sets the workers' memory where the front end starts the cluster (None: the user's cluster
+        sets it elsewhere)."""
+        named = f" ({memory_option})" if memory_option else ""
+        memory = (f"give workers{named} at least {self.memory / 1e6:.0f} MB" if self.memory
+                  else f"give workers more memory{named}")
+        return f"{self.problem}; " + (f"lower {tile_option} or " if self.lower_tiles else "") + memory

@@ -23,12 +23,11 @@ FIRST_TRY, MAX_TRY = 8.0, 64.0
 
 
 class WorkersLost(ClusterJobError):
-    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT: `what`
-    happened, which a caller that knows the job's tiles may word its own advice to."""
+    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT (`problem`
+    says how), which a caller that knows the job's tiles may add its tile size to."""
 
-    def __init__(self, what: str):
-        super().__init__(f"{what}; give workers more memory")
-        self.what = what
+    def __reduce__(self):
+        return WorkersLost, (self.problem,)
 
 
 def check_worker_memory(client) -> None:
@@ -50,8 +49,7 @@ def check_worker_memory(client) -> None:
             if (any(t > since and _lost(e) for t, e in events)
                     or (events and _lost(events[-1][1]) and time.monotonic() - start > LOST_WORKER_WAIT)):
                 raise ClusterJobError("the cluster's workers are lost before any task (a worker stopped "
-                                      "unexpectedly, as its nanny stops one past its memory limit); give workers "
-                                      "more memory")
+                                      "unexpectedly, as its nanny stops one past its memory limit)")
         time.sleep(0.25)
         polls += 1
         workers = client.scheduler_info()["workers"]
@@ -63,12 +61,10 @@ def check_worker_memory(client) -> None:
             continue  # no limit, or scaled away
         if rss is None or isinstance(rss, BaseException):
             raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: "
-                                  f"the worker was lost before any task ({rss or 'it stopped'}); give workers more "
-                                  "memory")
+                                  f"the worker was lost before any task ({rss or 'it stopped'})")
         if rss >= pause * limit:
             raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
-                                  f"takes {rss / 1e6:.0f} MB before any task; give workers at least "
-                                  f"{2 * rss / 1e6:.0f} MB")
+                                  f"takes {rss / 1e6:.0f} MB before any task", memory=2 * rss)
 
 
 def task_footprint() -> int:
@@ -160,6 +156,6 @@ def tiles_lost(tile_points: int):
     except (KilledWorker, WorkersLost) as e:
         kind = str(getattr(e, "task", "?")).split("-")[0]  # Dask's key less its unique token
         lost = (f"a tile's task ({kind}) was lost with its worker several times" if isinstance(e, KilledWorker)
-                else e.what)
-        raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points; lower "
-                              "tile_points or give workers more memory") from None
+                else e.problem)
+        raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points",
+                              lower_tiles=True) from None

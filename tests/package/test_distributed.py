@@ -366,12 +366,16 @@ def test_a_cluster_jobs_advice_names_the_commands_options(cloud, client, tmp_pat
     with pytest.raises(gl.ClusterJobError) as tile:
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=dying(client))
     lost = worker_check.WorkersLost("the cluster's last worker was lost")
-    for message in (str(tile.value), str(lost)):
-        own, theirs = cli.command_words(message, own_cluster=True), cli.command_words(message, own_cluster=False)
+    small = gl.ClusterJobError("a worker takes 80 MB before any task", memory=160e6)
+    for e in (tile.value, lost, small):
+        own, theirs = cli.command_words(e, own_cluster=True), cli.command_words(e, own_cluster=False)
         assert "--worker-memory" in own and "--worker-memory" not in theirs, (own, theirs)
         for words in (own, theirs):
             assert "tile_points" not in words.replace("--tile-points", ""), words
-    assert "lower --tile-points" in cli.command_words(str(tile.value), own_cluster=True)
+            assert words.startswith(e.problem), words
+    assert "lower --tile-points" in cli.command_words(tile.value, own_cluster=True)
+    assert "at least 160 MB" in cli.command_words(small, own_cluster=True)
+    assert str(lost).endswith("give workers more memory") and "lower tile_points" in str(tile.value)
 
 
 def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(tmp_path):
@@ -416,6 +420,16 @@ def test_a_worker_side_failure_is_one_line_and_exit_2(tmp_path):
     r = subprocess.run(COMMAND + [str(folder), "-o", str(tmp_path / "lod"), "--radius", "0.5", "--workers", "1", "-q"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "part1.laz: " in r.stderr, r.stderr
+    assert not (tmp_path / "lod").exists()
+
+
+def test_workers_too_small_for_the_command_are_one_line_naming_its_memory_option(cloud, tmp_path):
+    """Workers the command starts with less memory than a worker takes before any task: the cluster's error
+    in the command's words, one line, exit 2, nothing written."""
+    r = subprocess.run(COMMAND + [str(cloud[0]), "-o", str(tmp_path / "lod"), "--radius", "0.5", "--workers", "1",
+                                  "--worker-memory", "40MB", "-q"], capture_output=True, text=True, timeout=180)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert "give workers" in r.stderr and "(--worker-memory)" in r.stderr and "tile_points" not in r.stderr, r.stderr
     assert not (tmp_path / "lod").exists()
 
 

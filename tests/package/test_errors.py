@@ -37,6 +37,19 @@ def test_a_point_file_error_names_the_file_and_survives_pickling():
     assert (str(back), back.path, back.problem) == (str(e), e.path, e.problem)
 
 
+def test_a_cluster_job_error_keeps_its_remedy_apart_and_survives_pickling():
+    from geodesic_lod.worker_check import WorkersLost
+    for e in (gl.ClusterJobError("tiles lost", lower_tiles=True), gl.ClusterJobError("too small", memory=2e8),
+              WorkersLost("the last worker was lost")):
+        back = pickle.loads(pickle.dumps(e))
+        assert type(back) is type(e)
+        assert (str(back), back.problem, back.lower_tiles, back.memory) == (str(e), e.problem, e.lower_tiles,
+                                                                            e.memory)
+    assert str(gl.ClusterJobError("tiles lost", lower_tiles=True)) == (
+        "tiles lost; lower tile_points or give workers more memory")
+    assert str(gl.ClusterJobError("too small", memory=2e8)) == "too small; give workers at least 200 MB"
+
+
 @pytest.mark.parametrize("call, words", [
     (lambda: gl.poisson_lod(P, radius=0), "radius"),
     (lambda: gl.fps_lod(P, count=0), "count"),
