@@ -1,10 +1,12 @@
 """The output folder of a cluster run, which the tool owns only where it wrote.
 
-``index.json`` is the one record of what the tool wrote there: the LOD (tiles, levels, bounds, CRS) and
-``owned``, the run folders it made. A run refuses a folder holding anything else (files of the user's,
-links, an input), writes into a new run folder beside the last complete one, and replaces the index in
-one rename when complete: an interrupted or failed rerun leaves the previous LOD whole. The old run
-folders are removed afterwards, only the files the tool names its own in them, and never across a link.
+``index.json`` is the one record of what the tool wrote there: the LOD (tiles, levels, bounds, CRS),
+``owned``, the run folders it made, and ``swept``, those of them left only for someone else's files. A run
+refuses a folder holding anything else (files of the user's, links, an input, a file in the LOD's run
+folder its index does not list), writes into a new run folder beside the last complete one, and replaces
+the index in one rename when complete: an interrupted or failed rerun leaves the previous LOD whole. The
+old run folders are removed afterwards, never across a link: of the LOD's run the files its index lists,
+of a swept run no file, of a run stopped before it could clean up (killed) the names a run writes.
 """
 from __future__ import annotations
 
@@ -55,6 +57,7 @@ class OutputFolder:
             raise PointFileError(out, f"the folder {where} is not writable")
         self.index: Optional[dict] = None
         self.owned: list = []
+        self.swept: list = []
         if out.exists():
             self._check_contents()
         real = out.resolve()
@@ -68,13 +71,19 @@ class OutputFolder:
             try:
                 index = json.loads((self.path / INDEX).read_text())
                 assert index.get("tool") == TOOL and isinstance(index.get("owned"), list)
+                assert isinstance(index.get("swept", []), list)
                 self.index, self.owned = index, [str(n) for n in index["owned"]]
-            except (ValueError, AssertionError, OSError, AttributeError):
+                self.swept = [str(n) for n in index.get("swept", [])]
+                listed = lod_files(index)
+            except (ValueError, AssertionError, OSError, AttributeError, TypeError, KeyError):
                 raise PointFileError(self.path, f"holds an {INDEX} this tool did not write: choose a new or empty "
                                                 "folder") from None
         foreign = sorted(n for n, e in entries.items()
                          if n != INDEX and not (INDEX_PARTIAL.fullmatch(n) and e.is_file(follow_symlinks=False))
                          and (n not in self.owned or e.is_symlink() or not e.is_dir()))
+        if INDEX in entries:  # in the LOD's run, what its index does not list is someone else's
+            for run in sorted({f.split("/")[0] for f in listed} & set(self.owned) - set(foreign)):
+                foreign += [f for f in _files_under(self.path, run) if f not in listed]
         if foreign:
             shown = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
             raise PointFileError(self.path, f"holds files this tool did not write ({shown}): choose a new or "
@@ -94,10 +103,13 @@ class OutputFolder:
     def commit(self, index: dict) -> dict:
         """Makes the run the folder's LOD (one rename), then removes the older runs' files."""
         old = [n for n in self.owned if n != self.run]
-        self._write_index({"tool": TOOL, **index, "owned": self.owned})
-        kept = [n for n in old if not remove_own(self.path / n)]
-        self.owned = kept + [self.run]
-        index = {"tool": TOOL, **index, "owned": self.owned}
+        self._write_index({"tool": TOOL, **index, **self._ownership()})
+        listed = lod_files(self.index or {})
+        kept = [n for n in old if not remove_own(
+            self.path / n, None if n not in self.swept and not any(f.startswith(n + "/") for f in listed)
+            else {f[len(n) + 1:] for f in listed if f.startswith(n + "/")})]
+        self.owned, self.swept = kept + [self.run], kept
+        index = {"tool": TOOL, **index, **self._ownership()}
         self._write_index(index)
         return index
 
@@ -105,6 +117,8 @@ class OutputFolder:
         """Removes what the unfinished run wrote (and the index and folder if they were new); what cannot be
         removed stays recorded as the tool's."""
         if not remove_own(self.path / self.run):
+            self.swept.append(self.run)
+            self._write_index({**(self.index or {"tool": TOOL}), **self._ownership()})
             return
         self.owned.remove(self.run)
         if self.index is None and not self.owned:
@@ -115,7 +129,10 @@ class OutputFolder:
                 except OSError:
                     pass
         else:
-            self._write_index(dict(self.index or {"tool": TOOL}, owned=self.owned))
+            self._write_index({**(self.index or {"tool": TOOL}), **self._ownership()})
+
+    def _ownership(self) -> dict:
+        return {"owned": self.owned, **({"swept": self.swept} if self.swept else {})}
 
     def _write_index(self, index: dict) -> None:
         tmp = self.path / f".{INDEX}.partial-{os.getpid()}"
@@ -123,17 +140,36 @@ class OutputFolder:
         os.replace(tmp, self.path / INDEX)
 
 
-def remove_own(folder: pathlib.Path) -> bool:
-    """Removes the files and folders a run writes under `folder`, never following a link; whether
-    `folder` is gone (it stays if it holds anything else)."""
+def lod_files(index: dict) -> set:
+    """The files an index lists as its LOD's (top level and every level's tiles), relative to its folder."""
+    tiles = list(index.get("tiles", [])) + [t for level in index.get("levels", []) for t in level.get("tiles", [])]
+    return {str(t["file"]) for t in tiles}
+
+
+def _files_under(root: pathlib.Path, name: str) -> list:
+    """Every entry but a folder under root/name (links as they are, not followed), relative to root."""
+    found = []
+    for e in os.scandir(root / name):
+        if e.is_dir(follow_symlinks=False):
+            found += _files_under(root, f"{name}/{e.name}")
+        else:
+            found.append(f"{name}/{e.name}")
+    return found
+
+
+def remove_own(folder: pathlib.Path, only: Optional[set] = None) -> bool:
+    """Removes the files and folders a run writes under `folder` (with `only`, of the files those named
+    there, relative to `folder`), never following a link; whether `folder` is gone (it stays if it holds
+    anything else)."""
     if folder.is_symlink() or not folder.is_dir():
         return not folder.exists() and not folder.is_symlink()
     for e in os.scandir(folder):
         if e.is_symlink():
             continue
         if e.is_dir(follow_symlinks=False) and OWN_FOLDER.fullmatch(e.name):
-            remove_own(pathlib.Path(e.path))
-        elif e.is_file(follow_symlinks=False) and OWN_FILE.fullmatch(e.name):
+            remove_own(pathlib.Path(e.path), None if only is None else
+                       {f[len(e.name) + 1:] for f in only if f.startswith(e.name + "/")})
+        elif e.is_file(follow_symlinks=False) and (OWN_FILE.fullmatch(e.name) if only is None else e.name in only):
             os.unlink(e.path)
     try:
         folder.rmdir()

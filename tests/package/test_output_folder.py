@@ -299,3 +299,47 @@ def test_a_folder_named_like_a_point_file_is_refused_and_nothing_made(tmp_path, 
     problem = refused(out)
     assert "folder" in problem and "tiles" in problem, problem
     assert not out.exists()
+
+
+def committed_folder(path):
+    """A folder as a complete run leaves it: its index lists run_1's tiles, top level and one level's."""
+    path.mkdir()
+    (path / "run_1" / "level_10pct").mkdir(parents=True)
+    for f in ("run_1/tile_00000.laz", "run_1/level_10pct/tile_00000.laz"):
+        (path / f).write_bytes(b"a tile")
+    (path / of.INDEX).write_text(json.dumps({
+        "tool": of.TOOL, "owned": ["run_1"], "tiles": [{"file": "run_1/tile_00000.laz"}],
+        "levels": [{"tiles": [{"file": "run_1/level_10pct/tile_00000.laz"}]}]}))
+    return path
+
+
+@pytest.mark.parametrize("name", ["run_1/tile_00001.las", "run_1/level_10pct/tile_00002.npy",
+                                  "run_1/level_50pct/tile_00000.laz", "run_1/notes.txt"])
+def test_a_file_in_the_lods_run_that_its_index_does_not_list_is_refused(tmp_path, name):
+    """Named like a tile or not, a file the complete run's index does not list is the user's."""
+    out = committed_folder(tmp_path / "lod")
+    (out / name).parent.mkdir(exist_ok=True)
+    (out / name).write_bytes(b"the user's, named like the tool's")
+    before = snapshot(tmp_path)
+    problem = refused(out)
+    assert "did not write" in problem and name in problem, problem
+    assert snapshot(tmp_path) == before
+
+
+def test_a_run_kept_for_a_strangers_file_loses_nothing_to_later_runs(tmp_path):
+    """A run folder left because it held someone else's file had its own files removed: whatever appears in
+    it later, named like a tile or not, is not the tool's to remove."""
+    out = committed_folder(tmp_path / "lod")
+    (out / "run_1" / "notes.txt").parent.mkdir(exist_ok=True)
+    folder = of.OutputFolder(out, [])
+    (out / "run_1" / "notes.txt").write_text("put there during the run")
+    run = folder.begin()
+    (run / "tile_00000.laz").write_bytes(b"the new tile")
+    folder.commit({"tiles": [{"file": "run_2/tile_00000.laz"}]})
+    assert files_under(out) == sorted([of.INDEX, "run_1/notes.txt", "run_2/tile_00000.laz"])
+    (out / "run_1" / "tile_00007.las").write_bytes(b"the user's, named like a tile")
+    folder = of.OutputFolder(out, [])
+    run = folder.begin()
+    (run / "tile_00000.laz").write_bytes(b"the newest tile")
+    folder.commit({"tiles": [{"file": "run_3/tile_00000.laz"}]})
+    assert files_under(out) == sorted([of.INDEX, "run_1/notes.txt", "run_1/tile_00007.las", "run_3/tile_00000.laz"])
