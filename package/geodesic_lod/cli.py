@@ -221,8 +221,8 @@ def _run_on_cluster(args, request: dict) -> int:
                                           threads=args.threads, progress=progress,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
                                           visit_order=args.visit_order)
-    except KeyboardInterrupt:  # the client's pending waits end as it closes: no log of each
-        import logging
+    except (KeyboardInterrupt, *stop_signals.broken_by_a_stop()):
+        import logging  # the client's pending waits end as it closes: no log of each
         for name in ("asyncio", "distributed"):
             logging.getLogger(name).setLevel(logging.CRITICAL)
         raise
@@ -469,6 +469,10 @@ def main(argv=None) -> int:
                 raise point_files.PointFileError.of(source.path, e) from None
             bar.close()
             return _done(args, _write_levels(source, paths, chosen) + _choices_line(args, lod), start)
+        except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
+            if bar is not None:
+                bar.close()
+            return stopped()
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
             _fail(command_words(e, not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
         except KeyboardInterrupt:

@@ -15,7 +15,7 @@ import threading
 
 RETRY_SECONDS = 0.01
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
-_state = {"boundary": None, "signal": signal.SIGINT, "timers": [], "previous_hook": None}
+_state = {"boundary": None, "signal": signal.SIGINT, "timers": [], "previous_hook": None, "requested": False}
 
 
 def _from_a_string(frame) -> bool:
@@ -37,7 +37,7 @@ def _again(signum: int):
 
 
 def _stop(signum, frame):
-    _state["signal"] = signum
+    _state.update(signal=signum, requested=True)
     if _from_a_string(frame):
         _again(signum)
         return
@@ -47,6 +47,12 @@ def _stop(signum, frame):
 def last_stop() -> int:
     """The signal that stopped the run (SIGINT where Python's own handler raised the stop)."""
     return int(_state["signal"])
+
+
+def broken_by_a_stop() -> tuple:
+    """For an except clause: every error once a stop was taken (code that catches the stop's
+    KeyboardInterrupt and raises its own error, as lazrs's writer and Dask's nanny do), else none."""
+    return (Exception,) if _state["requested"] else ()
 
 
 def _lost(unraisable):
@@ -66,7 +72,7 @@ def stopping():
     # A signal the process was started ignoring (a shell's background job) stays ignored.
     previous = {s: signal.signal(s, _stop) for s in _SIGNALS if signal.getsignal(s) is not signal.SIG_IGN}
     _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook,  # the caller's
-                  signal=signal.SIGINT)
+                  signal=signal.SIGINT, requested=False)
     sys.unraisablehook = _lost
     try:
         yield
@@ -82,7 +88,8 @@ def stopping():
 @contextlib.contextmanager
 def held():
     """Within (from the main thread): a stop (Ctrl-C, and SIGTERM within ``stopping``) waits, and is raised
-    as KeyboardInterrupt as the block ends."""
+    as KeyboardInterrupt as the block ends, in place of the block's error if it failed meanwhile (a child
+    process it started, signalled with this one, failing its start)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -91,11 +98,14 @@ def held():
     previous = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in stops}
     try:
         yield
+    except Exception:
+        if not caught:
+            raise
     finally:
         for s, handler in previous.items():
             signal.signal(s, handler)
     if caught:
-        _state["signal"] = caught[0]
+        _state.update(signal=caught[0], requested=True)
         raise KeyboardInterrupt
 
 

@@ -6,7 +6,12 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
 
+import numpy as np
+import pytest
+
+from conftest import bumpy_sphere
 from geodesic_lod import stop_signals
 
 # Each child signals itself at an awkward moment, then spins where the signal can land again.
@@ -86,3 +91,45 @@ def test_python_handlers_are_back_after_stopping():
         assert sys.unraisablehook is not hook
     assert {s: signal.getsignal(s) for s in before} == before
     assert sys.unraisablehook is hook
+
+
+def _breaks_on_a_stop(signum, error):
+    """A stand-in for code that turns the stop's KeyboardInterrupt into its own error: lazrs's writer fails
+    its write ("IoError: Failed to call write"), Dask's nanny fails its start."""
+    def broken(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signum)
+            for _ in range(1000):
+                time.sleep(0.01)  # the signal lands here
+        except KeyboardInterrupt:
+            raise error from None
+        raise AssertionError("no stop")
+    return broken
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["Ctrl-C", "SIGTERM"])
+def test_a_stop_that_a_writer_turns_into_its_own_error_still_stops_the_command(tmp_path, monkeypatch, capsys,
+                                                                                 signum):
+    from geodesic_lod import cli, point_files
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+    monkeypatch.setattr(point_files, "write_all", _breaks_on_a_stop(signum, RuntimeError("Failed to call write")))
+    assert cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod.npy"), "--rate", "10%", "-q"]) == 128 + signum
+    assert capsys.readouterr().err.strip().splitlines() == ["geodesic-lod: stopped"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.npy"]
+
+
+def test_a_stop_that_a_cluster_start_turns_into_its_own_error_still_stops_the_command(tmp_path, monkeypatch, capsys):
+    pytest.importorskip("dask.distributed")
+    import dask.distributed
+    from geodesic_lod import cli
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+
+    def nanny_stopped_with_the_command(*args, **kwargs):  # its process group signalled, as `timeout` does
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(0.2)  # the command holds the stop while the cluster starts
+        raise RuntimeError("Nanny failed to start.")
+    monkeypatch.setattr(dask.distributed, "LocalCluster", nanny_stopped_with_the_command)
+    code = cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod"), "--rate", "10%", "--workers", "1", "-q"])
+    assert code == 128 + signal.SIGTERM
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "geodesic-lod: stopped"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.npy"]
