@@ -58,10 +58,36 @@ def _laspy_error(e: Exception) -> bool:
     return type(e).__module__.split(".")[0] in ("laspy", "lazrs")
 
 
+def _check_record_room(path) -> None:
+    """Refuses a header whose counts of records (VLRs, EVLRs) the file has no room for, or whose point format
+    LAS does not have, before laspy reads them: it reads on for each record counted (2^31: minutes and
+    gigabytes) and names a bad format by its number alone."""
+    with open(path, "rb") as f:
+        head = f.read(247)
+        size = os.fstat(f.fileno()).st_size
+    if len(head) < 107 or head[:4] != b"LASF":
+        return  # laspy names it
+    header_size, data_start, vlrs = struct.unpack_from("<HII", head, 94)
+    room = max(0, data_start - header_size) // 54  # a VLR's header alone is 54 bytes
+    if vlrs > room:
+        _fail(path, f"its header counts {vlrs} variable-length records where there is room for at most {room}: "
+              "the header is damaged")
+    if len(head) >= 247 and (head[24], head[25]) >= (1, 4):
+        first, evlrs = struct.unpack_from("<QI", head, 235)
+        room = max(0, size - first) // 60 if first else 0  # an EVLR's header alone is 60 bytes
+        if evlrs > room:
+            _fail(path, f"its header counts {evlrs} extended variable-length records where there is room for at "
+                  f"most {room}: it is cut short or its header is wrong")
+    fmt = head[104] & 0x3F  # the two high bits flag compression
+    if fmt > 10:
+        _fail(path, f"its point format is {fmt}, where LAS has 0 to 10: the header is damaged")
+
+
 def open_source(path) -> LasSource:
     """The header and own records of a LAS/LAZ file, checked; refuses what cannot be read or written
     back, naming the file and the problem."""
     import laspy
+    _check_record_room(path)
     try:
         with laspy.open(str(path)) as f:
             header = f.header

@@ -112,6 +112,15 @@ DAMAGED = [
     ("a LAZ header count beyond its chunks", lambda d: with_bytes(las_cloud(d / "in.laz"), 247, "<Q", 4 * 10 ** 9),
      "header announces 4000000000 points but its compressed chunks hold at most"),
     ("LAS 1.0", lambda d: with_bytes(las_of(d, version="1.2", fmt=1), 25, "<B", 0), "is LAS 1.0"),
+    # Counts of records the file has no room for: laspy reads on for each (2^31: minutes, gigabytes).
+    ("a 2^31 VLR count", lambda d: with_bytes(las_of(d), 100, "<I", 2 ** 31),
+     "header counts 2147483648 variable-length records where there is room for at most"),
+    ("a 2^31 VLR count in a LAZ", lambda d: with_bytes(las_cloud(d / "in.laz"), 100, "<I", 2 ** 31),
+     "header counts 2147483648 variable-length records where there is room for at most"),
+    ("a 2^31 EVLR count", lambda d: with_bytes(las_of(d), 243, "<I", 2 ** 31),
+     "header counts 2147483648 extended variable-length records where there is room for at most"),
+    ("point format 35", lambda d: with_bytes(las_of(d, version="1.2", fmt=3), 104, "<B", 99),
+     "its point format is 35, where LAS has 0 to 10"),
 ]
 
 

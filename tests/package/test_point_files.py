@@ -98,7 +98,7 @@ def truncated(path):
     (lambda d: (d / "scan.xyz").write_text("0 0 0\n") and d / "scan.xyz", "unknown input format '.xyz'"),
     (lambda d: d, "unknown input format"),
     (lambda d: (d / "empty.laz").write_bytes(b"") or d / "empty.laz", "cannot be read as LAS"),
-    (lambda d: truncated(las_cloud(d / "cut.laz")), "cannot be read as LAS"),
+    (lambda d: truncated(las_cloud(d / "cut.laz")), "it is cut short or its header is wrong"),
     (lambda d: truncated(ply_cloud(d / "cut.ply")), "cannot be read as PLY"),
     (lambda d: (d / "text.ply").write_text("not a ply\n") and d / "text.ply", "cannot be read as PLY"),
     (lambda d: np.save(d / "flat.npy", np.zeros(9)) or d / "flat.npy", "expected floats of shape (n, 3)"),
