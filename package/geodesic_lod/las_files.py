@@ -62,9 +62,12 @@ def _check_record_room(path) -> None:
     """Refuses a header whose counts of records (VLRs, EVLRs) the file has no room for, or whose point format
     LAS does not have, before laspy reads them: it reads on for each record counted (2^31: minutes and
     gigabytes) and names a bad format by its number alone."""
-    with open(path, "rb") as f:
-        head = f.read(247)
-        size = os.fstat(f.fileno()).st_size
+    try:
+        with open(path, "rb") as f:
+            head = f.read(247)
+            size = os.fstat(f.fileno()).st_size
+    except OSError as e:
+        _fail(path, f"cannot be read as LAS: {e}")
     if len(head) < 107 or head[:4] != b"LASF":
         return  # laspy names it
     header_size, data_start, vlrs = struct.unpack_from("<HII", head, 94)

@@ -299,3 +299,11 @@ def test_a_full_disk_is_the_oserror_it_is(tmp_path, compress, room):
     with pytest.raises(OSError) as e:
         las_files.write(FullDisk(room), source.source, source.rows.array, compress=compress)
     assert e.value.errno == errno.ENOSPC
+
+
+@pytest.mark.parametrize("make", [lambda d: d / "absent.las", lambda d: (d / "dir.las").mkdir() or d / "dir.las"],
+                         ids=["missing", "a folder"])
+def test_a_las_path_that_is_no_file_is_named(tmp_path, make):
+    path = make(tmp_path)
+    with pytest.raises(gl.PointFileError, match="cannot be read as LAS"):
+        las_files.open_source(path)
