@@ -116,6 +116,16 @@ def _float_array(a, name: str, allow_none: bool = False):
     return a
 
 
+def finite_points(p: np.ndarray) -> np.ndarray:
+    """`p`, refused where rows hold NaN or infinity, in the core's words (array_input.h), for the
+    functions that place points before the core reads them."""
+    bad = int(np.count_nonzero(~np.isfinite(p).all(axis=1)))
+    if bad:
+        raise InputError(f"points: {bad} row{' has' if bad == 1 else 's have'} NaN or infinite coordinates; remove "
+                         "them first")
+    return p
+
+
 def point_arrays(points, normals):
     p = _float_array(points, "points")
     if p.shape[0] < 2:
@@ -310,10 +320,18 @@ def placement_of(placement, mesh_output, default):
     return value
 
 
+# The most threads a run is given: far above any machine's cores, far below what a pool could start.
+MAX_THREADS = 1024
+
+
+def thread_count(threads, name: str = "threads") -> Optional[int]:
+    """The threads asked for, checked (None: every core)."""
+    return None if threads is None else whole_number(threads, name, 1, MAX_THREADS)
+
+
 def run_options(seed, threads, progress, mesh_output, has_faces):
     seed = whole_number(seed, "seed", 0, 2**64 - 1)
-    if threads is not None:
-        threads = whole_number(threads, "threads", 1)
+    threads = thread_count(threads)
     if progress is not None and not callable(progress):
         raise InputError(f"progress must be None or a callable taking a fraction, not {type(progress).__name__}")
     if not isinstance(mesh_output, (bool, np.bool_)):
@@ -464,6 +482,7 @@ def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, p
 
 @documented
 def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
+    n = whole_number(n, "n (the number of points)", 0)
     levels = level_items(levels)
     if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
         raise InputError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "

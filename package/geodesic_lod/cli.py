@@ -296,8 +296,7 @@ def _request(args) -> dict:
     if args.tolerance is not None and not (math.isfinite(args.tolerance) and 0 <= args.tolerance < 100):
         raise ValueError(f"--tolerance must be a percentage from 0 to below 100, got {args.tolerance}")
     arrays.real_number(args.adaptivity, "--adaptivity", positive=False)
-    if args.threads is not None:
-        arrays.whole_number(args.threads, "--threads", 1)
+    arrays.thread_count(args.threads, "--threads")
     arrays.whole_number(args.seed, "--seed", 0, 2 ** 64 - 1)
     if point_files.is_copc(args.output):
         return {"copc": True}

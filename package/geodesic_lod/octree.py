@@ -10,7 +10,7 @@ from typing import Optional
 import numpy as np
 
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_METRIC, DEFAULT_VISIT_ORDER, DOMAIN_DEFAULTS, VISIT_ORDERS,
-                     DomainOptions, Progress, _choice, point_arrays, run_options)
+                     DomainOptions, Progress, _choice, finite_points, point_arrays, run_options)
 from .copc_files import CELLS, MAX_DEPTH, Octree
 from .docstrings import documented
 from .domain import Domain
@@ -103,6 +103,7 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
                visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
                threads: Optional[int] = None, progress: Progress = None) -> OctreeLod:
     p, n = point_arrays(points, normals)
+    finite_points(p)  # before the octree is placed around them
     _choice(visit_order, VISIT_ORDERS, "visit_order")
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
@@ -135,12 +136,13 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
                visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
                threads: Optional[int] = None, overwrite: bool = False, progress: Progress = None) -> OctreeLod:
     from . import point_files
-    from .arrays import too_few_points
+    from .arrays import thread_count, too_few_points
     from .errors import PointFileError
     if not point_files.is_copc(output):
         raise PointFileError(output, f"a COPC file's name ends in {point_files.COPC_SUFFIX}")
     point_files.check_outputs([input], [output], overwrite=overwrite)
     _choice(visit_order, VISIT_ORDERS, "visit_order")
+    thread_count(threads)  # before the file is decoded on them
     source = point_files.read(input, threads=threads)
     problem = too_few_points(len(source.points), max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors))
     if problem:

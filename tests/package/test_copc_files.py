@@ -244,4 +244,6 @@ def test_python_writes_the_file_the_command_writes(tmp_path, strip_copc):
         gl.write_copc(src, tmp_path / "api.laz")
     with pytest.raises(ValueError, match="is an input"):
         gl.write_copc(out, out, overwrite=True)
+    with pytest.raises(ValueError, match="threads must be from 1 to"):
+        gl.write_copc(src, tmp_path / "threads.copc.laz", threads=2**31)
     assert names(tmp_path) == ["api.copc.laz"]
