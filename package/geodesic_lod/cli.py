@@ -86,15 +86,15 @@ def parser() -> argparse.ArgumentParser:
                    "scan's scatter first), rims (points at the rim of their surroundings, such as roof edges, "
                    "first) or automatic (rims where the points scatter, as airborne LiDAR's do, else prominence) "
                    f"(default: {arrays.DEFAULT_VISIT_ORDER})")
-    p.add_argument("--metric", default=arrays.DEFAULT_METRIC, choices=list(arrays.METRICS),
+    p.add_argument("--metric", choices=list(arrays.METRICS),
                    help="the distance the samples are spread in; surface-density, with --visit-order rims, "
                         "for airborne LiDAR; automatic takes it where the points scatter, else "
-                        "curvature-density (default: %(default)s)")
-    p.add_argument("--adaptivity", type=float, default=arrays.DOMAIN_DEFAULTS.adaptivity,
+                        f"curvature-density (default: {arrays.DEFAULT_METRIC})")
+    p.add_argument("--adaptivity", type=float,
                    help="curvature- and surface-density metrics: how much denser rugged parts (smooth "
-                        "surfaces) get (default: %(default)s)")
+                        f"surfaces) get (default: {arrays.DOMAIN_DEFAULTS.adaptivity:g})")
     p.add_argument("--recompute-normals", action="store_true", help="estimate normals even where the file has them")
-    p.add_argument("--seed", type=int, default=0, help="the seed of the sampling order (default: %(default)s)")
+    p.add_argument("--seed", type=int, help="the seed of the sampling order (default: 0)")
     p.add_argument("--threads", type=int, default=None, help="threads to use (default: all cores); the output "
                    "is the same on any number")
     p.add_argument("--overwrite", action="store_true", help="replace output files that exist (never an input)")
@@ -289,6 +289,17 @@ def _request(args) -> dict:
         raise ValueError("--height-field takes --rate, --count or --levels" + (", not --fps" if args.fps else ""))
     if args.height_field and args.tolerance is not None:
         raise ValueError("--tolerance goes with Poisson-disk sets; --height-field counts are exact")
+    # These options' defaults are filled only here, given ones told apart: a height field has no use for them.
+    unused = [flag for flag, given in (("--metric", args.metric is not None),
+                                       ("--adaptivity", args.adaptivity is not None),
+                                       ("--recompute-normals", args.recompute_normals),
+                                       ("--seed", args.seed is not None)) if given]
+    if args.height_field and unused:
+        raise ValueError(f"{', '.join(unused)} go{'es' if len(unused) == 1 else ''} with the geodesic samplers: "
+                         "--height-field chooses each point by its height alone")
+    args.metric = args.metric or arrays.DEFAULT_METRIC
+    args.adaptivity = arrays.DOMAIN_DEFAULTS.adaptivity if args.adaptivity is None else args.adaptivity
+    args.seed = 0 if args.seed is None else args.seed
     if args.visit_order is not None and (args.fps or args.height_field):
         raise ValueError("--visit-order goes with Poisson-disk sets (not --fps or --height-field)")
     if args.tolerance is not None and (args.fps or not counted):

@@ -146,6 +146,9 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "give one of --rate, --count, --radius, --levels"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--height-field"],
      "--height-field takes --rate, --count or --levels"),
+    *[(lambda d, o=option: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "9", "--height-field", *o],
+       f"{option[0]} goes with the geodesic samplers: --height-field chooses each point by its height alone")
+      for option in (["--metric", "euclidean"], ["--adaptivity", "3"], ["--recompute-normals"], ["--seed", "0"])],
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "9", "--height-field", "--tolerance", "1"],
      "--height-field counts are exact"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--count", "3001", "--height-field"],
