@@ -140,6 +140,9 @@ class HeightFieldLod {
       // Coordinates from the box's corner: UTM eastings and northings keep their centimetres.
       const double ox = *std::min_element(x_.begin(), x_.end()), oy = *std::min_element(y_.begin(), y_.end());
       for (size_t i = 0; i < n; ++i) x_[i] -= ox, y_[i] -= oy;
+      const auto [z0, z1] = std::minmax_element(z_.begin(), z_.end());
+      const double dx = *std::max_element(x_.begin(), x_.end()), dy = *std::max_element(y_.begin(), y_.end());
+      CheckDistanceRange(std::max({dx, dy, *z1 - *z0}));
       if (!(p.separation >= 0) || !std::isfinite(p.separation))
         throw InputError(Field::Separation, "must be a number at least 0, got " + std::to_string(p.separation));
     }

@@ -4,6 +4,8 @@
 // and what is wrong with it. Each front end words it with its own names, as
 // MeshLab's plugins word vcglib's failures (the plugin with its pymeshlab
 // keywords and layers, the Python package with its arguments).
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -42,6 +44,21 @@ struct InputError : std::invalid_argument {
 inline InputError NonFiniteCoordinates(size_t bad) {
   return InputError(Field::Coordinates, "holds " + std::to_string(bad) + (bad == 1 ? " point" : " points") +
                                             " with NaN or infinite coordinates");
+}
+
+/// The one check and wording of coordinates whose distances Scalar cannot
+/// hold, from the largest side of their bounding box: the box's squared
+/// diagonal overflows, or a distance at the box's precision (epsilon times
+/// that side) squares below the normal numbers, where distances lose their
+/// digits and then become 0. A box of one point (side 0) passes: that is a
+/// problem of its own.
+template <class Scalar>
+void CheckDistanceRange(Scalar largestSide) {
+  using L = std::numeric_limits<Scalar>;
+  if (!(largestSide <= std::sqrt(L::max() / 3)))
+    throw InputError(Field::Points, "holds coordinates too large for any distance: the bounding box's diagonal overflows");
+  if (largestSide > 0 && largestSide * L::epsilon() < std::sqrt(L::min()))
+    throw InputError(Field::Points, "holds coordinates too small for any distance: their squares underflow");
 }
 
 /// The field's identifier, for front ends that pass the error on by name.

@@ -117,14 +117,13 @@ class PointSetFromMesh {
   }
 };
 
-/// The points' bounding box; throws InputError (Points) when its diagonal
-/// overflows (no distance or grid can be computed in it).
+/// The points' bounding box; throws InputError (Points) when distances in it
+/// overflow or underflow (CheckDistanceRange).
 template <class Scalar>
 vcg::Box3<Scalar> FiniteBox(const PointSet<Scalar>& ps) {
   vcg::Box3<Scalar> box;
   for (const auto& q : ps.pos) box.Add(q);
-  if (!std::isfinite(box.Diag()))
-    throw InputError(Field::Points, "holds coordinates too large for any distance: the bounding box's diagonal overflows");
+  if (!box.IsNull()) CheckDistanceRange(std::max({box.DimX(), box.DimY(), box.DimZ()}));
   return box;
 }
 

@@ -198,6 +198,9 @@ BAD = [
      "one.npy: holds 1 point: at least 21 are needed"),
     (lambda d: [np.save(d / "same.npy", np.ones((300, 3))) or d / "same.npy", "-o", "o.npy", "--rate", "10%"],
      "same.npy: holds 300 points at one position: there is no surface to sample"),  # not "same.npy: points holds"
+    *[(lambda d, x=extra, s=scale: [np.save(d / "far.npy", bumpy_sphere(300) * s) or d / "far.npy", "-o", "o.npy",
+                                    "--rate", "10%", *x], f"far.npy: holds coordinates too {size} for any distance")
+      for extra in ([], ["--height-field"]) for scale, size in ((1e155, "large"), (1e-200, "small"))],
 ]
 
 

@@ -232,6 +232,11 @@ TEST(HeightFieldLod, RefusesBadInput) {
   EXPECT_EQ(field(bad, 10, 0.3), vcg_ext::Field::Coordinates);
   EXPECT_EQ(field({0, 0, 0, 1, 1, 5, 2, 2, 1, 3, 3, 0}, 3, 0.3), vcg_ext::Field::Points);  // one line in x, y
   EXPECT_EQ(field({0, 0, 0, 1, 1, 5}, 2, 0.3), vcg_ext::Field::Points);
+  for (double scale : {1e155, 1e-200}) {  // squared distances overflow, or underflow to 0
+    auto scaled = xyz;
+    for (double& c : scaled) c *= scale;
+    EXPECT_EQ(field(scaled, 10, 0.3), vcg_ext::Field::Points) << scale;
+  }
 }
 
 }  // namespace height_field_lod_test

@@ -39,6 +39,20 @@ TEST(InputChecks, EmptyOneAndCoincident) {
   EXPECT_NE(ErrorOf(same, Radius(1)).find("Points: holds 50 points at one position"), std::string::npos);
 }
 
+TEST(InputChecks, CoordinatesBeyondTheRangeOfDistances) {
+  // Squared distances overflow above about 1e19 in float and underflow below
+  // about 1e-19 (to 0: every point would seem at one position).
+  for (float scale : {1e20f, 1e-25f}) {
+    test::TMesh m;
+    test::Plane(m, 10);
+    for (auto& v : m.vert) v.P() *= scale;
+    const std::string e = ErrorOf(m, Radius(0.1 * scale));
+    EXPECT_NE(e.find(scale > 1 ? "Points: holds coordinates too large for any distance"
+                               : "Points: holds coordinates too small for any distance"),
+              std::string::npos) << scale << ": " << e;
+  }
+}
+
 TEST(InputChecks, NonFiniteCoordinates) {
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     test::TMesh m;
