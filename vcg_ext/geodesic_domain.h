@@ -128,6 +128,10 @@ class GeodesicDomain {
     d.meshGeodesics = p.metric != Metric::Euclidean && !UsesPointGraph(!tris.tri.empty(), p);
     if (d.meshGeodesics) {
       d.leftOut = KeepReferenced(ps, tris.tri);
+      if (d.leftOut > 0 && ps.size() <= size_t(std::max(p.normalNeighbours, 0)))
+        throw InputError(Field::Points, "holds " + InTriangles(ps.size(), d.leftOut) + ": at least " +
+                                            std::to_string(p.normalNeighbours + 1) +
+                                            " are needed, the neighbours each normal is fitted to");
       Check(ps, true, p);  // what is left must still be samplable
     }
     d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::Of(ps.pos, ps.vertIndex);
@@ -203,6 +207,19 @@ class GeodesicDomain {
   }
 
   size_t size() const { return points.size(); }
+
+  /// Throws InputError (SampleNum) for a count above the points in triangles
+  /// where mesh geodesics left vertices out; the samplers word the other counts.
+  void CheckCount(size_t sampleNum) const {
+    if (leftOut > 0 && sampleNum > size())
+      throw InputError(Field::SampleNum, "must be at most the " + InTriangles(size(), leftOut) + ", got " +
+                                             std::to_string(sampleNum));
+  }
+  /// "30 points in triangles (30 vertices in none are not sampled with mesh geodesics)"
+  static std::string InTriangles(size_t kept, size_t leftOut) {
+    return std::to_string(kept) + " points in triangles (" + std::to_string(leftOut) + (leftOut == 1 ? " vertex" : " vertices") +
+           " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
+  }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
 
   /// The edge lengths g_ij of this domain's metric (eq. 2-3), from its

@@ -56,6 +56,7 @@ class GeodesicFpsLod {
   /// The LOD of a domain built before (p.domain is not read), as GeodesicPoissonLod's.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
     CheckParam(p, d.hasFaces);
+    d.CheckCount(p.sampleNum);
     const FarthestPoint::Result s = Sample(d, p.sampleNum, p.seed, progress.Sub(0, p.meshOutput ? 75 : 100));
     Result r;
     static_cast<LodResult<Scalar>&>(r) =

@@ -206,6 +206,7 @@ class GeodesicPoissonLod {
   /// asks to stop.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
     CheckParam(p, d.hasFaces);
+    if (p.within.empty()) d.CheckCount(p.sampleNum);
     const Progress sampling = progress.Sub(0, p.meshOutput ? 75 : 100);
     Result r;
     r.order = ChosenOrder(p.order, d.Scatters());

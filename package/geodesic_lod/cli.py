@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core, arrays, las_files, point_files, stop_signals, tile_points
 from .command import PROG, stopped
-from .errors import ClusterJobError
+from .errors import ClusterJobError, InputError
 
 EXIT_BAD_INPUT = 2
 SCHEDULER_TIMEOUT = 10  # seconds
@@ -414,10 +414,24 @@ def _height_field_levels(request: dict, source: point_files.PointFile, progress)
     return [np.sort(indices[:c]) for c in counts]
 
 
-def _write_levels(source: point_files.PointFile, paths: list, chosen: list) -> list:
-    """Each level's file; a summary line each."""
+def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod=None) -> list:
+    """Each level's file; a summary line each, naming the vertices in no triangle that `lod` (a result, or
+    None) left out."""
     point_files.write_all(source, list(zip(paths, chosen)))
-    return [f"{path}: {len(indices):,} of {len(source.points):,} points" for path, indices in zip(paths, chosen)]
+    left_out = getattr(lod, "left_out", 0)
+    aside = f" ({left_out:,} in no triangle, not sampled with mesh geodesics)" if left_out else ""
+    return [f"{path}: {len(indices):,} of {len(source.points):,} points{aside}" for path, indices in zip(paths, chosen)]
+
+
+def _count_in_options(e: ValueError, args) -> ValueError:
+    """The API's error on the count (a count above the points a file's mesh geodesics sample) in the
+    option the count came from."""
+    if not isinstance(e, InputError) or e.subject != "count":
+        return e
+    if args.count is not None:
+        return InputError(f"--count {e.problem}")
+    given = f"--rate {args.rate}: its" if args.rate is not None else f"--levels {args.levels}: the finest level's"
+    return InputError(f"{given} count {e.problem}")
 
 
 def _copc(args, progress) -> list:
@@ -476,9 +490,9 @@ def main(argv=None) -> int:
             try:
                 chosen, lod = _run(args, request, source, bar if bar.bar is not None else None)
             except ValueError as e:  # the input's data or a value that depends on it
-                raise point_files.PointFileError.of(source.path, e) from None
+                raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
             bar.close()
-            return _done(args, _write_levels(source, paths, chosen) + _choices_line(args, lod), start)
+            return _done(args, _write_levels(source, paths, chosen, lod) + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
             if bar is not None:
                 bar.close()

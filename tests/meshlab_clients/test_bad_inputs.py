@@ -135,7 +135,7 @@ CASES = [
     ("unreferenced vertices, mesh mode", unreferenced, POISSON,
      {"geodesicmode": MESH_MODE, "radius": pymeshlab.PureValue(0.1)}, no_unreferenced_sample),
     ("unreferenced vertices, mesh mode, every vertex", unreferenced, FPS, {"samplenum": 146, "geodesicmode": MESH_MODE},
-     "samplenum must be between 1 and the number of points (144)"),
+     "samplenum must be at most the 144 points in triangles (2 vertices in none are not sampled"),
     ("unreferenced vertices, point graph", unreferenced, FPS, {"samplenum": 146, "geodesicmode": GRAPH},
      one_per_part(146)),
     ("disconnected parts, radius beyond the model", two_parts, POISSON, {"radius": pymeshlab.PureValue(100)},

@@ -22,9 +22,11 @@ def ply_cloud(path, n=3000, text=False):
     return path
 
 
-def ply_mesh(path, n=30, quads=False):
-    """The bumpy height field as a PLY mesh, of triangles or of the quads they pair into."""
+def ply_mesh(path, n=30, quads=False, stray=0):
+    """The bumpy height field as a PLY mesh, of triangles or of the quads they pair into; `stray` more
+    vertices in no face, above it."""
     pts, tris = grid_mesh(n)
+    pts = np.vstack([pts, np.column_stack([np.linspace(0, 1, stray), np.full(stray, 0.5), np.full(stray, 2.0)])])
     v = np.array([tuple(r) for r in pts], dtype=[("x", "f8"), ("y", "f8"), ("z", "f8")])
     if quads:
         idx = np.arange(n * n).reshape(n, n)

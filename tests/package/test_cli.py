@@ -52,6 +52,13 @@ def test_ply_mesh_samples_over_its_faces(tmp_path):
     assert np.array_equal(np.column_stack([out["x"], out["y"], out["z"]]), pts[np.sort(expected.indices)])
 
 
+def test_a_mesh_s_vertices_in_no_face_are_named_in_the_summary(tmp_path):
+    path, pts, tris = ply_mesh(tmp_path / "mesh.ply", n=8, stray=10)
+    r = run(path, "-o", tmp_path / "lod.ply", "--count", "20")
+    assert r.returncode == 0, r.stderr
+    assert "20 of 74 points (10 in no triangle, not sampled with mesh geodesics)" in r.stderr
+
+
 def test_radius_as_a_share_of_the_diagonal_and_fps_order(tmp_path):
     src = ply_cloud(tmp_path / "in.ply")
     points, normals = pf.read(src).points, pf.read(src).normals
@@ -198,6 +205,15 @@ BAD = [
      "one.npy: holds 1 point: at least 21 are needed"),
     (lambda d: [np.save(d / "same.npy", np.ones((300, 3))) or d / "same.npy", "-o", "o.npy", "--rate", "10%"],
      "same.npy: holds 300 points at one position: there is no surface to sample"),  # not "same.npy: points holds"
+    *[(lambda d, a=size: [ply_mesh(d / "in.ply", n=6, stray=40)[0], "-o", "o.ply", *a],
+       f"in.ply: {words} must be at most the 36 points in triangles (40 vertices in none are not sampled with mesh "
+       f"geodesics), got {got}")
+      for size, words, got in ((["--rate", "100%"], "--rate 100%: its count", 76), (["--count", "50"], "--count", 50),
+                               (["--count", "50", "--fps"], "--count", 50),
+                               (["--levels", "90%,10%"], "--levels 90%,10%: the finest level's count", 68))],
+    (lambda d: [ply_mesh(d / "in.ply", n=4, stray=30)[0], "-o", "o.ply", "--rate", "10%"],
+     "in.ply: holds 16 points in triangles (30 vertices in none are not sampled with mesh geodesics): at least 21 "
+     "are needed, the neighbours each normal is fitted to"),
     *[(lambda d, x=extra, s=scale: [np.save(d / "far.npy", bumpy_sphere(300) * s) or d / "far.npy", "-o", "o.npy",
                                     "--rate", "10%", *x], f"far.npy: holds coordinates too {size} for any distance")
       for extra in ([], ["--height-field"]) for scale, size in ((1e155, "large"), (1e-200, "small"))],

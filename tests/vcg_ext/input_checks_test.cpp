@@ -53,6 +53,24 @@ TEST(InputChecks, CoordinatesBeyondTheRangeOfDistances) {
   }
 }
 
+TEST(InputChecks, CountsAndNeighboursNameTheVerticesMeshGeodesicsLeaveOut) {
+  test::TMesh m;
+  test::GridMesh(m, 6, [](float x, float y) { return 0.1f * x * y; });  // 36 vertices in triangles
+  const size_t inTriangles = m.vert.size();
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 30);  // in no triangle
+  for (size_t i = inTriangles; i < m.vert.size(); ++i) m.vert[i].P() = test::P3(float(i), 5, 1);
+  LOD::Param p;
+  p.domain.mode = vcg_ext::GeodesicMode::Mesh;
+  p.sampleNum = 40;
+  EXPECT_EQ(ErrorOf(m, p), "SampleNum: must be at most the 36 points in triangles (30 vertices in none are not "
+                           "sampled with mesh geodesics), got 40");
+  p.sampleNum = 36;
+  EXPECT_EQ(ErrorOf(m, p), "");
+  p.domain.normalNeighbours = 36;
+  EXPECT_EQ(ErrorOf(m, p), "Points: holds 36 points in triangles (30 vertices in none are not sampled with mesh "
+                           "geodesics): at least 37 are needed, the neighbours each normal is fitted to");
+}
+
 TEST(InputChecks, NonFiniteCoordinates) {
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     test::TMesh m;
