@@ -75,6 +75,9 @@ def _check_record_room(path) -> None:
     if vlrs > room:
         _fail(path, f"its header counts {vlrs} variable-length records where there is room for at most {room}: "
               "the header is damaged")
+    if _vlrs_end(path, header_size, vlrs) > data_start:
+        _fail(path, f"its header counts {vlrs} variable-length records, the last of which runs past the start of "
+              f"the point records (byte {data_start}): the header is damaged")
     if len(head) >= 247 and (head[24], head[25]) >= (1, 4):
         first, evlrs = struct.unpack_from("<QI", head, 235)
         room = max(0, size - first) // 60 if first else 0  # an EVLR's header alone is 60 bytes
@@ -84,6 +87,20 @@ def _check_record_room(path) -> None:
     fmt = head[104] & 0x3F  # the two high bits flag compression
     if fmt > 10:
         _fail(path, f"its point format is {fmt}, where LAS has 0 to 10: the header is damaged")
+
+
+def _vlrs_end(path, start: int, count: int) -> int:
+    """Where `count` variable-length records from byte `start` end, by their lengths (in each 54-byte header,
+    the two bytes after the reserved word, the user id and the record id); past the file's end, the file's
+    size plus one."""
+    with open(path, "rb") as f:
+        f.seek(start)
+        for _ in range(count):
+            head = f.read(54)
+            if len(head) < 54:
+                return os.fstat(f.fileno()).st_size + 1
+            f.seek(struct.unpack_from("<H", head, 20)[0], os.SEEK_CUR)
+        return f.tell()
 
 
 def open_source(path) -> LasSource:

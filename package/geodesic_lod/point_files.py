@@ -208,10 +208,13 @@ def _normals(table, names=("nx", "ny", "nz")):
 
 def _read_ply(path):
     import plyfile
-    try:  # triangles read as one fixed-size table (fast); any other polygon needs the general reader
-        ply = plyfile.PlyData.read(str(path), known_list_len={"face": {"vertex_indices": 3, "vertex_index": 3}})
-    except plyfile.PlyElementParseError:
-        ply = plyfile.PlyData.read(str(path))
+    # A text value beyond its type's range reads as infinite, which the checks name; numpy's warning of it
+    # is not printed.
+    with np.errstate(over="ignore"):
+        try:  # triangles read as one fixed-size table (fast); any other polygon needs the general reader
+            ply = plyfile.PlyData.read(str(path), known_list_len={"face": {"vertex_indices": 3, "vertex_index": 3}})
+        except plyfile.PlyElementParseError:
+            ply = plyfile.PlyData.read(str(path))
     if "vertex" not in ply:
         raise PointFileError(path, "has no vertex element")
     vertex = ply["vertex"].data

@@ -119,6 +119,15 @@ def test_npy_with_normals(tmp_path):
     assert np.array_equal(np.load(tmp_path / "out.npy")[:, :3], p[np.sort(gl.poisson_lod(p, p, rate=5).indices)])
 
 
+def text_ply_beyond_float(d):
+    """A text PLY of float vertices, one of them 1e200 (read as infinite)."""
+    text = ply_cloud(d / "big.ply", n=300, text=True).read_text().splitlines()
+    first = text.index("end_header") + 1
+    text[first] = " ".join(["1e200"] + text[first].split()[1:])
+    (d / "big.ply").write_text("\n".join(text) + "\n")
+    return d / "big.ply"
+
+
 def nan_npy(d):
     p = bumpy_sphere(500)
     p[7] = np.nan
@@ -135,6 +144,8 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "in.ply", "--rate", "10%"], "in.ply: is an input"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "no/o.ply", "--rate", "10%"], "does not exist"),
     (lambda d: [nan_npy(d), "-o", "o.npy", "--rate", "10%"], "1 row has NaN or infinite coordinates"),
+    (lambda d: [text_ply_beyond_float(d), "-o", "o.ply", "--rate", "10%"],
+     "big.ply: points: 1 row has NaN or infinite coordinates"),  # no numpy warning on the way
     (lambda d: [(d / "cut.laz").write_bytes(b"LASF") and d / "cut.laz", "-o", "o.laz", "--rate", "1%"],
      "cut.laz: cannot be read as LAS"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--rate", "10%", "--metric", "manhattan"],

@@ -95,6 +95,12 @@ def cut_bytes(path, fraction):
     return path
 
 
+def one_more_vlr(path):
+    """The header counting one variable-length record more than the file holds (laspy reads point records
+    as the last, and fails later on its bytes)."""
+    return with_bytes(path, 100, "<I", struct.unpack_from("<I", path.read_bytes(), 100)[0] + 1)
+
+
 def las_of(d, name="in.las", version="1.4", fmt=6):
     return las_cloud(d / name, version=version, point_format=fmt)
 
@@ -119,6 +125,10 @@ DAMAGED = [
      "header counts 2147483648 variable-length records where there is room for at most"),
     ("a 2^31 EVLR count", lambda d: with_bytes(las_of(d), 243, "<I", 2 ** 31),
      "header counts 2147483648 extended variable-length records where there is room for at most"),
+    ("one VLR more than the file holds", lambda d: one_more_vlr(las_of(d)),
+     "the last of which runs past the start of the point records"),
+    ("one VLR more than a LAZ holds", lambda d: one_more_vlr(las_cloud(d / "in.laz")),
+     "the last of which runs past the start of the point records"),
     ("point format 35", lambda d: with_bytes(las_of(d, version="1.2", fmt=3), 104, "<B", 99),
      "its point format is 35, where LAS has 0 to 10"),
 ]
