@@ -35,6 +35,12 @@ void WithFloatType(const Array2& a, const char* name, F&& f) {
   else throw std::invalid_argument(std::string(name) + " must hold float32 or float64 values");
 }
 
+/// The one wording of `bad` rows of points with NaN or infinite coordinates
+/// ("2 rows have ..."), for the arrays and, through the module, the files.
+inline std::string NonFiniteRows(size_t bad) {
+  return std::to_string(bad) + (bad == 1 ? " row has" : " rows have") + " NaN or infinite coordinates";
+}
+
 /// Points (n x 3) and optional normals (n x 3; rows of zeros or NaN count as
 /// missing) as a PointSet numbered like the rows. Throws std::invalid_argument
 /// naming the array for non-finite coordinates.
@@ -55,8 +61,7 @@ inline vcg_ext::PointSet<double> ReadPoints(const Array2& points, const Array2* 
     }
   });
   if (nonFinite)
-    throw std::invalid_argument("points: " + std::to_string(nonFinite) + (nonFinite == 1 ? " row has" : " rows have") +
-                                " NaN or infinite coordinates; remove them first");
+    throw std::invalid_argument("points: " + NonFiniteRows(nonFinite) + "; remove them first");
   ps.normal.assign(n, vcg::Point3d(0, 0, 0));
   if (normals) {
     CheckColumns(*normals, "normals");

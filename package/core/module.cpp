@@ -289,6 +289,7 @@ NB_MODULE(_core, m) {
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;
 
+  m.def("non_finite_rows", &NonFiniteRows, "bad"_a, "'<bad> rows have NaN or infinite coordinates'");
   m.def("percent_of", &vcg_ext::PercentOf, "percent"_a, "n"_a,
         "percent of n points, rounded as the MeshLab filters round it");
   m.def("poisson_lod", &PoissonLod, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,

@@ -116,13 +116,19 @@ def _float_array(a, name: str, allow_none: bool = False):
     return a
 
 
-def finite_points(p: np.ndarray) -> np.ndarray:
-    """`p`, refused where rows hold NaN or infinity, in the core's words (array_input.h), for the
-    functions that place points before the core reads them."""
+def non_finite_rows(p: np.ndarray) -> Optional[str]:
+    """What is wrong with points whose rows hold NaN or infinity, in the core's words (array_input.h), or
+    None."""
     bad = int(np.count_nonzero(~np.isfinite(p).all(axis=1)))
-    if bad:
-        raise InputError(f"points: {bad} row{' has' if bad == 1 else 's have'} NaN or infinite coordinates; remove "
-                         "them first")
+    return _core.non_finite_rows(bad) if bad else None
+
+
+def finite_points(p: np.ndarray) -> np.ndarray:
+    """`p`, refused where rows hold NaN or infinity, as the core refuses them, for the functions that place
+    points before the core reads them."""
+    problem = non_finite_rows(p)
+    if problem:
+        raise InputError(f"points: {problem}; remove them first")
     return p
 
 

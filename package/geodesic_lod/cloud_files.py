@@ -10,7 +10,7 @@ from typing import Sequence
 
 import numpy as np
 
-from . import las_files, point_files, tiles
+from . import arrays, las_files, point_files, tiles
 
 
 @dataclass
@@ -68,10 +68,9 @@ def survey(path: str) -> dict:
 
 
 def check_finite(path, points: np.ndarray) -> None:
-    bad = int(np.count_nonzero(~np.isfinite(points).all(axis=1)))
-    if bad:
-        raise point_files.PointFileError(path, f"{bad} row{' has' if bad == 1 else 's have'} NaN or infinite "
-                                               "coordinates")
+    problem = arrays.non_finite_rows(points)
+    if problem:
+        raise point_files.PointFileError(path, problem)
 
 
 def _writable_together(path: str, signature: tuple, first: Source) -> bool:

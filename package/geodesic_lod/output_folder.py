@@ -105,13 +105,18 @@ class OutputFolder:
         old = [n for n in self.owned if n != self.run]
         self._write_index({"tool": TOOL, **index, **self._ownership()})
         listed = lod_files(self.index or {})
-        kept = [n for n in old if not remove_own(
-            self.path / n, None if n not in self.swept and not any(f.startswith(n + "/") for f in listed)
-            else {f[len(n) + 1:] for f in listed if f.startswith(n + "/")})]
+        kept = [n for n in old if not remove_own(self.path / n, self._removable(n, listed))]
         self.owned, self.swept = kept + [self.run], kept
         index = {"tool": TOOL, **index, **self._ownership()}
         self._write_index(index)
         return index
+
+    def _removable(self, run: str, listed: set) -> Optional[set]:
+        """The files of an older run that a commit removes, relative to it: those the last LOD (`listed`) lists
+        there; none of a run kept for someone else's files (swept); of a run no index listed (an
+        interrupted one), every file of the tool's own names (None)."""
+        mine = {f[len(run) + 1:] for f in listed if f.startswith(run + "/")}
+        return mine if mine or run in self.swept else None
 
     def abort(self) -> None:
         """Removes what the unfinished run wrote (and the index and folder if they were new); what cannot be
