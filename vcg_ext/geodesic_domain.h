@@ -208,12 +208,13 @@ class GeodesicDomain {
 
   size_t size() const { return points.size(); }
 
-  /// Throws InputError (SampleNum) for a count above the points in triangles
-  /// where mesh geodesics left vertices out; the samplers word the other counts.
-  void CheckCount(size_t sampleNum) const {
+  /// Throws InputError (`field`: the count's) for a count above the points in
+  /// triangles where mesh geodesics left vertices out; the samplers word the
+  /// other counts.
+  void CheckCount(size_t sampleNum, Field field = Field::SampleNum) const {
     if (leftOut > 0 && sampleNum > size())
-      throw InputError(Field::SampleNum, "must be at most the " + InTriangles(size(), leftOut) + ", got " +
-                                             std::to_string(sampleNum));
+      throw InputError(field, "must be at most the " + InTriangles(size(), leftOut) + ", got " +
+                                  std::to_string(sampleNum));
   }
   /// "30 points in triangles (30 vertices in none are not sampled with mesh geodesics)"
   static std::string InTriangles(size_t kept, size_t leftOut) {

@@ -62,7 +62,7 @@ class GeodesicLodPyramid {
   /// asks to stop.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
     CheckParam(p, d.hasFaces);
-    d.CheckCount(p.counts[0]);
+    d.CheckCount(p.counts[0], Field::Levels);
     typename GeodesicPoissonLod<Scalar>::Param pp;
     pp.sampleNum = p.counts[0];
     pp.maxIterations = p.maxIterations;

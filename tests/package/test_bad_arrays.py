@@ -10,6 +10,7 @@ P = bumpy_sphere(500, seed=1)
 MESH_P, MESH_F = grid_mesh(10)
 NAN = P.copy()
 NAN[[3, 7]] = np.nan
+STRAY_P = np.vstack([MESH_P, MESH_P[:5] + [0, 0, 3]])  # 5 vertices in no face
 INF = P.copy()
 INF[0, 1] = np.inf
 
@@ -80,6 +81,10 @@ CASES = {
     "levels 150%": (gl.lod_pyramid, (P,), dict(levels=["150%"]), gl.InputError, "levels"),
     "levels 0.01%": (gl.lod_pyramid, (P,), dict(levels=["0.01%"]), gl.InputError, "levels"),
     "levels growing": (gl.lod_pyramid, (P,), dict(levels=[10, 50]), gl.InputError, "coarser"),
+    "count above the points in faces": (gl.fps_lod, (STRAY_P,), dict(faces=MESH_F, count=103), gl.InputError,
+                                        "count must be at most the 100 points in triangles (5 vertices in none"),
+    "levels above the points in faces": (gl.lod_pyramid, (STRAY_P,), dict(faces=MESH_F, levels=[103, 10]),
+                                         gl.InputError, "levels must be at most the 100 points in triangles"),
     "levels above n": (gl.lod_pyramid, (P,), dict(levels=[501]), gl.InputError, "levels"),
     "within negative": (gl.poisson_lod, (P,), dict(radius=0.1, within=[-1, 3]), gl.InputError, "within"),
     "within above n": (gl.poisson_lod, (P,), dict(radius=0.1, within=[3, 500]), gl.InputError, "within"),

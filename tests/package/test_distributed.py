@@ -612,13 +612,19 @@ def test_a_local_cluster_of_bad_sizes_is_refused_before_it_starts(workers, memor
     assert worker_processes() == before
 
 
-def test_ctrl_c_while_a_local_cluster_starts_stops_it_once_started():
+def test_ctrl_c_while_a_local_cluster_starts_stops_it_once_started(monkeypatch):
+    from multiprocessing import util
     before = worker_processes()  # the module's cluster's
-    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))  # it takes seconds to start
-    timer.start()
+    spawn, spawned = util.spawnv_passfds, []
+
+    def ctrl_c_as_a_worker_spawns(*args, **kwargs):  # a start takes 0.3 s on a warm machine: no timer is sure to meet it
+        spawned.append(True)
+        os.kill(os.getpid(), signal.SIGINT)
+        return spawn(*args, **kwargs)
+    monkeypatch.setattr(util, "spawnv_passfds", ctrl_c_as_a_worker_spawns)
     with pytest.raises(KeyboardInterrupt):
         dist.local_cluster(1)
-    timer.join()
+    assert spawned
     end = time.monotonic() + 30
     while worker_processes() - before and time.monotonic() < end:
         time.sleep(0.1)
