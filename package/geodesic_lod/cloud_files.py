@@ -10,7 +10,7 @@ from typing import Sequence
 
 import numpy as np
 
-from . import arrays, las_files, point_files, tiles
+from . import las_files, point_files, tiles
 
 
 @dataclass
@@ -60,17 +60,10 @@ def survey(path: str) -> dict:
         return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
                 "hi": np.array(h.maxs, float), "signature": _las_signature(s)}
     src = point_files.read(path)
-    check_finite(path, src.points)
     fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
     empty = len(src.points) == 0  # no bounds: sources() skips it
     return {"kind": kind, "count": len(src.points), "lo": np.zeros(3) if empty else src.points.min(axis=0),
             "hi": np.zeros(3) if empty else src.points.max(axis=0), "signature": (kind, str(fields))}
-
-
-def check_finite(path, points: np.ndarray) -> None:
-    problem = arrays.non_finite_rows(points)
-    if problem:
-        raise point_files.PointFileError(path, problem)
 
 
 def _writable_together(path: str, signature: tuple, first: Source) -> bool:
@@ -134,7 +127,6 @@ def chunks(s: Source):
             yield start, las_files.xyz(chunk, header), None
     else:
         src = point_files.read(s.path)
-        check_finite(s.path, src.points)
         yield 0, src.points, src.normals
 
 

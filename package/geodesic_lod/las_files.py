@@ -12,6 +12,7 @@ no octree).
 from __future__ import annotations
 
 import copy
+import math
 import os
 import struct
 from dataclasses import dataclass
@@ -123,6 +124,11 @@ def open_source(path) -> LasSource:
     if version not in WRITABLE_VERSIONS:
         _fail(path, f"is LAS {version}, which cannot be written back: convert it to LAS 1.2 or later first "
               "(pdal translate or las2las)")
+    for name, values, ok in (("scale factors", header.scales, lambda v: math.isfinite(v) and v != 0),
+                             ("offsets", header.offsets, math.isfinite)):
+        if not all(ok(float(v)) for v in values):
+            _fail(path, f"its header's {name} are ({', '.join(f'{float(v):g}' for v in values)}): the header is "
+                  "damaged")
     count = int(header.point_count)
     if count > MAX_POINTS:
         _fail(path, f"its header announces {count} points, beyond 63-bit ids: the header is damaged")

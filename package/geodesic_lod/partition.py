@@ -131,7 +131,6 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
         xyz, normals = scaling.apply(kept), None
     else:
         src = point_files.read(s.path)
-        cloud_files.check_finite(s.path, src.points)
         xyz, normals, records = src.points, src.normals, np.asarray(src.rows)
         scaling, kept = None, xyz
     records = np.ascontiguousarray(records)

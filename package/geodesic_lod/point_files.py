@@ -17,7 +17,7 @@ from typing import Any, BinaryIO, Optional, Sequence
 
 import numpy as np
 
-from . import las_files, stop_signals
+from . import arrays, las_files, stop_signals
 from .errors import InputError, PointFileError
 
 COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
@@ -164,15 +164,18 @@ def check_writable(source: "PointFile", outputs: Sequence) -> None:
 
 
 def read(path, threads: Optional[int] = None) -> PointFile:
-    """The file's points, records and source; a LAZ file decoded on `threads` threads (None: every core)."""
+    """The file's points, records and source; a LAZ file decoded on `threads` threads (None: every core).
+    PointFileError for a file that cannot be read, or whose points are not all finite."""
     path = pathlib.Path(path)
     kind = format_of(path)
     if not path.is_file():
         raise PointFileError(path, "no such file" if not path.exists() else "is not a file")
     try:
-        if kind == "las":
-            return _read_las(path, threads)
-        return {"ply": _read_ply, "npy": _read_npy}[kind](path)
+        source = _read_las(path, threads) if kind == "las" else {"ply": _read_ply, "npy": _read_npy}[kind](path)
+        problem = arrays.non_finite_rows(source.points)
+        if problem:
+            raise PointFileError(path, problem)
+        return source
     except PointFileError:
         raise
     except (OSError, ValueError, EOFError, KeyError, IndexError, TypeError) as e:

@@ -129,6 +129,10 @@ DAMAGED = [
      "the last of which runs past the start of the point records"),
     ("one VLR more than a LAZ holds", lambda d: one_more_vlr(las_cloud(d / "in.laz")),
      "the last of which runs past the start of the point records"),
+    ("a NaN scale factor", lambda d: with_bytes(las_of(d), 131, "<d", float("nan")),
+     "its header's scale factors are (nan, "),
+    ("a zero scale factor", lambda d: with_bytes(las_of(d), 139, "<d", 0.0), "its header's scale factors are ("),
+    ("an infinite offset", lambda d: with_bytes(las_of(d), 171, "<d", float("inf")), "its header's offsets are ("),
     ("point format 35", lambda d: with_bytes(las_of(d, version="1.2", fmt=3), 104, "<B", 99),
      "its point format is 35, where LAS has 0 to 10"),
 ]
