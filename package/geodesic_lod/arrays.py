@@ -253,9 +253,11 @@ def _choice(x, table: dict, name: str):
     return table[x]
 
 
-def too_few_points(n: int, neighbours: int) -> Optional[str]:
+def too_few_points(n: int, neighbours: Optional[int] = None) -> Optional[str]:
     """What is wrong with n points where each needs `neighbours` others (its normal's plane fit, eq. 1, the
-    point graph), or None: the one wording of it on every front end."""
+    point graph; None: as many as the defaults need), or None: the one wording of it on every front end."""
+    if neighbours is None:
+        neighbours = max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors)
     if n > neighbours:
         return None
     return (f"holds {n} point{'s' if n != 1 else ''}: at least {neighbours + 1} are needed (the neighbours each "

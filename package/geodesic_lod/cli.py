@@ -480,9 +480,7 @@ def main(argv=None) -> int:
             paths = _outputs(args, request)
             point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
             source = point_files.read(args.input[0], threads=args.threads)
-            n = source.points.shape[0]
-            problem = arrays.too_few_points(n, max(arrays.DOMAIN_DEFAULTS.normal_neighbors,
-                                                   arrays.DOMAIN_DEFAULTS.graph_neighbors))
+            problem = arrays.too_few_points(source.points.shape[0])
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)

@@ -144,7 +144,7 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
     _choice(visit_order, VISIT_ORDERS, "visit_order")
     thread_count(threads)  # before the file is decoded on them
     source = point_files.read(input, threads=threads)
-    problem = too_few_points(len(source.points), max(DOMAIN_DEFAULTS.normal_neighbors, DOMAIN_DEFAULTS.graph_neighbors))
+    problem = too_few_points(len(source.points))
     if problem:
         raise PointFileError(source.path, problem)
     point_files.check_writable(source, [output])

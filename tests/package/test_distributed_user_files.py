@@ -191,6 +191,14 @@ def test_a_cloud_at_one_position_is_named_as_on_one_machine(client, tmp_path):
         dist.lod_files([str(tmp_path / "same.npy")], tmp_path / "lod", radius=0.5, client=client, threads=1)
 
 
+@pytest.mark.parametrize("n", [1, 2])
+@pytest.mark.parametrize("size", [dict(radius=0.5), dict(rate=50)])
+def test_a_cloud_of_too_few_points_is_named_as_on_one_machine(client, tmp_path, n, size):
+    np.save(tmp_path / "few.npy", bumpy_sphere(n))
+    with pytest.raises(gl.InputError, match=f"^the cloud holds {n} points?: at least 21 are needed"):
+        dist.lod_files([str(tmp_path / "few.npy")], tmp_path / "lod", **size, client=client, threads=1)
+
+
 @pytest.mark.filterwarnings("error::RuntimeWarning")  # one line on the command line: no numpy overflow warning
 def test_a_cloud_too_large_for_distances_is_named_with_no_warning(client, tmp_path):
     p = bumpy_sphere(300)
