@@ -10,7 +10,8 @@ from typing import Sequence
 
 import numpy as np
 
-from . import las_files, point_files, tiles
+from . import arrays, las_files, point_files, tiles
+from .errors import InputError
 
 
 @dataclass
@@ -64,6 +65,13 @@ def survey(path: str) -> dict:
     empty = len(src.points) == 0  # no bounds: sources() skips it
     return {"kind": kind, "count": len(src.points), "lo": np.zeros(3) if empty else src.points.min(axis=0),
             "hi": np.zeros(3) if empty else src.points.max(axis=0), "signature": (kind, str(fields))}
+
+
+def check_count(total: int) -> None:
+    """Refuses a cloud of too few points before any task runs, in the words a tile gives."""
+    problem = arrays.too_few_points(total)
+    if problem:
+        raise InputError(f"the cloud {problem}")
 
 
 def _writable_together(path: str, signature: tuple, first: Source) -> bool:

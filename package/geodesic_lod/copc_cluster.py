@@ -194,6 +194,7 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False)))
     total = sum(s.count for s in srcs)
+    cloud_files.check_count(total)
     out = pathlib.Path(output)
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
                                          dir=out.parent))

@@ -519,9 +519,7 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
     cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
                                     sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
-    problem = arrays.too_few_points(total)
-    if problem:  # as a tile would word it, before the subsample needs more than one point
-        raise InputError(f"the cloud {problem}")
+    cloud_files.check_count(total)
     spacing = tiles.spacing_of(cloud, total)
     ticks = Ticks(progress)
     if size["levels"] is not None:

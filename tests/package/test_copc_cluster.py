@@ -99,6 +99,18 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(stri
     assert names(tmp_path) == []
 
 
+@pytest.mark.parametrize("n", [1, 5])
+def test_a_cloud_of_too_few_points_is_refused_as_one_machine_refuses_it(client, tmp_path, n):
+    from conftest import bumpy_sphere
+    from point_file_inputs import las_cloud
+    src = las_cloud(tmp_path / "few.las", n=n, points=bumpy_sphere(n))
+    with pytest.raises(gl.InputError, match=f"few.las: holds {n} points?: at least 21 are needed"):
+        gl.write_copc(src, tmp_path / "one.copc.laz")
+    with pytest.raises(gl.InputError, match=f"^the cloud holds {n} points?: at least 21 are needed"):
+        copc_cluster.copc_file([str(src)], tmp_path / "lod.copc.laz", client=client)
+    assert names(tmp_path) == ["few.las"]
+
+
 @pytest.mark.parametrize("tile_points", [6000, 10 ** 6])
 def test_a_cloud_the_root_node_takes_whole_is_the_single_machine_file(client, tmp_path, tile_points):
     """No Poisson depth (the root node within its budget takes every point): the file one machine writes."""
