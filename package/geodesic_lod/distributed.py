@@ -516,10 +516,10 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
     check_worker_memory(client)
     surveys = worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False))
     srcs = cloud_files.sources(paths, surveys)
-    cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
-                                    sum(s.count for s in srcs), tile_points)
     total = sum(s.count for s in srcs)
     cloud_files.check_count(total)
+    cloud, shape = tiles.grid_shape(np.min([s.lo for s in srcs], axis=0), np.max([s.hi for s in srcs], axis=0),
+                                    total, tile_points)
     spacing = tiles.spacing_of(cloud, total)
     ticks = Ticks(progress)
     if size["levels"] is not None:
