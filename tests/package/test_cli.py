@@ -215,6 +215,8 @@ BAD = [
                 "prominence"], "--visit-order goes with Poisson-disk sets"),
     (lambda d: [np.save(d / "tiny.npy", bumpy_sphere(3)) or d / "tiny.npy", "-o", "o.npy", "--rate", "50%"],
      "tiny.npy: holds 3 points: at least 21 are needed"),
+    *[(lambda d, x=extra: [np.save(d / "none.npy", np.empty((0, 3))) or d / "none.npy", "-o", *x, "--rate", "50%"],
+       "none.npy: holds no points\n") for extra in (["o.npy"], ["lod", "--workers", "1", "-q"])],  # one wording on both
     (lambda d: [np.save(d / "one.npy", bumpy_sphere(1)) or d / "one.npy", "-o", "o.npy", "--rate", "50%"],
      "one.npy: holds 1 point: at least 21 are needed"),
     (lambda d: [np.save(d / "same.npy", np.ones((300, 3))) or d / "same.npy", "-o", "o.npy", "--rate", "10%"],
