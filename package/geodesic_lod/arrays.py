@@ -261,7 +261,7 @@ def too_few_points(n: int, neighbours: Optional[int] = None) -> Optional[str]:
     if n > neighbours:
         return None
     if n == 0:
-        return "holds no points"  # as the core and a cluster's survey say it
+        return "holds no points"  # as the core says it
     return (f"holds {n} point{'s' if n != 1 else ''}: at least {neighbours + 1} are needed (the neighbours each "
             "normal and the geodesics are built from)")
 

@@ -221,6 +221,7 @@ def _run_on_cluster(args, request: dict) -> int:
                                           threads=args.threads, progress=progress,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
                                           visit_order=args.visit_order)
+        args.kept = [args.output]  # a stop while the cluster closes leaves it complete
     except (KeyboardInterrupt, *stop_signals.broken_by_a_stop()):
         import logging  # the client's pending waits end as it closes: no log of each
         for name in ("asyncio", "distributed"):
@@ -229,10 +230,12 @@ def _run_on_cluster(args, request: dict) -> int:
     finally:
         if bar is not None:
             bar.close()
-        if client is not None:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+        try:
+            if client is not None:
+                client.close()
+        finally:  # stopped as the client closes: the workers still go
+            if cluster is not None:
+                cluster.close()
     if copc:
         summary = [f"{args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
                    f"{made['spacing']:.6g} at depth 0, from {made['tiles']} tiles"] + _choices_line(args, made)
@@ -456,6 +459,7 @@ def _done(args, summary: list, start: float) -> int:
 
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
+    args.kept = []  # the output files once complete: a stop after names them
     with stop_signals.stopping():
         bar = None
         try:
@@ -475,6 +479,7 @@ def main(argv=None) -> int:
             if "copc" in request:
                 bar = _Bar(args.quiet, "sampling")
                 summary = _copc(args, bar if bar.bar is not None else None)
+                args.kept = [args.output]
                 bar.close()
                 return _done(args, summary, start)
             paths = _outputs(args, request)
@@ -490,17 +495,19 @@ def main(argv=None) -> int:
             except ValueError as e:  # the input's data or a value that depends on it
                 raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
             bar.close()
-            return _done(args, _write_levels(source, paths, chosen, lod) + _choices_line(args, lod), start)
+            summary = _write_levels(source, paths, chosen, lod)
+            args.kept = paths
+            return _done(args, summary + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
             if bar is not None:
                 bar.close()
-            return stopped()
+            return stopped(args.kept)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
             _fail(command_words(e, not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()
-            return stopped()
+            return stopped(args.kept)
         except MemoryError as e:
             _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
         except OSError as e:  # writing: a full disk, a folder without permission

@@ -102,7 +102,7 @@ def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
         out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"]))
         first += s["count"]
     if not out:
-        raise point_files.PointFileError(paths[0] if paths else "(no input)", "holds no points")
+        raise point_files.PointFileError(paths[0] if paths else "(no input)", arrays.too_few_points(0))
     if first >= 2 ** 63:
         raise point_files.PointFileError(paths[0], "too many points for 63-bit ids")
     return out

@@ -12,8 +12,10 @@ from . import stop_signals
 PROG = "geodesic-lod"
 
 
-def stopped() -> int:
-    print(f"{PROG}: stopped", file=sys.stderr)
+def stopped(kept=()) -> int:
+    """The line and status of a stopped run; `kept`: the output files (or folder) it had completed."""
+    done = f"; the output was complete and is kept: {', '.join(map(str, kept))}" if kept else ""
+    print(f"{PROG}: stopped{done}", file=sys.stderr)
     return 128 + stop_signals.last_stop()
 
 

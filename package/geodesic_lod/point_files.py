@@ -307,6 +307,11 @@ def write_files(items: Sequence[tuple]) -> None:
     """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
     any failure or interruption the temporary files are removed and nothing else is touched."""
     done = []
+
+    def remove_partial():
+        with stop_signals.held():  # a second Ctrl-C does not leave a partial file
+            for tmp, _ in done:
+                tmp.unlink(missing_ok=True)
     try:
         for path, write in items:
             path = pathlib.Path(path)
@@ -314,13 +319,16 @@ def write_files(items: Sequence[tuple]) -> None:
             done.append((tmp, path))
             with open(tmp, "r+b") as f:
                 write(f)
-        for tmp, path in done:
-            os.replace(tmp, path)
     except BaseException:
-        with stop_signals.held():  # a second Ctrl-C does not leave a partial file
-            for tmp, _ in done:
-                tmp.unlink(missing_ok=True)
+        remove_partial()
         raise
+    with stop_signals.held():  # a stop between two renames waits for the last: every name or none
+        try:
+            for tmp, path in done:
+                os.replace(tmp, path)
+        except BaseException:
+            remove_partial()
+            raise
 
 
 def save_npy(f: BinaryIO, array: np.ndarray) -> None:

@@ -152,6 +152,26 @@ def test_a_second_ctrl_c_while_partial_files_are_removed_leaves_none(tmp_path, m
     assert calls and leftovers(tmp_path) == [] and list(tmp_path.iterdir()) == []
 
 
+def test_a_ctrl_c_between_the_renames_leaves_every_file(tmp_path, monkeypatch):
+    """All the files or none: a stop as the first of two is renamed lets the second be renamed too, and is
+    raised after (it left the first alone, the second removed)."""
+    import signal
+    import time
+    replace, calls = os.replace, []
+
+    def replace_then_ctrl_c(a, b):
+        replace(a, b)
+        if not calls:
+            calls.append(b)
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.2)  # the signal lands here
+    monkeypatch.setattr(os, "replace", replace_then_ctrl_c)
+    with pytest.raises(KeyboardInterrupt):
+        pf.write_files([(tmp_path / "a.npy", lambda f: f.write(b"a")), (tmp_path / "b.npy", lambda f: f.write(b"b"))])
+    assert calls and leftovers(tmp_path) == []
+    assert [(p.name, p.read_bytes()) for p in sorted(tmp_path.iterdir())] == [("a.npy", b"a"), ("b.npy", b"b")]
+
+
 @pytest.mark.parametrize("array", [
     np.arange(10.0), np.zeros((5, 3), np.float32), np.float64(3.5), np.zeros(0, np.uint64), np.array(["a", "bcd"]),
     np.zeros(3, dtype=[("X", "<i4"), ("Reflektanz_ä", "u1"), ("c", "u1", (2,))]),

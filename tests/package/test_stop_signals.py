@@ -133,3 +133,47 @@ def test_a_stop_that_a_cluster_start_turns_into_its_own_error_still_stops_the_co
     assert code == 128 + signal.SIGTERM
     assert capsys.readouterr().err.strip().splitlines()[-1] == "geodesic-lod: stopped"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["in.npy"]
+
+
+
+def _stops_once_done(signum, done):
+    """`done`, then a stop before the command has returned."""
+    def stopped_after(*args, **kwargs):
+        result = done(*args, **kwargs)
+        os.kill(os.getpid(), signum)
+        for _ in range(1000):
+            time.sleep(0.01)  # the signal lands here
+        raise AssertionError("no stop")
+    return stopped_after
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["Ctrl-C", "SIGTERM"])
+def test_a_stop_once_the_output_is_complete_says_it_is_kept(tmp_path, monkeypatch, capsys, signum):
+    """The stop still ends the command with its status, but the files it completed are named, not left
+    for the user to take as half-written."""
+    from geodesic_lod import cli
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+    monkeypatch.setattr(cli, "_choices_line", _stops_once_done(signum, cli._choices_line))  # as the summary is made
+    code = cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod.npy"), "--levels", "10%,2%", "-q"])
+    assert code == 128 + signum
+    kept = [tmp_path / "lod_10pct.npy", tmp_path / "lod_2pct.npy"]
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"geodesic-lod: stopped; the output was complete and is kept: {kept[0]}, {kept[1]}"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.npy", "lod_10pct.npy", "lod_2pct.npy"]
+    assert len(np.load(kept[1])) < len(np.load(kept[0])) < 3000
+
+
+def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp_path, monkeypatch, capsys):
+    """Stopped as the client closes: the cluster is closed still (its workers gone), the output named."""
+    pytest.importorskip("dask.distributed")
+    import dask.distributed
+    from geodesic_lod import cli
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+    closed, close = [], dask.distributed.LocalCluster.close
+    monkeypatch.setattr(dask.distributed.Client, "close", _stops_once_done(signal.SIGINT, dask.distributed.Client.close))
+    monkeypatch.setattr(dask.distributed.LocalCluster, "close", lambda self, *a, **k: closed.append(close(self, *a, **k)))
+    code = cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod"), "--rate", "10%", "--workers", "1", "-q"])
+    assert code == 130 and closed
+    assert capsys.readouterr().err.strip().splitlines()[-1] == \
+        f"geodesic-lod: stopped; the output was complete and is kept: {tmp_path / 'lod'}"
+    assert (tmp_path / "lod" / "index.json").is_file()
