@@ -444,6 +444,7 @@ def _copc(args, progress) -> list:
                      recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                      visit_order=args.visit_order, overwrite=args.overwrite,
                      progress=progress)
+    args.kept = [args.output]
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
             f"{lod.octree.spacing:.6g} at depth 0"] + (_choices_line(args, lod) if lod.metric else [])
@@ -479,7 +480,6 @@ def main(argv=None) -> int:
             if "copc" in request:
                 bar = _Bar(args.quiet, "sampling")
                 summary = _copc(args, bar if bar.bar is not None else None)
-                args.kept = [args.output]
                 bar.close()
                 return _done(args, summary, start)
             paths = _outputs(args, request)

@@ -163,6 +163,19 @@ def test_a_stop_once_the_output_is_complete_says_it_is_kept(tmp_path, monkeypatc
     assert len(np.load(kept[1])) < len(np.load(kept[0])) < 3000
 
 
+def test_a_stop_once_a_copc_file_is_complete_says_it_is_kept(tmp_path, monkeypatch, capsys):
+    pytest.importorskip("laspy")
+    from geodesic_lod import cli
+    from point_file_inputs import las_cloud
+    src = las_cloud(tmp_path / "in.laz")
+    monkeypatch.setattr(cli, "_done", _stops_once_done(signal.SIGTERM, cli._done))  # as the summary is printed
+    code = cli.main([str(src), "-o", str(tmp_path / "lod.copc.laz"), "-q"])
+    assert code == 128 + signal.SIGTERM
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"geodesic-lod: stopped; the output was complete and is kept: {tmp_path / 'lod.copc.laz'}"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.laz", "lod.copc.laz"]
+
+
 def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp_path, monkeypatch, capsys):
     """Stopped as the client closes: the cluster is closed still (its workers gone), the output named."""
     pytest.importorskip("dask.distributed")
