@@ -307,11 +307,6 @@ def write_files(items: Sequence[tuple]) -> None:
     """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
     any failure or interruption the temporary files are removed and nothing else is touched."""
     done = []
-
-    def remove_partial():
-        with stop_signals.held():  # a second Ctrl-C does not leave a partial file
-            for tmp, _ in done:
-                tmp.unlink(missing_ok=True)
     try:
         for path, write in items:
             path = pathlib.Path(path)
@@ -319,16 +314,14 @@ def write_files(items: Sequence[tuple]) -> None:
             done.append((tmp, path))
             with open(tmp, "r+b") as f:
                 write(f)
-    except BaseException:
-        remove_partial()
-        raise
-    with stop_signals.held():  # a stop between two renames waits for the last: every name or none
-        try:
+        with stop_signals.held():  # a stop between two renames waits for the last: every name or none
             for tmp, path in done:
                 os.replace(tmp, path)
-        except BaseException:
-            remove_partial()
-            raise
+    except BaseException:
+        with stop_signals.held():  # a second Ctrl-C does not leave a partial file
+            for tmp, _ in done:
+                tmp.unlink(missing_ok=True)
+        raise
 
 
 def save_npy(f: BinaryIO, array: np.ndarray) -> None:
