@@ -67,18 +67,18 @@ def _check_record_room(path) -> None:
         with open(path, "rb") as f:
             head = f.read(247)
             size = os.fstat(f.fileno()).st_size
+            if len(head) < 107 or head[:4] != b"LASF":
+                return  # laspy names it
+            header_size, data_start, vlrs = struct.unpack_from("<HII", head, 94)
+            room = max(0, data_start - header_size) // 54  # a VLR's header alone is 54 bytes
+            if vlrs > room:
+                _fail(path, f"its header counts {vlrs} variable-length records where there is room for at most "
+                      f"{room}: the header is damaged")
+            if _vlrs_end(f, header_size, vlrs, size) > data_start:
+                _fail(path, f"its header counts {vlrs} variable-length records, the last of which runs past the "
+                      f"start of the point records (byte {data_start}): the header is damaged")
     except OSError as e:
         _fail(path, f"cannot be read as LAS: {e}")
-    if len(head) < 107 or head[:4] != b"LASF":
-        return  # laspy names it
-    header_size, data_start, vlrs = struct.unpack_from("<HII", head, 94)
-    room = max(0, data_start - header_size) // 54  # a VLR's header alone is 54 bytes
-    if vlrs > room:
-        _fail(path, f"its header counts {vlrs} variable-length records where there is room for at most {room}: "
-              "the header is damaged")
-    if _vlrs_end(path, header_size, vlrs) > data_start:
-        _fail(path, f"its header counts {vlrs} variable-length records, the last of which runs past the start of "
-              f"the point records (byte {data_start}): the header is damaged")
     if len(head) >= 247 and (head[24], head[25]) >= (1, 4):
         first, evlrs = struct.unpack_from("<QI", head, 235)
         room = max(0, size - first) // 60 if first else 0  # an EVLR's header alone is 60 bytes
@@ -90,18 +90,17 @@ def _check_record_room(path) -> None:
         _fail(path, f"its point format is {fmt}, where LAS has 0 to 10: the header is damaged")
 
 
-def _vlrs_end(path, start: int, count: int) -> int:
-    """Where `count` variable-length records from byte `start` end, by their lengths (in each 54-byte header,
-    the two bytes after the reserved word, the user id and the record id); past the file's end, the file's
-    size plus one."""
-    with open(path, "rb") as f:
-        f.seek(start)
-        for _ in range(count):
-            head = f.read(54)
-            if len(head) < 54:
-                return os.fstat(f.fileno()).st_size + 1
-            f.seek(struct.unpack_from("<H", head, 20)[0], os.SEEK_CUR)
-        return f.tell()
+def _vlrs_end(f, start: int, count: int, size: int) -> int:
+    """Where `count` variable-length records from byte `start` of the open file `f` (of `size` bytes) end, by
+    their lengths (in each 54-byte header, the two bytes after the reserved word, the user id and the record
+    id); past the file's end, size plus one."""
+    f.seek(start)
+    for _ in range(count):
+        head = f.read(54)
+        if len(head) < 54:
+            return size + 1
+        f.seek(struct.unpack_from("<H", head, 20)[0], os.SEEK_CUR)
+    return f.tell()
 
 
 def open_source(path) -> LasSource:
