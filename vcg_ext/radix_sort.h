@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 #include "parallel.h"
+#include "realloc_array.h"
 
 namespace vcg_ext {
 
@@ -49,18 +50,26 @@ void RadixScatterBy(size_t n, Digit digit, Move move) {
 }
 
 /// The same by the kRadixBits bits of `key` from `shift`.
-template <class Move>
-void RadixScatter(const std::vector<uint64_t>& key, int shift, Move move) {
+template <class Words, class Move>
+void RadixScatter(const Words& key, int shift, Move move) {
   RadixScatterBy(key.size(), [&](size_t i) { return (key[i] >> shift) & ((uint64_t(1) << kRadixBits) - 1); }, move);
 }
 
 /// Stable passes over the digits of the words' high 32 bits in which `differ`
 /// (a mask of those 32 bits) has some bit set; the others order nothing.
-inline void RadixPasses(std::vector<uint64_t>& packed, uint64_t differ) {
-  std::vector<uint64_t> packed2;
+// The words are left as they come until written: their pages are first
+// touched, and zeroed by the kernel, by the threads that fill them rather than
+// by a fill on one thread.
+typedef ReallocArray<uint64_t> Words;
+inline void ResizeForOverwrite(Words& w, size_t n) { w.ResizeForOverwrite(n); }
+inline void ResizeForOverwrite(std::vector<uint64_t>& w, size_t n) { w.resize(n); }  // a thread's scratch, reused
+
+template <class W>
+void RadixPasses(W& packed, uint64_t differ) {
+  W packed2;
   for (int d = 0; d < 32 / kRadixBits; ++d)
     if ((differ >> (d * kRadixBits)) & ((uint64_t(1) << kRadixBits) - 1)) {
-      packed2.resize(packed.size());
+      ResizeForOverwrite(packed2, packed.size());
       RadixScatter(packed, 32 + d * kRadixBits, [&](size_t from, size_t to) { packed2[to] = packed[from]; });
       packed.swap(packed2);
     }
@@ -87,7 +96,8 @@ template <class KeyOf>
 std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStarts = nullptr) {
   constexpr int kWindow = 32;
   constexpr uint64_t kLow = 0xffffffffULL;
-  std::vector<uint64_t> packed(n);
+  Words packed;
+  packed.ResizeForOverwrite(n);
   // Per block, the bits all its keys share and those any has: a block's
   // result does not depend on which thread computed it.
   constexpr size_t kBlock = size_t(1) << 16;
@@ -122,7 +132,8 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
     }
   });
   if (lowFirst) {
-    std::vector<uint64_t> packed2(n);
+    Words packed2;
+    packed2.ResizeForOverwrite(n);
     RadixScatterBy(n, [&](size_t i) { return low[i]; }, [&](size_t from, size_t to) { packed2[to] = packed[from]; });
     packed.swap(packed2);
   }
@@ -174,7 +185,8 @@ std::vector<int> SortBy(size_t n, const KeyOf& keyOf, std::vector<int>* runStart
     for (const auto& r : runs) {
       const size_t len = r.second - r.first;
       if (len <= large) continue;
-      std::vector<uint64_t> run(len);  // (the key's bits below shift, place in the run)
+      Words run;  // (the key's bits below shift, place in the run)
+      run.ResizeForOverwrite(len);
       ParallelFor(len, 4096, [&](size_t j) { run[j] = ((keyOf(size_t(packed[r.first + j] & kLow)) & below) << 32) | j; });
       RadixPasses(run, below);
       ParallelFor(len, 4096, [&](size_t j) { run[j] = packed[r.first + size_t(run[j] & kLow)]; });
