@@ -105,7 +105,8 @@ def held():
         for s, handler in previous.items():
             signal.signal(s, handler)
     if caught:
-        _state.update(signal=caught[0], requested=True)
+        # Every later error is a stop only in the command's run (stopping() starts each with none).
+        _state.update(signal=caught[0], requested=_state["boundary"] is not None)
         raise KeyboardInterrupt
 
 

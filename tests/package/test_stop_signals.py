@@ -93,6 +93,15 @@ def test_python_handlers_are_back_after_stopping():
     assert sys.unraisablehook is hook
 
 
+def test_a_stop_held_outside_the_command_leaves_later_errors_as_they_are():
+    """A library user's Ctrl-C, held while files are renamed, does not make every later error a stop."""
+    with pytest.raises(KeyboardInterrupt):
+        with stop_signals.held():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+    assert stop_signals.broken_by_a_stop() == ()
+
+
 def _breaks_on_a_stop(signum, error):
     """A stand-in for code that turns the stop's KeyboardInterrupt into its own error: lazrs's writer fails
     its write ("IoError: Failed to call write"), Dask's nanny fails its start."""
