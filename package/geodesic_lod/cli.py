@@ -417,10 +417,10 @@ def _height_field_levels(request: dict, source: point_files.PointFile, progress)
     return [np.sort(indices[:c]) for c in counts]
 
 
-def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod=None) -> list:
+def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod, overwrite: bool) -> list:
     """Each level's file; a summary line each, naming the vertices in no triangle that `lod` (a result, or
     None) left out."""
-    point_files.write_all(source, list(zip(paths, chosen)))
+    point_files.write_all(source, list(zip(paths, chosen)), overwrite)
     left_out = getattr(lod, "left_out", 0)
     aside = f" ({left_out:,} in no triangle, not sampled with mesh geodesics)" if left_out else ""
     return [f"{path}: {len(indices):,} of {len(source.points):,} points{aside}" for path, indices in zip(paths, chosen)]
@@ -495,7 +495,7 @@ def main(argv=None) -> int:
             except ValueError as e:  # the input's data or a value that depends on it
                 raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
             bar.close()
-            summary = _write_levels(source, paths, chosen, lod)
+            summary = _write_levels(source, paths, chosen, lod, args.overwrite)
             args.kept = paths
             return _done(args, summary + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke

@@ -186,10 +186,10 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
     with worker_check.tiles_lost(tile_points):
-        return _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress)
+        return _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress, overwrite)
 
 
-def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress) -> dict:
+def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress, overwrite) -> dict:
     check_worker_memory(client)
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False)))
@@ -261,7 +261,7 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         pieces = [(s_keys, s_counts, sizes, lambda f: f.write(data))]
         pieces += [(p["keys"], p["counts"], p["sizes"], copy(path)) for p, path in zip(parts, part_paths)]
         point_files.write_files([(out, lambda f: assemble(f, first, fmt, merge_stats(
-            [p["stats"] for p in parts]), octree, pieces))])
+            [p["stats"] for p in parts]), octree, pieces))], overwrite)
     finally:
         with stop_signals.held():  # a second Ctrl-C does not leave the work folder
             shutil.rmtree(work, ignore_errors=True)

@@ -192,7 +192,8 @@ def write_tile(job: Job, d: Optional[tiles.Decision], settled: np.ndarray, path:
     if len(ids) == 0:
         return {"file": None, "count": 0}
     source = job.cells.read_records(job.srcs, ids)
-    point_files.write_all(source, [(path, np.arange(len(ids)))])
+    # The run's own new folder: a task that Dask runs again (its worker lost) replaces its own file.
+    point_files.write_all(source, [(path, np.arange(len(ids)))], overwrite=True)
     xyz = point_files.coordinates(source)
     return {"file": pathlib.Path(path).name, "count": int(len(ids)), "read": d.read, "halo": d.halo,
             "bounds": [xyz.min(axis=0).tolist(), xyz.max(axis=0).tolist()]}

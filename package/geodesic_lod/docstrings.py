@@ -548,7 +548,8 @@ TEXTS = {
     metric, adaptivity, recompute_normals, visit_order, seed, threads, progress
         As in ``octree_lod``.
     overwrite : bool
-        Replace ``output`` if it exists. Default False.
+        Replace ``output`` if it exists, or if another program or run makes it while this one works.
+        Default False: the file found there is left as it is.
 
     Returns
     -------
@@ -558,7 +559,8 @@ TEXTS = {
     Raises
     ------
     PointFileError
-        A file that cannot be read or written (a ValueError naming it), before any work.
+        A file that cannot be read or written (a ValueError naming it), before any work; after it, a file
+        another program or run made at ``output`` meanwhile.
     InputError
         A bad argument.
     """,

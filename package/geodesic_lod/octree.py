@@ -156,5 +156,5 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
         raise
     except ValueError as e:  # the input's data or a value that depends on it
         raise PointFileError.of(source.path, e) from None
-    point_files.write_copc(source, output, lod)
+    point_files.write_copc(source, output, lod, overwrite)
     return lod

@@ -122,7 +122,7 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
             raise PointFileError(out, "would be written twice: give each output its own name")
         seen.add(key)
         if (out.exists() or out.is_symlink()) and not overwrite:
-            raise PointFileError(out, "exists: choose another name, or allow replacing it (--overwrite)")
+            raise PointFileError(out, f"exists: {REPLACE_HINT}")
 
 
 def _name_max(folder) -> int:
@@ -132,6 +132,7 @@ def _name_max(folder) -> int:
         return 255
 
 
+REPLACE_HINT = "choose another name, or allow replacing it (--overwrite)"
 IS_AN_INPUT = "is an input: choose another output name (the input is never modified)"
 
 
@@ -280,14 +281,14 @@ def _partial(path: pathlib.Path) -> pathlib.Path:
             continue
 
 
-def write_all(source: PointFile, outputs: Sequence[tuple]) -> None:
+def write_all(source: PointFile, outputs: Sequence[tuple], overwrite: bool = False) -> None:
     """Writes each (path, indices) as the input's rows at those indices: all files or none.
 
     Every file is first written under a temporary name beside it; the names asked for appear only
-    once all are complete."""
+    once all are complete (write_files)."""
     write_files([(path, lambda f, path=path, indices=indices: _write(
         source, np.asarray(indices, dtype=np.int64), pathlib.Path(path).suffix.lower(), f))
-        for path, indices in outputs])
+        for path, indices in outputs], overwrite)
 
 
 def is_copc(path) -> bool:
@@ -295,17 +296,40 @@ def is_copc(path) -> bool:
     return str(path).lower().endswith(COPC_SUFFIX)
 
 
-def write_copc(source: PointFile, path, lod) -> None:
+def write_copc(source: PointFile, path, lod, overwrite: bool = False) -> None:
     """Writes every record of a LAS/LAZ input as a COPC file, each in the octree node of its depth in
-    `lod` (an OctreeLod), under a temporary name renamed once complete."""
+    `lod` (an OctreeLod), under a temporary name renamed once complete (write_files)."""
     from . import copc_files
     write_files([(path, lambda f: copc_files.write(f, source.source, source.rows, source.points, lod.depth,
-                                                    lod.octree))])
+                                                    lod.octree))], overwrite)
 
 
-def write_files(items: Sequence[tuple]) -> None:
+CREATED_MEANWHILE = (f"appeared while this run worked (another program's or run's file) and is left as it is: "
+                     f"{REPLACE_HINT}")
+
+
+def _name(tmp: pathlib.Path, path: pathlib.Path, overwrite: bool) -> None:
+    """Gives the complete file tmp the name path. Unless `overwrite`, a file found there (made since the
+    outputs were checked) stays: the hard link fails where the name is taken, in the same step."""
+    if overwrite:
+        os.replace(tmp, path)
+        return
+    try:
+        os.link(tmp, path)
+    except FileExistsError:
+        raise PointFileError(path, CREATED_MEANWHILE) from None
+    except OSError:  # a file system without hard links: looked at just before
+        if os.path.lexists(path):
+            raise PointFileError(path, CREATED_MEANWHILE) from None
+        os.replace(tmp, path)
+        return
+    tmp.unlink()
+
+
+def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
     """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
-    any failure or interruption the temporary files are removed and nothing else is touched."""
+    any failure or interruption the temporary files are removed and nothing else is touched. A file at a
+    path is replaced only when `overwrite`; else, found there, it is left and none of the names is given."""
     done = []
     try:
         for path, write in items:
@@ -315,8 +339,14 @@ def write_files(items: Sequence[tuple]) -> None:
             with open(tmp, "r+b") as f:
                 write(f)
         with stop_signals.held():  # a stop between two renames waits for the last: every name or none
-            for tmp, path in done:
-                os.replace(tmp, path)
+            for k, (tmp, path) in enumerate(done):
+                try:
+                    _name(tmp, path, overwrite)
+                except BaseException:
+                    if not overwrite:  # the names given before: files this call made
+                        for _, earlier in done[:k]:
+                            earlier.unlink(missing_ok=True)
+                    raise
     except BaseException:
         with stop_signals.held():  # a second Ctrl-C does not leave a partial file
             for tmp, _ in done:

@@ -52,6 +52,30 @@ def test_an_existing_file_is_replaced_only_when_asked(tmp_path):
     assert len(pf.read(tmp_path / "lod.ply").points) == 300
 
 
+@pytest.mark.parametrize("overwrite", [False, True], ids=["not asked", "--overwrite"])
+def test_a_file_made_at_the_output_name_during_the_run_is_replaced_only_when_asked(tmp_path, monkeypatch, capsys,
+                                                                                   overwrite):
+    from geodesic_lod import cli
+    src = ply_cloud(tmp_path / "in.ply")
+    out = tmp_path / "lod.ply"
+    sample = cli._run
+
+    def meanwhile(*args, **kwargs):  # another program, or a second run, writes there as the LOD is made
+        out.write_text("the user's own file")
+        return sample(*args, **kwargs)
+    monkeypatch.setattr(cli, "_run", meanwhile)
+    argv = [str(src), "-o", str(out), "--rate", "10%", "-q"] + ["--overwrite"] * overwrite
+    if overwrite:
+        assert cli.main(argv) == 0
+        assert len(pf.read(out).points) == 300
+        return
+    with pytest.raises(SystemExit) as e:
+        cli.main(argv)
+    err = capsys.readouterr().err
+    assert e.value.code == 2 and err.count("\n") == 1 and f"{out}: appeared while this run worked" in err, err
+    assert out.read_text() == "the user's own file" and sorted(os.listdir(tmp_path)) == ["in.ply", "lod.ply"]
+
+
 @pytest.mark.parametrize("output, problem", [("folder.ply", "is a folder"), ("x" * 300 + ".ply", "name is longer"),
                                              ("lod.ply,lod.ply", "written twice")])
 def test_output_problems_are_found_before_reading(tmp_path, output, problem):

@@ -157,18 +157,38 @@ def test_a_ctrl_c_between_the_renames_leaves_every_file(tmp_path, monkeypatch):
     raised after (it left the first alone, the second removed)."""
     import signal
     import time
-    replace, calls = os.replace, []
+    name, calls = pf._name, []
 
-    def replace_then_ctrl_c(a, b):
-        replace(a, b)
+    def name_then_ctrl_c(a, b, overwrite):
+        name(a, b, overwrite)
         if not calls:
             calls.append(b)
             os.kill(os.getpid(), signal.SIGINT)
             time.sleep(0.2)  # the signal lands here
-    monkeypatch.setattr(os, "replace", replace_then_ctrl_c)
+    monkeypatch.setattr(pf, "_name", name_then_ctrl_c)
     with pytest.raises(KeyboardInterrupt):
         pf.write_files([(tmp_path / "a.npy", lambda f: f.write(b"a")), (tmp_path / "b.npy", lambda f: f.write(b"b"))])
     assert calls and leftovers(tmp_path) == []
+    assert [(p.name, p.read_bytes()) for p in sorted(tmp_path.iterdir())] == [("a.npy", b"a"), ("b.npy", b"b")]
+
+
+@pytest.mark.parametrize("links", [True, False], ids=["hard links", "no hard links"])
+def test_a_file_that_appears_at_an_output_name_while_it_is_written_is_left_alone(tmp_path, monkeypatch, links):
+    """Checked free before the run, an output name taken meanwhile (another program, a second run) keeps the
+    file found there: nothing is written, the files written before it are removed, the error names it."""
+    if not links:  # a file system without hard links (FAT, some network shares)
+        def no_link(a, b):
+            raise PermissionError(1, "Operation not permitted")
+        monkeypatch.setattr(os, "link", no_link)
+    late = tmp_path / "b.npy"
+
+    def appears(f):
+        late.write_bytes(b"the user's file")
+        f.write(b"b")
+    with pytest.raises(pf.PointFileError, match="b.npy: appeared while this run worked"):
+        pf.write_files([(tmp_path / "a.npy", lambda f: f.write(b"a")), (late, appears)])
+    assert [(p.name, p.read_bytes()) for p in tmp_path.iterdir()] == [("b.npy", b"the user's file")]
+    pf.write_files([(tmp_path / "a.npy", lambda f: f.write(b"a")), (late, lambda f: f.write(b"b"))], overwrite=True)
     assert [(p.name, p.read_bytes()) for p in sorted(tmp_path.iterdir())] == [("a.npy", b"a"), ("b.npy", b"b")]
 
 
