@@ -6,7 +6,8 @@ refuses a folder holding anything else (files of the user's, links, an input, a 
 folder its index does not list), writes into a new run folder beside the last complete one, and replaces
 the index in one rename when complete: an interrupted or failed rerun leaves the previous LOD whole. The
 old run folders are removed afterwards, never across a link: of the LOD's run the files its index lists,
-of a swept run no file, of a run stopped before it could clean up (killed) the names a run writes.
+of a swept run no file, of a run stopped before it could clean up (killed) the names a run writes. A run
+holds the folder's lock from its start to its end: a second run into it at the same time is refused.
 """
 from __future__ import annotations
 
@@ -58,6 +59,7 @@ class OutputFolder:
         self.index: Optional[dict] = None
         self.owned: list = []
         self.swept: list = []
+        self._locked: Optional[int] = None  # the descriptor holding the folder's lock while a run writes
         if out.exists():
             self._check_contents()
         real = out.resolve()
@@ -90,9 +92,18 @@ class OutputFolder:
                                             "empty folder")
 
     def begin(self) -> pathlib.Path:
-        """A new run folder, recorded as the tool's before anything is written into it."""
+        """A new run folder, recorded as the tool's before anything is written into it. The folder is the run's
+        alone until commit or abort: a second run into it is refused as it begins, and the folder is looked at
+        again once this run has it (it may have changed since it was checked)."""
         self.created = not self.path.exists()
         self.path.mkdir(exist_ok=True)
+        self._lock()
+        try:
+            self.index, self.owned, self.swept = None, [], []
+            self._check_contents()
+        except BaseException:
+            self.close()
+            raise
         taken = [int(m.group(1)) for n in self.owned if (m := RUN.fullmatch(n))]
         self.run = f"run_{max(taken, default=0) + 1}"
         self.owned.append(self.run)
@@ -100,8 +111,34 @@ class OutputFolder:
         (self.path / self.run).mkdir()
         return self.path / self.run
 
+    def _lock(self) -> None:
+        """An exclusive lock on the folder (on its own descriptor, so that it goes with the process however it
+        ends); where the file system locks no folder (some network shares), none."""
+        import fcntl
+        self._locked = os.open(self.path, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            fcntl.flock(self._locked, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.close()
+            raise PointFileError(self.path, f"another run of {TOOL} is writing it: wait for that run to end, or "
+                                            "choose another folder") from None
+        except OSError:
+            pass
+
+    def close(self) -> None:
+        """Lets another run begin in the folder (commit and abort end with it)."""
+        if self._locked is not None:
+            os.close(self._locked)
+            self._locked = None
+
     def commit(self, index: dict) -> dict:
         """Makes the run the folder's LOD (one rename), then removes the older runs' files."""
+        try:
+            return self._commit(index)
+        finally:
+            self.close()
+
+    def _commit(self, index: dict) -> dict:
         old = [n for n in self.owned if n != self.run]
         self._write_index({"tool": TOOL, **index, **self._ownership()})
         listed = lod_files(self.index or {})
@@ -121,6 +158,12 @@ class OutputFolder:
     def abort(self) -> None:
         """Removes what the unfinished run wrote (and the index and folder if they were new); what cannot be
         removed stays recorded as the tool's."""
+        try:
+            self._abort()
+        finally:
+            self.close()
+
+    def _abort(self) -> None:
         if not remove_own(self.path / self.run):
             self.swept.append(self.run)
             self._write_index({**(self.index or {"tool": TOOL}), **self._ownership()})

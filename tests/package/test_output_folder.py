@@ -166,6 +166,7 @@ def test_an_interrupted_runs_partial_files_are_recognised_and_swept(tmp_path):
     (run / ".levels" / "0" / "tile_00003.npy").write_bytes(b"ids")
     (run / ".levels" / "0" / "tile_00004.npy.partial-311.npy").write_bytes(b"half the ids")
     (out / ".index.json.partial-311").write_text("{")
+    folder.close()  # as its process's end does
     again = of.OutputFolder(out, [])  # not refused: all of it is the tool's
     assert again.owned == ["run_1"]
     new = again.begin()
@@ -174,6 +175,29 @@ def test_an_interrupted_runs_partial_files_are_recognised_and_swept(tmp_path):
     assert not run.exists() and index["owned"] == ["run_2"]
     left = [f for f in files_under(out) if f != ".index.json.partial-311"]  # its sweep is not promised
     assert left == sorted([of.INDEX, "run_2/tile_00000.laz"])
+
+
+def test_a_second_run_into_a_folder_a_run_is_writing_is_refused_until_that_one_ends(tmp_path):
+    """Two runs at once into one folder (the command started again in another terminal): the second, checked
+    before or after the first began, is refused as it begins and writes nothing; once the first has ended it
+    begins, with the folder looked at again, and replaces the first's LOD as any rerun does."""
+    out = tmp_path / "lod"
+    early = of.OutputFolder(out, [])  # checked before the first run began
+    first = of.OutputFolder(out, [])
+    run = first.begin()
+    (run / "tile_00000.laz").write_bytes(b"the first run's tile")
+    before = snapshot(tmp_path)
+    for second in (early, of.OutputFolder(out, [])):
+        with pytest.raises(PointFileError, match="another run of geodesic-lod is writing it") as e:
+            second.begin()
+        assert e.value.path == out
+    assert snapshot(tmp_path) == before
+    first.commit({"tiles": [{"file": "run_1/tile_00000.laz"}]})
+    new = early.begin()
+    assert new == out / "run_2"
+    (new / "tile_00000.laz").write_bytes(b"the second run's tile")
+    early.commit({"tiles": [{"file": "run_2/tile_00000.laz"}]})
+    assert files_under(out) == sorted([of.INDEX, "run_2/tile_00000.laz"])
 
 
 def test_a_commit_makes_the_run_the_lod_and_removes_only_the_older_runs_own_files(tmp_path):
@@ -332,8 +356,8 @@ def test_a_run_kept_for_a_strangers_file_loses_nothing_to_later_runs(tmp_path):
     out = committed_folder(tmp_path / "lod")
     (out / "run_1" / "notes.txt").parent.mkdir(exist_ok=True)
     folder = of.OutputFolder(out, [])
-    (out / "run_1" / "notes.txt").write_text("put there during the run")
     run = folder.begin()
+    (out / "run_1" / "notes.txt").write_text("put there during the run")
     (run / "tile_00000.laz").write_bytes(b"the new tile")
     folder.commit({"tiles": [{"file": "run_2/tile_00000.laz"}]})
     assert files_under(out) == sorted([of.INDEX, "run_1/notes.txt", "run_2/tile_00000.laz"])
