@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from . import _core, arrays, las_files, point_files, stop_signals, tile_points
-from .command import PROG, stopped
+from .command import PROG, say, stopped
 from .errors import ClusterJobError, InputError
 
 EXIT_BAD_INPUT = 2
@@ -34,7 +34,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _fail(message):
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    say(f"error: {message}")
     sys.exit(EXIT_BAD_INPUT)
 
 
@@ -197,10 +197,9 @@ def _run_on_cluster(args, request: dict) -> int:
             client = Client(cluster)
         link = None if args.quiet else distributed.dashboard_link(client)
         if link:
-            print(f"{PROG}: Dask dashboard at {link}", file=sys.stderr)
+            say(f"Dask dashboard at {link}")
         if args.scheduler and not client.scheduler_info()["workers"]:  # the job waits: say so, whatever --quiet says
-            print(f"{PROG}: the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)",
-                  file=sys.stderr, flush=True)
+            say(f"the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)")
         if not args.quiet:
             from tqdm import tqdm
             bar = tqdm(total=1, desc="tiles", unit="task", file=sys.stderr, leave=False)
@@ -328,8 +327,8 @@ def _note_a_fraction(args, request: dict) -> None:
     """--rate below 1 without a % sign is most likely a fraction meant as a share (0.1 for a tenth): says
     what it asks for, and how to ask for it without the note."""
     if "rate" in request and request["rate"] < 1 and not args.rate.strip().endswith("%"):
-        print(f"{PROG}: note: --rate {args.rate} is {request['rate']:g}% of the points (a tenth is --rate 10%); "
-              f"give --rate {request['rate']:g}% to mean it", file=sys.stderr)
+        say(f"note: --rate {args.rate} is {request['rate']:g}% of the points (a tenth is --rate 10%); "
+            f"give --rate {request['rate']:g}% to mean it")
 
 
 def _outputs(args, request: dict) -> list:
@@ -453,8 +452,8 @@ def _copc(args, progress) -> list:
 def _done(args, summary: list, start: float) -> int:
     if not args.quiet:
         for line in summary:
-            print(f"{PROG}: {line}", file=sys.stderr)
-        print(f"{PROG}: done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+            say(line)
+        say(f"done in {time.perf_counter() - start:.1f} s")
     return 0
 
 

@@ -12,10 +12,17 @@ from . import stop_signals
 PROG = "geodesic-lod"
 
 
+def say(line: str) -> None:
+    """One line on stderr for the user, a name's control characters (a newline, a terminal's escape) shown
+    escaped, as Python writes them in a string."""
+    shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in line)
+    print(f"{PROG}: {shown}", file=sys.stderr, flush=True)
+
+
 def stopped(kept=()) -> int:
     """The line and status of a stopped run; `kept`: the output files (or folder) it had completed."""
     done = f"; the output was complete and is kept: {', '.join(map(str, kept))}" if kept else ""
-    print(f"{PROG}: stopped{done}", file=sys.stderr)
+    say(f"stopped{done}")
     return 128 + stop_signals.last_stop()
 
 

@@ -233,6 +233,8 @@ BAD = [
     *[(lambda d, x=extra, s=scale: [np.save(d / "far.npy", bumpy_sphere(300) * s) or d / "far.npy", "-o", "o.npy",
                                     "--rate", "10%", *x], f"far.npy: holds coordinates too {size} for any distance")
       for extra in ([], ["--height-field"]) for scale, size in ((1e155, "large"), (1e-200, "small"))],
+    # A name's control characters shown escaped: the message stays one line, and a terminal takes no command.
+    (lambda d: [d / "new\nline\x1bc.laz", "-o", "o.laz", "--rate", "10%"], "new\\nline\\x1bc.laz: no such file"),
 ]
 
 
