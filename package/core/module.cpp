@@ -20,6 +20,7 @@
 #include "tile_bindings.h"
 #include "python_progress.h"
 #include "samplers.h"
+#include "stop_at_exit.h"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -289,6 +290,8 @@ NB_MODULE(_core, m) {
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;
 
+  m.def("stop_at_exit", &stop_at_exit::Arm, "line"_a, "signals"_a,
+        "From now on each of `signals` writes `line` to stderr and ends the process with 128 + its number");
   m.def("non_finite_rows", &NonFiniteRows, "bad"_a, "'<bad> rows have NaN or infinite coordinates'");
   m.def("percent_of", &vcg_ext::PercentOf, "percent"_a, "n"_a,
         "percent of n points, rounded as the MeshLab filters round it");

@@ -17,6 +17,7 @@ import math
 import pathlib
 import sys
 import time
+from typing import Optional
 
 import numpy as np
 
@@ -220,7 +221,7 @@ def _run_on_cluster(args, request: dict) -> int:
                                           threads=args.threads, progress=progress,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
                                           visit_order=args.visit_order)
-        args.kept = [args.output]  # a stop while the cluster closes leaves it complete
+        args.kept[:] = [args.output]  # a stop while the cluster closes leaves it complete
     except (KeyboardInterrupt, *stop_signals.broken_by_a_stop()):
         import logging  # the client's pending waits end as it closes: no log of each
         for name in ("asyncio", "distributed"):
@@ -443,7 +444,7 @@ def _copc(args, progress) -> list:
                      recompute_normals=args.recompute_normals, seed=args.seed, threads=args.threads,
                      visit_order=args.visit_order, overwrite=args.overwrite,
                      progress=progress)
-    args.kept = [args.output]
+    args.kept[:] = [args.output]
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
             f"{lod.octree.spacing:.6g} at depth 0"] + (_choices_line(args, lod) if lod.metric else [])
@@ -457,9 +458,10 @@ def _done(args, summary: list, start: float) -> int:
     return 0
 
 
-def main(argv=None) -> int:
+def main(argv=None, kept: Optional[list] = None) -> int:
+    """The command; `kept` (an empty list) gets the output files (or folder) once complete."""
     args = parser().parse_args(argv)
-    args.kept = []  # the output files once complete: a stop after names them
+    args.kept = [] if kept is None else kept  # the output files once complete: a stop after names them
     with stop_signals.stopping():
         bar = None
         try:
@@ -495,7 +497,7 @@ def main(argv=None) -> int:
                 raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
             bar.close()
             summary = _write_levels(source, paths, chosen, lod, args.overwrite)
-            args.kept = paths
+            args.kept[:] = paths
             return _done(args, summary + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
             if bar is not None:

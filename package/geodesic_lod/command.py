@@ -5,6 +5,7 @@ ended (128 + its number: 130 for Ctrl-C, 143 for SIGTERM), not a traceback from 
 standard library is loaded before."""
 from __future__ import annotations
 
+import signal
 import sys
 
 from . import stop_signals
@@ -12,18 +13,40 @@ from . import stop_signals
 PROG = "geodesic-lod"
 
 
-def say(line: str) -> None:
-    """One line on stderr for the user, a name's control characters (a newline, a terminal's escape) shown
-    escaped, as Python writes them in a string."""
+def _shown(line: str) -> str:
+    """A line for the user, a name's control characters (a newline, a terminal's escape) shown escaped, as
+    Python writes them in a string."""
     shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in line)
-    print(f"{PROG}: {shown}", file=sys.stderr, flush=True)
+    return f"{PROG}: {shown}"
+
+
+def say(line: str) -> None:
+    """One line on stderr for the user (_shown)."""
+    print(_shown(line), file=sys.stderr, flush=True)
+
+
+def _stop_line(kept) -> str:
+    done = f"; the output was complete and is kept: {', '.join(map(str, kept))}" if kept else ""
+    return f"stopped{done}"
 
 
 def stopped(kept=()) -> int:
     """The line and status of a stopped run; `kept`: the output files (or folder) it had completed."""
-    done = f"; the output was complete and is kept: {', '.join(map(str, kept))}" if kept else ""
-    say(f"stopped{done}")
+    say(_stop_line(kept))
     return 128 + stop_signals.last_stop()
+
+
+def _stopped_at_exit(kept: list) -> None:
+    """From the run's end to the process's (the interpreter's exit, Dask's and the codecs' clean-up: dozens
+    of milliseconds), a stop says so, naming the complete output, and ends the process at once with its
+    status, where Python would print a traceback or nothing (core's stop_at_exit)."""
+    from . import _core
+    stops = [s for s in (signal.SIGINT, signal.SIGTERM)
+             if signal.getsignal(s) is not signal.SIG_IGN]  # a shell's background job keeps ignoring Ctrl-C
+    for s in stops:  # Python's record: nothing of its own to set back as it finalizes
+        signal.signal(s, signal.SIG_IGN)
+    sys.stdout.flush()
+    _core.stop_at_exit(_shown(_stop_line(kept)) + "\n", [int(s) for s in stops])
 
 
 def main(argv=None) -> int:
@@ -32,4 +55,8 @@ def main(argv=None) -> int:
             from . import cli
     except KeyboardInterrupt:
         return stopped()
-    return cli.main(argv)
+    kept: list = []
+    status = cli.main(argv, kept)
+    if status == 0 and kept:
+        _stopped_at_exit(kept)
+    return status

@@ -199,3 +199,28 @@ def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp
     assert capsys.readouterr().err.strip().splitlines()[-1] == \
         f"geodesic-lod: stopped; the output was complete and is kept: {tmp_path / 'lod'}"
     assert (tmp_path / "lod" / "index.json").is_file()
+
+
+# The command as its console script runs it; a stop lands as the interpreter exits after it returned.
+AT_EXIT = textwrap.dedent("""
+    import atexit, os, signal, sys, time
+    from geodesic_lod.command import main
+
+    def stop():
+        os.kill(os.getpid(), signal.{signal})
+        time.sleep(2)  # the signal lands here
+    atexit.register(stop)  # the first registered, the last to run
+    sys.exit(main(sys.argv[1:]))
+""")
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["Ctrl-C", "SIGTERM"])
+def test_a_stop_as_the_command_exits_after_its_run_says_the_output_is_kept(tmp_path, signum):
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+    out = tmp_path / "lod.npy"
+    r = subprocess.run([sys.executable, "-c", AT_EXIT.format(signal=signal.Signals(signum).name),
+                        str(tmp_path / "in.npy"), "-o", str(out), "--rate", "10%", "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 128 + signum, r.stderr
+    assert r.stderr.splitlines() == [f"geodesic-lod: stopped; the output was complete and is kept: {out}"], r.stderr
+    assert 0 < len(np.load(out)) < 3000
