@@ -132,10 +132,15 @@ def finite_points(p: np.ndarray) -> np.ndarray:
     return p
 
 
+def counted(n: int, noun: str) -> str:
+    """'1 point', '3 points': n (with thousands separators) and the noun, plural but for 1."""
+    return f"{n:,} {noun}{'' if n == 1 else 's'}"
+
+
 def point_arrays(points, normals):
     p = _float_array(points, "points")
     if p.shape[0] < 2:
-        raise InputError(f"points holds {p.shape[0]} point{'s' if p.shape[0] != 1 else ''}: "
+        raise InputError(f"points holds {counted(p.shape[0], 'point')}: "
                          "at least 2 are needed to sample from")
     n = _float_array(normals, "normals", allow_none=True)
     if n is not None and n.shape[0] != p.shape[0]:
@@ -262,7 +267,7 @@ def too_few_points(n: int, neighbours: Optional[int] = None) -> Optional[str]:
         return None
     if n == 0:
         return "holds no points"  # as the core says it
-    return (f"holds {n} point{'s' if n != 1 else ''}: at least {neighbours + 1} are needed (the neighbours each "
+    return (f"holds {counted(n, 'point')}: at least {neighbours + 1} are needed (the neighbours each "
             "normal and the geodesics are built from)")
 
 
@@ -447,7 +452,8 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
         r = percent(rate, "rate")
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
         if param.sample_num > pool:
-            raise InputError(f"rate asks for {param.sample_num} samples, more than the {pool} points in within")
+            raise InputError(f"rate asks for {counted(param.sample_num, 'sample')}, more than the "
+                             f"{counted(pool, 'point')} in within")
     t = real_number(tolerance, "tolerance", positive=False)
     if t >= 100:
         raise InputError(f"tolerance is a percentage below 100, got {t}")
@@ -515,7 +521,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
             counts.append(whole_number(item, "levels", 1, n, " (the number of points)"))
     for k in range(1, len(counts)):
         if counts[k] >= counts[k - 1]:
-            raise InputError(f"levels must get strictly coarser: level {k + 1} has {counts[k]} samples, "
+            raise InputError(f"levels must get strictly coarser: level {k + 1} has {counted(counts[k], 'sample')}, "
                              f"level {k} {counts[k - 1]}")
     return counts
 

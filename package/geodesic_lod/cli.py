@@ -238,14 +238,14 @@ def _run_on_cluster(args, request: dict) -> int:
                 cluster.close()
     if copc:
         summary = [f"{args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
-                   f"{made['spacing']:.6g} at depth 0, from {made['tiles']} tiles"] + _choices_line(args, made)
+                   f"{made['spacing']:.6g} at depth 0, from {arrays.counted(made['tiles'], 'tile')}"] + _choices_line(args, made)
     else:
         summary = []
         for level in index.get("levels", [index]):
             where = pathlib.Path(args.output) / pathlib.Path(level["tiles"][0]["file"]).parent if level["tiles"] \
                 else pathlib.Path(args.output)
             summary.append(f"{where}: {level['samples']:,} of {index['points']:,} points in "
-                           f"{len(level['tiles'])} tiles, radius {level['radius']:.6g}")
+                           f"{arrays.counted(len(level['tiles']), 'tile')}, radius {level['radius']:.6g}")
         summary += _choices_line(args, index)
     return _done(args, summary, start)
 

@@ -292,3 +292,11 @@ def test_ctrl_c_and_sigterm_stop_and_write_nothing(tmp_path, sig):
     assert proc.wait(60) == 128 + sig  # as a shell reports a process the signal ended: 130, 143
     assert "geodesic-lod: stopped" in "".join(seen) and "Traceback" not in "".join(seen)
     assert names(tmp_path) == ["big.npy"]
+
+
+@pytest.mark.parametrize("output", ["lod", "lod.copc.laz"], ids=["folder", "COPC file"])
+def test_a_cluster_run_on_one_tile_says_one_tile(tmp_path, output):
+    src = las_cloud(tmp_path / "in.laz")
+    r = run(src, "-o", tmp_path / output, *(["--rate", "10%"] if output == "lod" else []), "--workers", "1")
+    assert r.returncode == 0, r.stderr
+    assert (" in 1 tile, radius " if output == "lod" else " from 1 tile\n") in r.stderr, r.stderr
