@@ -237,8 +237,8 @@ def _run_on_cluster(args, request: dict) -> int:
             if cluster is not None:
                 cluster.close()
     if copc:
-        summary = [f"{args.output}: {made['points']:,} points at depths 0 to {made['depths']}, spacing "
-                   f"{made['spacing']:.6g} at depth 0, from {arrays.counted(made['tiles'], 'tile')}"] + _choices_line(args, made)
+        summary = [f"{args.output}: {_copc_points(made['points'], made['depths'])}, spacing {made['spacing']:.6g} at "
+                   f"depth 0, from {arrays.counted(made['tiles'], 'tile')}"] + _choices_line(args, made)
     else:
         summary = []
         for level in index.get("levels", [index]):
@@ -446,8 +446,15 @@ def _copc(args, progress) -> list:
                      progress=progress)
     args.kept[:] = [args.output]
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
-    return [f"{args.output}: {len(lod.depth):,} points at depths 0 to {len(lod.radii)} ({per_depth}), spacing "
+    return [f"{args.output}: {_copc_points(len(lod.depth), len(lod.radii), per_depth)}, spacing "
             f"{lod.octree.spacing:.6g} at depth 0"] + (_choices_line(args, lod) if lod.metric else [])
+
+
+def _copc_points(points: int, deepest: int, per_depth: str = "") -> str:
+    """A COPC file's points and depths in its summary; `per_depth`: their counts, where known."""
+    if deepest == 0:
+        return f"{points:,} points at depth 0"
+    return f"{points:,} points at depths 0 to {deepest}" + (f" ({per_depth})" if per_depth else "")
 
 
 def _done(args, summary: list, start: float) -> int:

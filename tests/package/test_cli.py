@@ -300,3 +300,10 @@ def test_a_cluster_run_on_one_tile_says_one_tile(tmp_path, output):
     r = run(src, "-o", tmp_path / output, *(["--rate", "10%"] if output == "lod" else []), "--workers", "1")
     assert r.returncode == 0, r.stderr
     assert (" in 1 tile, radius " if output == "lod" else " from 1 tile\n") in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("where", [[], ["--workers", "1"]], ids=["one machine", "cluster"])
+def test_a_copc_file_of_one_depth_says_depth_0(tmp_path, where):
+    r = run(las_cloud(tmp_path / "in.laz"), "-o", tmp_path / "lod.copc.laz", *where)  # its points fit the root
+    assert r.returncode == 0, r.stderr
+    assert "3,000 points at depth 0, spacing " in r.stderr, r.stderr
