@@ -41,8 +41,7 @@ def _stopped_at_exit(kept: list) -> None:
     of milliseconds), a stop says so, naming the complete output, and ends the process at once with its
     status, where Python would print a traceback or nothing (core's stop_at_exit)."""
     from . import _core
-    stops = [s for s in (signal.SIGINT, signal.SIGTERM)
-             if signal.getsignal(s) is not signal.SIG_IGN]  # a shell's background job keeps ignoring Ctrl-C
+    stops = stop_signals.taken()
     for s in stops:  # Python's record: nothing of its own to set back as it finalizes
         signal.signal(s, signal.SIG_IGN)
     sys.stdout.flush()

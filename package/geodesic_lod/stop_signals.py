@@ -29,6 +29,12 @@ def _from_a_string(frame) -> bool:
     return False  # not under the taking frame: Python's own rules
 
 
+def taken() -> list:
+    """The stop signals the process takes: one it was started ignoring (a shell's background job) stays
+    ignored."""
+    return [s for s in _SIGNALS if signal.getsignal(s) is not signal.SIG_IGN]
+
+
 def _again(signum: int):
     timer = threading.Timer(RETRY_SECONDS, os.kill, (os.getpid(), signum))
     timer.daemon = True
@@ -69,8 +75,7 @@ def stopping():
     if threading.current_thread() is not threading.main_thread() or _state["boundary"] is not None:
         yield
         return
-    # A signal the process was started ignoring (a shell's background job) stays ignored.
-    previous = {s: signal.signal(s, _stop) for s in _SIGNALS if signal.getsignal(s) is not signal.SIG_IGN}
+    previous = {s: signal.signal(s, _stop) for s in taken()}
     _state.update(boundary=sys._getframe(2).f_code, previous_hook=sys.unraisablehook,  # the caller's
                   signal=signal.SIGINT, requested=False)
     sys.unraisablehook = _lost
