@@ -251,7 +251,8 @@ def _run_on_cluster(args, request: dict) -> int:
 
 
 class _Bar:
-    """A progress bar on stderr fed with fractions, shown only if the run lasts more than a moment."""
+    """A progress bar on stderr fed with fractions, shown only if the run lasts more than a moment; as a
+    context, cleared as its block ends, however it ends, before any line that follows."""
 
     def __init__(self, quiet: bool, label: str):
         self.bar = None
@@ -263,7 +264,11 @@ class _Bar:
     def __call__(self, fraction: float):
         self.bar.update(max(0, int(fraction * 1000) - self.bar.n))
 
-    def close(self):
+    def __enter__(self):
+        """The progress callback: the bar, or None where quiet."""
+        return self if self.bar is not None else None
+
+    def __exit__(self, *exc):
         if self.bar is not None:
             self.bar.close()
 
@@ -470,7 +475,6 @@ def main(argv=None, kept: Optional[list] = None) -> int:
     args = parser().parse_args(argv)
     args.kept = [] if kept is None else kept  # the output files once complete: a stop after names them
     with stop_signals.stopping():
-        bar = None
         try:
             start = time.perf_counter()
             request = _request(args)
@@ -486,9 +490,8 @@ def main(argv=None, kept: Optional[list] = None) -> int:
                                      "folder)")
             point_files.check_not_a_folder(args.output, args.input[0])  # a folder is a cluster run's output
             if "copc" in request:
-                bar = _Bar(args.quiet, "sampling")
-                summary = _copc(args, bar if bar.bar is not None else None)
-                bar.close()
+                with _Bar(args.quiet, "sampling") as bar:
+                    summary = _copc(args, bar)
                 return _done(args, summary, start)
             paths = _outputs(args, request)
             point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
@@ -497,24 +500,19 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)
-            bar = _Bar(args.quiet, "sampling")
-            try:
-                chosen, lod = _run(args, request, source, bar if bar.bar is not None else None)
-            except ValueError as e:  # the input's data or a value that depends on it
-                raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
-            bar.close()
+            with _Bar(args.quiet, "sampling") as bar:
+                try:
+                    chosen, lod = _run(args, request, source, bar)
+                except ValueError as e:  # the input's data or a value that depends on it
+                    raise point_files.PointFileError.of(source.path, _count_in_options(e, args)) from None
             summary = _write_levels(source, paths, chosen, lod, args.overwrite)
             args.kept[:] = paths
             return _done(args, summary + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
-            if bar is not None:
-                bar.close()
             return stopped(args.kept)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
             _fail(command_words(e, not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
         except KeyboardInterrupt:
-            if bar is not None:
-                bar.close()
             return stopped(args.kept)
         except MemoryError as e:
             _fail(str(e) or f"{args.input[0]}: not enough memory for this input")

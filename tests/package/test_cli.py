@@ -307,3 +307,18 @@ def test_a_copc_file_of_one_depth_says_depth_0(tmp_path, where):
     r = run(las_cloud(tmp_path / "in.laz"), "-o", tmp_path / "lod.copc.laz", *where)  # its points fit the root
     assert r.returncode == 0, r.stderr
     assert "3,000 points at depth 0, spacing " in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("output", [["lod.copc.laz"], ["lod.laz", "--rate", "10%"]], ids=["COPC file", "LAZ file"])
+def test_a_write_error_after_the_progress_bar_is_a_line_of_its_own(tmp_path, output):
+    import resource
+    src = las_cloud(tmp_path / "in.laz", n=400_000)  # sampled long enough for the bar to show
+    limit = 64 * 1024  # files beyond it cannot be written (File too large), as on a full disk
+    r = subprocess.run(COMMAND + [str(src), "-o", str(tmp_path / output[0])] + output[1:], capture_output=True,
+                       timeout=300, preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
+    err = r.stderr.decode()
+    assert r.returncode == 2 and "sampling" in err, err
+    # The bar cleared (its line ended by a carriage return) before the error, the error the last line.
+    line = f"{gl.cli.PROG}: error: {tmp_path / output[0]}: File too large\n"
+    assert err.endswith("\r" + line), repr(err[-300:])
+    assert names(tmp_path) == ["in.laz"]
