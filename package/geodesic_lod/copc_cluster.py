@@ -196,6 +196,7 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
     total = sum(s.count for s in srcs)
     cloud_files.check_count(total)
     out = pathlib.Path(output)
+    before = set(client.futures)  # this job's tasks: those started from here
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
                                          dir=out.parent))
     ticks = Ticks(progress)
@@ -262,6 +263,9 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         pieces += [(p["keys"], p["counts"], p["sizes"], copy(path)) for p, path in zip(parts, part_paths)]
         point_files.write_files([(out, lambda f: assemble(f, first, fmt, merge_stats(
             [p["stats"] for p in parts]), octree, pieces))], overwrite)
+    except BaseException:
+        worker_check.settle(client, before)  # a task still running would write after the work folder went
+        raise
     finally:
         with stop_signals.held():  # a second Ctrl-C does not leave the work folder
             shutil.rmtree(work, ignore_errors=True)

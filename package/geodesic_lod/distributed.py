@@ -536,6 +536,7 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
             pct = arrays.percent(size["rate"], "rate")
             targets = [("count", int(max(1, _core.percent_of(pct, total))))]
         folders = [None]
+    before = set(client.futures)  # this job's tasks: those started from here
     run_dir = out.begin()
     try:
         cells = partition.make(client, srcs, partition.Grid(cloud.lo, cloud.hi, shape), run_dir / CELLS,
@@ -548,6 +549,7 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
                        total, run_dir, ticks)
         client.run(forget_reads)  # the tiles' reads are done with (a job stopped midway leaves them to the next)
     except BaseException:
+        worker_check.settle(client, before)  # a task still running would write after the abort
         with stop_signals.held():  # a second Ctrl-C does not leave the run's files
             out.abort()
         raise

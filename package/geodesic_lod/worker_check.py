@@ -3,7 +3,8 @@ footprint (with what every task imports) already fills past Dask's pause thresho
 task, and a job on a cluster whose workers are lost (a nanny stops a worker past its limit) would wait for
 ever on tasks no worker runs. During the job, ``completed`` and ``gather`` wait for its tasks as Dask's
 ``as_completed`` and ``Client.gather`` do, but not for ever where the last worker was lost: a nanny may fail
-to start its worker again, or start one that is stopped at once.
+to start its worker again, or start one that is stopped at once. A job stopped or failed ``settle``s its
+tasks before it clears its files.
 """
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import time
 from contextlib import contextmanager
 from typing import Optional
 
+from . import stop_signals
 from .errors import ClusterJobError
 from .task_memory import process_rss
 
@@ -20,6 +22,8 @@ LOST_WORKER_WAIT = 30.0
 POLL = 1.0  # seconds between looks at the cluster while a job's tasks are pending
 # A gather's first try, in seconds, and its longest: one cut short starts its transfers again.
 FIRST_TRY, MAX_TRY = 8.0, 64.0
+# How long a job stopped or failed waits for its running tasks to end before it clears its files.
+SETTLE_WAIT = 30.0
 
 
 class WorkersLost(ClusterJobError):
@@ -144,6 +148,35 @@ def gather(client, futures) -> list:
         except TimeoutError:
             watch.look()
             timeout = POLL if watch.alone_since is not None else min(2 * timeout, MAX_TRY)
+
+
+def settle(client, before: set, timeout: float = SETTLE_WAIT) -> None:
+    """For a job stopped or failed: cancels the client's tasks but those it held `before` the job (their
+    keys), then waits, at most `timeout` seconds (a further stop ends the wait), until no worker runs one.
+    Dask cannot stop a running task, and one that goes on writing after its job cleared its files leaves
+    its own behind."""
+    from dask.distributed import Future
+    keys = set(client.futures) - before
+    if not keys:
+        return
+    try:
+        client.cancel([Future(k, client) for k in keys])
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            running = client.run(_running, on_error="ignore")
+            if not keys.intersection(k for ks in running.values() for k in ks):
+                return
+            time.sleep(0.05)
+    except (KeyboardInterrupt, *stop_signals.broken_by_a_stop()):
+        pass
+    except Exception:  # the cluster is gone or unreachable: nothing more to wait for
+        pass
+
+
+def _running(dask_worker) -> list:
+    """The keys of the tasks a worker runs (a cancelled one among them until it ends)."""
+    state = dask_worker.state
+    return [ts.key for ts in state.executing | state.long_running]
 
 
 @contextmanager

@@ -46,4 +46,4 @@ def test_ctrl_c_in_a_terminal_stops_a_cluster_run_with_one_line(tmp_path, output
     assert status == 130, err
     assert "geodesic-lod: stopped" in err
     assert "Traceback" not in err and "never retrieved" not in err, err
-    assert names(out) == ["notes.txt"]
+    assert names(out) == ["notes.txt"], (err, sorted(str(p.relative_to(out)) for p in out.rglob("*")))
