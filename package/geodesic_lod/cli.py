@@ -24,6 +24,7 @@ import numpy as np
 from . import _core, arrays, las_files, point_files, stop_signals, tile_points
 from .command import PROG, say, stopped
 from .errors import ClusterJobError, InputError
+from .progress_bar import ProgressBar
 
 EXIT_BAD_INPUT = 2
 SCHEDULER_TIMEOUT = 10  # seconds
@@ -201,24 +202,17 @@ def _run_on_cluster(args, request: dict) -> int:
             say(f"Dask dashboard at {link}")
         if args.scheduler and not client.scheduler_info()["workers"]:  # the job waits: say so, whatever --quiet says
             say(f"the scheduler at {args.scheduler} has no worker yet: waiting for one (Ctrl-C stops)")
-        if not args.quiet:
-            from tqdm import tqdm
-            bar = tqdm(total=1, desc="tiles", unit="task", file=sys.stderr, leave=False)
-
-        def progress(done, total):
-            if bar is not None:
-                bar.total = total
-                bar.update(done - bar.n)
+        bar = ProgressBar("tiles", args.quiet, unit="task")
         if copc:
             from .copc_cluster import copc_file
             made = copc_file(args.input, args.output, seed=args.seed, metric=args.metric, adaptivity=args.adaptivity,
                              tile_points=args.tile_points, client=client, threads=args.threads,
-                             overwrite=args.overwrite, progress=progress,
+                             overwrite=args.overwrite, progress=bar.update,
                              visit_order=args.visit_order)
         else:
             index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
                                           adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
-                                          threads=args.threads, progress=progress,
+                                          threads=args.threads, progress=bar.update,
                                           tolerance=1.0 if args.tolerance is None else args.tolerance,
                                           visit_order=args.visit_order)
         args.kept[:] = [args.output]  # a stop while the cluster closes leaves it complete
@@ -248,29 +242,6 @@ def _run_on_cluster(args, request: dict) -> int:
                            f"{arrays.counted(len(level['tiles']), 'tile')}, radius {level['radius']:.6g}")
         summary += _choices_line(args, index)
     return _done(args, summary, start)
-
-
-class _Bar:
-    """A progress bar on stderr fed with fractions, shown only if the run lasts more than a moment; as a
-    context, cleared as its block ends, however it ends, before any line that follows."""
-
-    def __init__(self, quiet: bool, label: str):
-        self.bar = None
-        if not quiet:
-            from tqdm import tqdm
-            self.bar = tqdm(total=1000, desc=label, unit="", delay=0.5, file=sys.stderr, leave=False,
-                            bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")
-
-    def __call__(self, fraction: float):
-        self.bar.update(max(0, int(fraction * 1000) - self.bar.n))
-
-    def __enter__(self):
-        """The progress callback: the bar, or None where quiet."""
-        return self if self.bar is not None else None
-
-    def __exit__(self, *exc):
-        if self.bar is not None:
-            self.bar.close()
 
 
 SIZE_OPTIONS = ("--rate", "--count", "--radius", "--levels")
@@ -490,7 +461,7 @@ def main(argv=None, kept: Optional[list] = None) -> int:
                                      "folder)")
             point_files.check_not_a_folder(args.output, args.input[0])  # a folder is a cluster run's output
             if "copc" in request:
-                with _Bar(args.quiet, "sampling") as bar:
+                with ProgressBar("sampling", args.quiet, delay=0.5) as bar:
                     summary = _copc(args, bar)
                 return _done(args, summary, start)
             paths = _outputs(args, request)
@@ -500,7 +471,7 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)
-            with _Bar(args.quiet, "sampling") as bar:
+            with ProgressBar("sampling", args.quiet, delay=0.5) as bar:
                 try:
                     chosen, lod = _run(args, request, source, bar)
                 except ValueError as e:  # the input's data or a value that depends on it

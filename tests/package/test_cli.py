@@ -1,6 +1,7 @@
 """The command geodesic-lod as a user runs it: the same samples as the array API, the input untouched,
 one file per level, and for every bad input one line on stderr, exit status 2 and no output file."""
 import hashlib
+import re
 import signal
 import subprocess
 import sys
@@ -309,16 +310,57 @@ def test_a_copc_file_of_one_depth_says_depth_0(tmp_path, where):
     assert "3,000 points at depth 0, spacing " in r.stderr, r.stderr
 
 
+def on_a_terminal(args, timeout=300, **popen):
+    """The command's status and what it wrote to stderr, a terminal of 100 columns (a pseudo-terminal)."""
+    import fcntl
+    import os
+    import pty
+    import select
+    import struct
+    import termios
+    import time
+    main, side = pty.openpty()
+    fcntl.ioctl(side, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
+    proc = subprocess.Popen(COMMAND + [str(a) for a in args], stderr=side, **popen)
+    os.close(side)
+    out, deadline = b"", time.monotonic() + timeout
+    try:
+        while select.select([main], [], [], max(0.0, deadline - time.monotonic()))[0]:
+            try:
+                chunk = os.read(main, 65536)
+            except OSError:  # the command's end closed the terminal's last side
+                break
+            if not chunk:
+                break
+            out += chunk
+    finally:
+        os.close(main)
+        if proc.poll() is None and time.monotonic() >= deadline:
+            proc.kill()
+    return proc.wait(60), out.decode().replace("\r\n", "\n")  # the terminal's line ends
+
+
 @pytest.mark.parametrize("output", [["lod.copc.laz"], ["lod.laz", "--rate", "10%"]], ids=["COPC file", "LAZ file"])
 def test_a_write_error_after_the_progress_bar_is_a_line_of_its_own(tmp_path, output):
     import resource
     src = las_cloud(tmp_path / "in.laz", n=400_000)  # sampled long enough for the bar to show
     limit = 64 * 1024  # files beyond it cannot be written (File too large), as on a full disk
-    r = subprocess.run(COMMAND + [str(src), "-o", str(tmp_path / output[0])] + output[1:], capture_output=True,
-                       timeout=300, preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
-    err = r.stderr.decode()
-    assert r.returncode == 2 and "sampling" in err, err
+    status, err = on_a_terminal([src, "-o", tmp_path / output[0], "--threads", "1"] + output[1:],
+                                preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
+    assert status == 2 and "\rsampling: " in err, err
     # The bar cleared (its line ended by a carriage return) before the error, the error the last line.
     line = f"{gl.cli.PROG}: error: {tmp_path / output[0]}: File too large\n"
     assert err.endswith("\r" + line), repr(err[-300:])
     assert names(tmp_path) == ["in.laz"]
+
+
+def test_progress_in_a_log_is_lines_and_on_a_terminal_a_bar(tmp_path):
+    np.save(tmp_path / "in.npy", bumpy_sphere(600_000))  # sampled long enough for a bar to show
+    src, one = tmp_path / "in.npy", ["--threads", "1"]
+    r = run(src, "-o", tmp_path / "log.npy", "--rate", "10%", *one)  # stderr a pipe, as a log file
+    assert r.returncode == 0 and "\r" not in r.stderr, repr(r.stderr)
+    assert re.search(r"^geodesic-lod: sampling: \d+%, \d+ s$", r.stderr, re.M), r.stderr
+    assert all(line.startswith("geodesic-lod: ") for line in r.stderr.splitlines()), r.stderr
+    status, err = on_a_terminal([src, "-o", tmp_path / "tty.npy", "--rate", "10%", *one])
+    assert status == 0 and "\rsampling: " in err and "\ngeodesic-lod: sampling" not in err, repr(err)
+    assert digest(tmp_path / "tty.npy") == digest(tmp_path / "log.npy")
