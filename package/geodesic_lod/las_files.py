@@ -20,6 +20,7 @@ from typing import BinaryIO, Iterator, Optional
 
 import numpy as np
 
+from . import arrays
 from .errors import PointFileError
 
 CHUNK = 1_000_000  # records decoded at a time
@@ -130,19 +131,20 @@ def open_source(path) -> LasSource:
                   "damaged")
     count = int(header.point_count)
     if count > MAX_POINTS:
-        _fail(path, f"its header announces {count} points, beyond 63-bit ids: the header is damaged")
+        _fail(path, f"its header announces {arrays.counted(count, 'point')}, beyond 63-bit ids: the header is "
+              "damaged")
     if not header.are_points_compressed:
         size = os.path.getsize(path)
         end = header.start_of_first_evlr if getattr(header, "start_of_first_evlr", 0) else size
         room = max(0, min(end, size) - header.offset_to_point_data) // header.point_format.size
         if count > room:
-            _fail(path, f"its header announces {count} points but the file holds {room}: it is cut short or its "
-                  "header is wrong")
+            _fail(path, f"its header announces {arrays.counted(count, 'point')} but the file holds {room:,}: it is "
+                  "cut short or its header is wrong")
     else:
         room = _laz_room(path, header)
         if room is not None and count > room:
-            _fail(path, f"its header announces {count} points but its compressed chunks hold at most {room}: it is "
-                  "cut short or its header is wrong")
+            _fail(path, f"its header announces {arrays.counted(count, 'point')} but its compressed chunks hold at "
+                  f"most {room:,}: it is cut short or its header is wrong")
     vlrs, evlrs = _own_records(path, header)
     return LasSource(header, vlrs, evlrs)
 
@@ -314,8 +316,8 @@ def chunks(path, size: int = CHUNK, first: int = 0, stop: Optional[int] = None,
             _fail(path, f"cannot be read as LAS: {e}")
         raise
     if start != count:
-        _fail(path, f"holds {start} of the {count} points its header announces: it is cut short or its header "
-              "is wrong")
+        _fail(path, f"holds {start:,} of the {arrays.counted(count, 'point')} its header announces: it is cut "
+              "short or its header is wrong")
 
 
 def read(path, threads: Optional[int] = None) -> tuple:
