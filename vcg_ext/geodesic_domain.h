@@ -97,7 +97,9 @@ class GeodesicDomain {
       throw InputError(Field::GeodesicMode, "Mesh needs faces; the input has none "
                                              "(use PointGraph or Auto for point clouds)");
     CheckNeighbours(Field::NormalNeighbours, p.normalNeighbours, n);
-    if (UsesPointGraph(hasTriangles, p)) CheckNeighbours(Field::GraphNeighbours, p.graphNeighbours, n);
+    // The Euclidean metric builds no graph: its neighbour count is not read.
+    if (p.metric != Metric::Euclidean && UsesPointGraph(hasTriangles, p))
+      CheckNeighbours(Field::GraphNeighbours, p.graphNeighbours, n);
     if (!(p.curvatureExponent > 0) || !std::isfinite(p.curvatureExponent))
       throw InputError(Field::CurvatureExponent, "must be a positive number (got " + Str(p.curvatureExponent) + ")");
     if (!(p.adaptivity >= 0) || !std::isfinite(p.adaptivity))

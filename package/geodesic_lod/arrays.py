@@ -311,11 +311,19 @@ class DomainOptions:
             raise InputError("geodesics='mesh' needs faces; give faces or use 'auto' or 'point-graph'")
         d.curvature_exponent = real_number(self.curvature_exponent, "curvature_exponent", positive=True)
         d.adaptivity = real_number(self.adaptivity, "adaptivity", positive=False)
+        point_graph = d.metric != _core.Metric.Euclidean and (
+            d.mode == _core.GeodesicMode.PointGraph or (d.mode == _core.GeodesicMode.Auto and not has_faces))
+        if n is not None:
+            # Defaults that n points cannot meet: the points are what is short, worded as on every front end.
+            unmet = [k for k, default, used in ((self.normal_neighbors, DOMAIN_DEFAULTS.normal_neighbors, True),
+                                                (self.graph_neighbors, DOMAIN_DEFAULTS.graph_neighbors, point_graph))
+                     if used and k == default]
+            problem = too_few_points(n, max(unmet)) if unmet else None
+            if problem:
+                raise InputError(f"points {problem}")
         most = None if n is None else n - 1
         below_n = "" if n is None else f" (below the number of points, {n})"
         d.normal_neighbors = whole_number(self.normal_neighbors, "normal_neighbors", 1, most, below_n)
-        point_graph = d.metric != _core.Metric.Euclidean and (
-            d.mode == _core.GeodesicMode.PointGraph or (d.mode == _core.GeodesicMode.Auto and not has_faces))
         d.graph_neighbors = whole_number(self.graph_neighbors, "graph_neighbors", 1, most if point_graph else None,
                                          below_n)
         if not isinstance(self.recompute_normals, (bool, np.bool_)):

@@ -256,3 +256,10 @@ def test_mesh_vertices_are_optimized_by_default_fitted_or_input_points_on_reques
         gl.fps_lod(pts, faces=faces, count=50, placement="fitted")
     with pytest.raises(gl.InputError, match="placement must be one of 'optimized', 'fitted', 'input'"):
         gl.poisson_lod(pts, faces=faces, count=50, mesh_output=True, placement="moved")
+
+
+def test_few_points_with_few_neighbours_need_no_graph_for_eq1():
+    """normal_variation builds no point graph: the graph's neighbour count is not what so few points fail."""
+    p = bumpy_sphere(10)
+    v = gl.normal_variation(p, normal_neighbors=5)
+    assert v.curvature.shape == (10,) and np.all(np.isfinite(v.curvature))

@@ -60,6 +60,11 @@ CASES = {
     "regions": (gl.poisson_lod, (P,), dict(count=5, regions="cells"), gl.InputError, "regions"),
     "fps disk regions": (gl.fps_lod, (P,), dict(count=5, regions="disk"), gl.InputError, "regions"),
     "normal neighbours n": (gl.poisson_lod, (P,), dict(count=5, normal_neighbors=500), gl.InputError, "normal_neighbors"),
+    # Defaults that so few points cannot meet: the points are named, as the command names its file.
+    "points fewer than the default neighbours": (gl.poisson_lod, (P[:10],), dict(count=1), gl.InputError,
+                                                 "points holds 10 points: at least 21 are needed"),
+    "fps points fewer than the default neighbours": (gl.fps_lod, (P[:20],), dict(count=1), gl.InputError,
+                                                     "points holds 20 points: at least 21 are needed"),
     "graph neighbours 0": (gl.poisson_lod, (P,), dict(count=5, graph_neighbors=0), gl.InputError, "graph_neighbors"),
     "exponent zero": (gl.poisson_lod, (P,), dict(count=5, curvature_exponent=0), gl.InputError, "curvature_exponent"),
     "adaptivity negative": (gl.poisson_lod, (P,), dict(count=5, adaptivity=-1), gl.InputError, "adaptivity"),

@@ -94,6 +94,8 @@ TEST(InputChecks, RadiusAndParameters) {
   EXPECT_NE(ErrorOf(m, p).find("GraphNeighbours: must be"), std::string::npos);
   p.domain.graphNeighbours = 1000;
   EXPECT_NE(ErrorOf(m, p).find("GraphNeighbours: must be"), std::string::npos);
+  p.domain.metric = vcg_ext::Metric::Euclidean;  // no graph: its neighbours are not read
+  EXPECT_EQ(ErrorOf(m, p), "");
   p = Radius(0.1);
   p.domain.curvatureExponent = 0;
   EXPECT_NE(ErrorOf(m, p).find("CurvatureExponent: must be a positive number"), std::string::npos);
