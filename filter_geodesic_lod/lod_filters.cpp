@@ -95,7 +95,7 @@ size_t Count(const char* name, double x, const CMeshO& in) {
   RequireVertices(in);
   if (!(x <= double(in.vn)))
     throw std::invalid_argument(std::string(name) + " must be between 1 and the number of points (" +
-                                std::to_string(in.vn) + "), got " + QString::number(x).toStdString());
+                                std::to_string(in.vn) + "), got " + vcg_ext::Shown(x));
   return size_t(x);
 }
 
@@ -256,20 +256,20 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     const double count = src.number(kSampleNum), rate = src.number(kSampleRate);
     if (!(count >= 0) || !std::isfinite(count))
       throw std::invalid_argument(std::string(kSampleNum) + " must be 0 (use the radius) or a positive count (got " +
-                                  QString::number(count).toStdString() + ")");
+                                  vcg_ext::Shown(count) + ")");
     if (!(rate >= 0 && rate <= 100))
       throw std::invalid_argument(std::string(kSampleRate) + " must be a percentage from 0 to 100 (got " +
-                                  QString::number(rate).toStdString() + ")");
+                                  vcg_ext::Shown(rate) + ")");
     if (count > 0 && rate > 0)
       throw std::invalid_argument("give " + std::string(kSampleNum) + " or " + kSampleRate + ", not both (got " +
-                                  QString::number(count).toStdString() + " and " + QString::number(rate).toStdString() +
+                                  vcg_ext::Shown(count) + " and " + vcg_ext::Shown(rate) +
                                   "%)");
     if (rate > 0) p.sampleNum = Count(kSampleRate, std::max(1.0, vcg_ext::PercentOf(rate, size_t(in.vn))), in);
     else p.sampleNum = count > 0 ? Count(kSampleNum, std::max(1.0, std::round(count)), in) : 0;
     p.tolerance = src.number(kTolerance) / 100;
     if (!(p.tolerance >= 0) || !(p.tolerance < 1))  // checked even where the radius makes it unused
       throw std::invalid_argument("the sample count tolerance must be at least 0 and below 100% (got " +
-                                  QString::number(src.number(kTolerance)).toStdString() + "%)");
+                                  vcg_ext::Shown(src.number(kTolerance)) + "%)");
     OutputKind output;
     ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);
     p.meshOutput = output.mesh, p.placement = output.placement;
@@ -295,7 +295,7 @@ LodRun RunFpsLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb)
   return Guarded([&] {
     vcg_ext::GeodesicFpsLod<Scalarm>::Param p;
     const double n = src.number(kSampleNum);
-    if (!(n >= 1)) throw std::invalid_argument(std::string(kSampleNum) + " must be at least 1 (got " + std::to_string(n) + ")");
+    if (!(n >= 1)) throw std::invalid_argument(std::string(kSampleNum) + " must be at least 1 (got " + vcg_ext::Shown(n) + ")");
     p.sampleNum = Count(kSampleNum, n, in);
     OutputKind output;
     ReadDomainParams(src, p.domain, p.seed, kPlacedOutputs, output);

@@ -101,9 +101,9 @@ class GeodesicDomain {
     if (p.metric != Metric::Euclidean && UsesPointGraph(hasTriangles, p))
       CheckNeighbours(Field::GraphNeighbours, p.graphNeighbours, n);
     if (!(p.curvatureExponent > 0) || !std::isfinite(p.curvatureExponent))
-      throw InputError(Field::CurvatureExponent, "must be a positive number (got " + Str(p.curvatureExponent) + ")");
+      throw InputError(Field::CurvatureExponent, "must be a positive number (got " + Shown(p.curvatureExponent) + ")");
     if (!(p.adaptivity >= 0) || !std::isfinite(p.adaptivity))
-      throw InputError(Field::Adaptivity, "must be zero or positive (got " + Str(p.adaptivity) + ")");
+      throw InputError(Field::Adaptivity, "must be zero or positive (got " + Shown(p.adaptivity) + ")");
   }
 
   /// From a vcglib mesh (not modified): its live vertices, and its faces when
@@ -337,7 +337,6 @@ class GeodesicDomain {
       throw InputError(field, "must be smaller than the number of points (" + std::to_string(n) + "), got " +
                                   std::to_string(k) + ": lower it or give more points");
   }
-  static std::string Str(double x) { return std::to_string(x); }
 };
 
 }  // namespace vcg_ext

@@ -71,7 +71,7 @@ class GeodesicPoissonLod {
 
   static void CheckRadius(double r) {
     if (!(r > 0) || !std::isfinite(r))
-      throw InputError(Field::Radius, "must be a positive number (got " + std::to_string(r) + ")");
+      throw InputError(Field::Radius, "must be a positive number (got " + Shown(r) + ")");
   }
 
   /// The Poisson visiting order of the domain's points: by the seed and each

@@ -144,7 +144,7 @@ class HeightFieldLod {
       const double dx = *std::max_element(x_.begin(), x_.end()), dy = *std::max_element(y_.begin(), y_.end());
       CheckDistanceRange(std::max({dx, dy, *z1 - *z0}));
       if (!(p.separation >= 0) || !std::isfinite(p.separation))
-        throw InputError(Field::Separation, "must be a number at least 0, got " + std::to_string(p.separation));
+        throw InputError(Field::Separation, "must be a number at least 0, got " + Shown(p.separation));
     }
 
     Result Run(Progress& progress) {

@@ -5,6 +5,8 @@
 // MeshLab's plugins word vcglib's failures (the plugin with its pymeshlab
 // keywords and layers, the Python package with its arguments).
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -39,6 +41,25 @@ struct InputError : std::invalid_argument {
   Field field;
   InputError(Field f, const std::string& problem) : std::invalid_argument(problem), field(f) {}
 };
+
+/// A number as a message shows it: a whole number in full ("1000000000"),
+/// else the fewest digits that read back as x ("0.05", "-1e-09"), not
+/// std::to_string's six decimals ("0.000000" for 1e-9). A value a float holds
+/// exactly (a front end's float parameter) reads back as that float: its
+/// user's "1e-09", not "9.999999717180685e-10".
+inline std::string Shown(double x) {
+  char s[32];
+  if (std::isfinite(x) && x == std::trunc(x) && std::abs(x) < 1e16) {
+    std::snprintf(s, sizeof s, "%.0f", x);
+    return s;
+  }
+  const bool isFloat = double(float(x)) == x;
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(s, sizeof s, "%.*g", digits, x);
+    if (!std::isfinite(x) || (isFloat ? std::strtof(s, nullptr) == float(x) : std::strtod(s, nullptr) == x)) break;
+  }
+  return s;
+}
 
 /// The one wording of points with NaN or infinite coordinates.
 inline InputError NonFiniteCoordinates(size_t bad) {

@@ -41,7 +41,7 @@ class NormalProjection {
                         vcg::CallBackPos* cb = nullptr) {
     Progress progress(cb);
     if (!(p.maxDistance > 0) || !std::isfinite(p.maxDistance))
-      throw InputError(Field::MaxDistance, "must be a positive number (got " + std::to_string(p.maxDistance) + ")");
+      throw InputError(Field::MaxDistance, "must be a positive number (got " + Shown(p.maxDistance) + ")");
     // Finite coordinates in a finite box, or the grid's cells cannot be computed.
     for (const auto* layer : {&reference, &surface}) {
       try {

@@ -158,7 +158,7 @@ class PoissonTargetCount {
   static void CheckTolerance(double tolerance) {
     if (!(tolerance >= 0) || !(tolerance < 1))
       throw InputError(Field::Tolerance, "must be at least 0 and below 100% (got " +
-                                             std::to_string(100 * tolerance) + "%)");
+                                             Shown(100 * tolerance) + "%)");
   }
 
   /// The first radius from pilot disks searched at PilotRadius::kReach times

@@ -84,6 +84,7 @@ TEST(InputChecks, RadiusAndParameters) {
   test::TMesh m;
   test::Plane(m, 10);
   for (double r : {0.0, -1.0, double(NAN)}) EXPECT_NE(ErrorOf(m, Radius(r)).find("Radius: must be a positive number"), std::string::npos);
+  EXPECT_EQ(ErrorOf(m, Radius(-1e-9)), "Radius: must be a positive number (got -1e-09)");
   LOD::Param p = Radius(0.1);
   p.domain.normalNeighbours = 0;
   EXPECT_NE(ErrorOf(m, p).find("NormalNeighbours: must be at least 1"), std::string::npos);

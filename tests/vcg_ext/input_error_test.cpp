@@ -1,5 +1,9 @@
-// vcg_ext/input_error.h: InputError carries its field and its predicate, NonFiniteCoordinates' wording, FieldId.
+// vcg_ext/input_error.h: InputError carries its field and its predicate, NonFiniteCoordinates' wording, FieldId,
+// Shown's numbers.
 #include <gtest/gtest.h>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -31,6 +35,22 @@ TEST(InputError, NonFiniteCoordinatesCountsThePointsInOneWording) {
   const vcg_ext::InputError many = vcg_ext::NonFiniteCoordinates(1234567);
   EXPECT_EQ(many.field, Field::Coordinates);
   EXPECT_STREQ(many.what(), "holds 1234567 points with NaN or infinite coordinates");
+}
+
+TEST(InputError, NumbersAreShownAsTheyWereGiven) {
+  EXPECT_EQ(vcg_ext::Shown(0), "0");
+  EXPECT_EQ(vcg_ext::Shown(-2), "-2");
+  EXPECT_EQ(vcg_ext::Shown(1e9), "1000000000");  // a count in full
+  EXPECT_EQ(vcg_ext::Shown(0.05), "0.05");
+  EXPECT_EQ(vcg_ext::Shown(-1e-9), "-1e-09");     // not six decimals' "-0.000000"
+  EXPECT_EQ(vcg_ext::Shown(0.1 + 0.2), "0.30000000000000004");
+  EXPECT_EQ(vcg_ext::Shown(1e19), "1e+19");
+  EXPECT_EQ(vcg_ext::Shown(double(-1e-9f)), "-1e-09");  // a float parameter's value, as its user gave it
+  EXPECT_EQ(vcg_ext::Shown(double(1e19f)), "1e+19");
+  for (double x : {1.0 / 3, 123456.789, -7.25e-300, 4.9e-324, 1.7976931348623157e308})
+    EXPECT_EQ(std::strtod(vcg_ext::Shown(x).c_str(), nullptr), x) << vcg_ext::Shown(x);
+  EXPECT_EQ(vcg_ext::Shown(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(vcg_ext::Shown(std::nan("")), "nan");
 }
 
 TEST(InputError, EveryFieldHasItsOwnId) {

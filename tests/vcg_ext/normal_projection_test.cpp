@@ -109,7 +109,7 @@ TEST(NormalProjection, NamesBadInputs) {
   EXPECT_EQ(ErrorOf(ref, surf, MaxDist(1)), "ReferencePoints: holds no points with valid normals (compute normals first)");
   SetNormals(ref, test::P3(0, 0, 1));
   EXPECT_EQ(ErrorOf(ref, cloud, MaxDist(1)), "Surface: holds no triangles to project onto");
-  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(0)), "MaxDistance: must be a positive number (got 0.000000)");
+  EXPECT_EQ(ErrorOf(ref, surf, MaxDist(0)), "MaxDistance: must be a positive number (got 0)");
   EXPECT_EQ(ErrorOf(ref, surf, MaxDist(NAN)).rfind("MaxDistance: must be a positive number", 0), 0u);
   ref.vert[3].N() = test::P3(0, 0, 0);
   const auto r = NP::Compute(ref, surf, MaxDist(1));
