@@ -26,6 +26,13 @@ FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
 WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".npy",)}
 
 
+def _writable(kind: str) -> str:
+    """'a PLY input can be written as .ply or .npy', 'an NPY input can be written as .npy only'."""
+    *first, last = WRITABLE[kind]
+    return (f"{'an' if kind == 'npy' else 'a'} {kind.upper()} input can be written as "
+            + (f"{', '.join(first)} or {last}" if first else f"{last} only"))
+
+
 @dataclass
 class PointFile:
     """The coordinates the sampler needs, and the rows they came from, for writing the LOD.
@@ -101,11 +108,9 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
         format_of(out, "output")
         for kind in kinds:
             if is_copc(out) and kind != "las":
-                raise PointFileError(out, f"a COPC file keeps LAS point records: a {kind.upper()} input can be "
-                                     f"written as {', '.join(WRITABLE[kind])}")
+                raise PointFileError(out, f"a COPC file keeps LAS point records: {_writable(kind)}")
             if out.suffix.lower() not in WRITABLE[kind]:
-                *first, last = WRITABLE[kind]
-                raise PointFileError(out, f"a {kind.upper()} input can be written as {', '.join(first)} or {last}")
+                raise PointFileError(out, _writable(kind))
         folder = out.parent
         if not folder.is_dir():
             raise PointFileError(out, no_folder(folder))

@@ -113,6 +113,13 @@ def test_unreadable_files_are_named(tmp_path, make, problem):
     assert str(e.value).startswith(str(path)) and problem in str(e.value)
 
 
+def test_an_npy_input_is_told_its_one_output_format(tmp_path):
+    np.save(tmp_path / "in.npy", np.random.default_rng(0).random((50, 3)))
+    for out in ("out.ply", "out.laz", "out.copc.laz"):
+        with pytest.raises(pf.PointFileError, match=r"an NPY input can be written as \.npy only$"):
+            pf.check_outputs([tmp_path / "in.npy"], [tmp_path / out])
+
+
 def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
     src = las_cloud(tmp_path / "in.laz")
     (tmp_path / "notes").write_text("the user's file")
