@@ -21,8 +21,10 @@ def _shown(line: str) -> str:
 
 
 def say(line: str) -> None:
-    """One line on stderr for the user (_shown)."""
-    print(_shown(line), file=sys.stderr, flush=True)
+    """One line on stderr for the user (_shown); none where the process has no stderr (closed as it started:
+    Python's is then None, and print would write to stdout)."""
+    if sys.stderr is not None:
+        print(_shown(line), file=sys.stderr, flush=True)
 
 
 def _stop_line(kept) -> str:

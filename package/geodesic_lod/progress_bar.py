@@ -18,6 +18,7 @@ class ProgressBar:
     where quiet) and is cleared as its block ends, however it ends, before any line that follows."""
 
     def __init__(self, label: str, quiet: bool, *, delay: float = 0.0, unit: Optional[str] = None):
+        quiet = quiet or sys.stderr is None  # a process started with no stderr: nowhere to show it
         self.label, self.unit, self.quiet = label, unit, quiet
         self.start = time.perf_counter()
         self.next_line = self.start + delay  # in a log

@@ -364,3 +364,19 @@ def test_progress_in_a_log_is_lines_and_on_a_terminal_a_bar(tmp_path):
     status, err = on_a_terminal([src, "-o", tmp_path / "tty.npy", "--rate", "10%", *one])
     assert status == 0 and "\rsampling: " in err and "\ngeodesic-lod: sampling" not in err, repr(err)
     assert digest(tmp_path / "tty.npy") == digest(tmp_path / "log.npy")
+
+
+def test_a_run_without_stderr_writes_its_output_and_says_nothing_on_stdout(tmp_path):
+    """Started with no stderr (closed, as some launchers start a process): Python has none, and the
+    command's lines have nowhere to go; the run still works and its status tells the outcome."""
+    import os
+    src = las_cloud(tmp_path / "in.laz")
+
+    def without_stderr(*args):
+        return subprocess.run(COMMAND + [str(a) for a in args], stdout=subprocess.PIPE, text=True, timeout=300,
+                              preexec_fn=lambda: os.close(2))
+    r = without_stderr(src, "-o", tmp_path / "lod.laz", "--rate", "10%")
+    assert (r.returncode, r.stdout) == (0, "")
+    assert laspy.read(tmp_path / "lod.laz").header.point_count == 300
+    r = without_stderr(src, "-o", tmp_path / "lod.laz", "--rate", "10%")  # exists: refused
+    assert (r.returncode, r.stdout) == (2, "")
