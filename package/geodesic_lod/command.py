@@ -23,8 +23,21 @@ def _shown(line: str) -> str:
 def say(line: str) -> None:
     """One line on stderr for the user (_shown); none where the process has no stderr (closed as it started:
     Python's is then None, and print would write to stdout)."""
-    if sys.stderr is not None:
+    if sys.stderr is None:
+        return
+    try:
         print(_shown(line), file=sys.stderr, flush=True)
+    except BrokenPipeError:  # its reader has gone (piped into a program that ended): the run goes on unheard
+        _unheard()
+
+
+def _unheard() -> None:
+    """stderr from now on into the null device, at its descriptor: the lines still buffered, Python's flush
+    as it exits and the core's writes land there, not on the broken pipe."""
+    import os
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, sys.stderr.fileno())
+    os.close(null)
 
 
 def _stop_line(kept) -> str:

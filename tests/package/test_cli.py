@@ -380,3 +380,21 @@ def test_a_run_without_stderr_writes_its_output_and_says_nothing_on_stdout(tmp_p
     assert laspy.read(tmp_path / "lod.laz").header.point_count == 300
     r = without_stderr(src, "-o", tmp_path / "lod.laz", "--rate", "10%")  # exists: refused
     assert (r.returncode, r.stdout) == (2, "")
+
+
+@pytest.mark.parametrize("n", [3000, 600_000], ids=["summary", "progress and summary"])
+def test_a_run_whose_stderr_reader_has_gone_still_writes_its_output(tmp_path, n):
+    """stderr piped into a program that has ended (`2>&1 | head -1`): the first line the command writes
+    meets a broken pipe; the run goes on without its lines and exits with its own status."""
+    import os
+    np.save(tmp_path / "in.npy", bumpy_sphere(n))
+    read, write = os.pipe()
+    os.close(read)  # the reader has gone
+    try:
+        r = subprocess.run(COMMAND + [str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod.npy"), "--levels",
+                                      "50%,10%", "--threads", "1"], stderr=write, stdout=subprocess.PIPE,
+                           text=True, timeout=300)
+    finally:
+        os.close(write)
+    assert (r.returncode, r.stdout) == (0, "")
+    assert names(tmp_path) == ["in.npy", "lod_10pct.npy", "lod_50pct.npy"]
