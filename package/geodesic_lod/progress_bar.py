@@ -1,6 +1,6 @@
 """The command's progress on stderr. On a terminal, a bar redrawn in place (tqdm). Elsewhere (a log file, a
-pipe, a batch system's output) a line now and then: a bar's frame every tenth of a second would fill a log
-with frames in one endless line."""
+pipe, a batch system's output, a terminal never sized) a line now and then: a bar's frame every tenth of a
+second would fill a log with frames in one endless line."""
 from __future__ import annotations
 
 import sys
@@ -10,6 +10,15 @@ from typing import Optional
 from .command import say
 
 LINE_EVERY = 30.0  #: seconds between a log's progress lines
+
+
+def _drawable(stream) -> bool:
+    """A terminal with room for a bar (a pseudo-terminal never sized has no rows and columns: tqdm draws none)."""
+    import os
+    try:
+        return stream.isatty() and min(os.get_terminal_size(stream.fileno())) > 0
+    except (OSError, ValueError):
+        return False
 
 
 class ProgressBar:
@@ -23,7 +32,7 @@ class ProgressBar:
         self.start = time.perf_counter()
         self.next_line = self.start + delay  # in a log
         self.bar = None
-        if not quiet and sys.stderr.isatty():
+        if not quiet and _drawable(sys.stderr):
             from tqdm import tqdm
             fraction = {} if unit else {"bar_format": "{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}"}
             self.bar = tqdm(total=1 if unit else 1000, desc=label, unit=unit or "", delay=delay, file=sys.stderr,

@@ -310,8 +310,9 @@ def test_a_copc_file_of_one_depth_says_depth_0(tmp_path, where):
     assert "3,000 points at depth 0, spacing " in r.stderr, r.stderr
 
 
-def on_a_terminal(args, timeout=300, **popen):
-    """The command's status and what it wrote to stderr, a terminal of 100 columns (a pseudo-terminal)."""
+def on_a_terminal(args, timeout=300, size=(24, 100), **popen):
+    """The command's status and what it wrote to stderr, a terminal of `size` rows and columns (a
+    pseudo-terminal)."""
     import fcntl
     import os
     import pty
@@ -320,7 +321,7 @@ def on_a_terminal(args, timeout=300, **popen):
     import termios
     import time
     main, side = pty.openpty()
-    fcntl.ioctl(side, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
+    fcntl.ioctl(side, termios.TIOCSWINSZ, struct.pack("HHHH", *size, 0, 0))
     proc = subprocess.Popen(COMMAND + [str(a) for a in args], stderr=side, **popen)
     os.close(side)
     out, deadline = b"", time.monotonic() + timeout
@@ -364,6 +365,10 @@ def test_progress_in_a_log_is_lines_and_on_a_terminal_a_bar(tmp_path):
     status, err = on_a_terminal([src, "-o", tmp_path / "tty.npy", "--rate", "10%", *one])
     assert status == 0 and "\rsampling: " in err and "\ngeodesic-lod: sampling" not in err, repr(err)
     assert digest(tmp_path / "tty.npy") == digest(tmp_path / "log.npy")
+    # A terminal never sized (0 by 0, as some launchers make one): tqdm draws nothing there; lines.
+    status, err = on_a_terminal([src, "-o", tmp_path / "unsized.npy", "--rate", "10%", *one], size=(0, 0))
+    assert status == 0 and "\r" not in err.replace("\r\n", "\n"), repr(err)
+    assert re.search(r"^geodesic-lod: sampling: \d+%, \d+ s$", err, re.M), repr(err)
 
 
 def test_a_run_without_stderr_writes_its_output_and_says_nothing_on_stdout(tmp_path):
