@@ -244,6 +244,11 @@ def _run_on_cluster(args, request: dict) -> int:
     return _done(args, summary, start)
 
 
+def _sampling_bar(args) -> ProgressBar:
+    """One machine's progress: shown once the run has lasted half a second."""
+    return ProgressBar("sampling", args.quiet, delay=0.5)
+
+
 SIZE_OPTIONS = ("--rate", "--count", "--radius", "--levels")
 
 
@@ -461,7 +466,7 @@ def main(argv=None, kept: Optional[list] = None) -> int:
                                      "folder)")
             point_files.check_not_a_folder(args.output, args.input[0])  # a folder is a cluster run's output
             if "copc" in request:
-                with ProgressBar("sampling", args.quiet, delay=0.5) as bar:
+                with _sampling_bar(args) as bar:
                     summary = _copc(args, bar)
                 return _done(args, summary, start)
             paths = _outputs(args, request)
@@ -471,7 +476,7 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)
-            with ProgressBar("sampling", args.quiet, delay=0.5) as bar:
+            with _sampling_bar(args) as bar:
                 try:
                     chosen, lod = _run(args, request, source, bar)
                 except ValueError as e:  # the input's data or a value that depends on it
