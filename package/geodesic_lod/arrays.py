@@ -530,7 +530,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
     for k in range(1, len(counts)):
         if counts[k] >= counts[k - 1]:
             raise InputError(f"levels must get strictly coarser: level {k + 1} has {counted(counts[k], 'sample')}, "
-                             f"level {k} {counts[k - 1]}")
+                             f"level {k} {counts[k - 1]:,}")
     return counts
 
 
