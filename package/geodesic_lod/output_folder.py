@@ -25,6 +25,7 @@ INDEX = "index.json"
 TOOL = PROG  # the tool an output folder's index names
 RUN = re.compile(r"run_(\d+)")
 INDEX_PARTIAL = re.compile(r"\.index\.json\.partial-\d+")  # an index being written when a run was stopped
+LOCK_FILE = ".geodesic-lod.lock"  # the folder's lock where the file system locks no folder
 # What a run writes inside its folder: tiles, level folders, the levels' work folder of sample ids, the
 # input's cells (partition.py), and files being written (point_files' temporary names).
 OWN_FILE = re.compile(r"(tile_\d{5,}\.(las|laz|ply|npy)|\.geodesic-lod-[0-9a-f]+\.partial"
@@ -60,6 +61,7 @@ class OutputFolder:
         self.owned: list = []
         self.swept: list = []
         self._locked: Optional[int] = None  # the descriptor holding the folder's lock while a run writes
+        self._lock_file: Optional[pathlib.Path] = None  # LOCK_FILE, where that descriptor is its
         if out.exists():
             self._check_contents()
         real = out.resolve()
@@ -81,7 +83,8 @@ class OutputFolder:
                 raise PointFileError(self.path, f"holds an {INDEX} this tool did not write: choose a new or empty "
                                                 "folder") from None
         foreign = sorted(n for n, e in entries.items()
-                         if n != INDEX and not (INDEX_PARTIAL.fullmatch(n) and e.is_file(follow_symlinks=False))
+                         if n != INDEX and not ((INDEX_PARTIAL.fullmatch(n) or n == LOCK_FILE)
+                                                and e.is_file(follow_symlinks=False))
                          and (n not in self.owned or e.is_symlink() or not e.is_dir()))
         if INDEX in entries:  # in the LOD's run, what its index does not list is someone else's
             for run in sorted({f.split("/")[0] for f in listed} & set(self.owned) - set(foreign)):
@@ -112,21 +115,50 @@ class OutputFolder:
         return self.path / self.run
 
     def _lock(self) -> None:
-        """An exclusive lock on the folder (on its own descriptor, so that it goes with the process however it
-        ends); where the file system locks no folder (some network shares), none."""
+        """An exclusive lock on the folder, held on a descriptor of its own so that it goes with the process
+        however it ends. Where the file system locks no folder (NFS locks only files open for writing), the
+        lock is on a file of the tool's in it, LOCK_FILE, removed as the run ends; where it locks no file
+        either, there is none."""
         import fcntl
         self._locked = os.open(self.path, os.O_RDONLY | os.O_DIRECTORY)
         try:
             fcntl.flock(self._locked, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return
         except BlockingIOError:
-            self.close()
-            raise PointFileError(self.path, f"another run of {TOOL} is writing it: wait for that run to end, or "
-                                            "choose another folder") from None
+            self._refuse()
         except OSError:
-            pass
+            self.close()
+        lock_file = self.path / LOCK_FILE
+        for _ in range(3):  # again when the run that held it removed it between our open and our lock
+            fd = os.open(lock_file, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+            try:
+                _lock_whole_file(fd)
+            except (BlockingIOError, PermissionError):  # held (EAGAIN, or EACCES on some systems)
+                os.close(fd)
+                self._refuse()
+            except OSError:
+                os.close(fd)
+                return
+            try:
+                same = os.stat(lock_file, follow_symlinks=False).st_ino == os.fstat(fd).st_ino
+            except FileNotFoundError:
+                same = False
+            if same:
+                self._locked, self._lock_file = fd, lock_file
+                return
+            os.close(fd)
+        self._refuse()  # removed every time: other runs are taking it
+
+    def _refuse(self):
+        self.close()
+        raise PointFileError(self.path, f"another run of {TOOL} is writing it: wait for that run to end, or "
+                                        "choose another folder") from None
 
     def close(self) -> None:
         """Lets another run begin in the folder (commit and abort end with it)."""
+        if self._lock_file is not None:
+            self._lock_file.unlink(missing_ok=True)  # while still held: a run that opened it looks again
+            self._lock_file = None
         if self._locked is not None:
             os.close(self._locked)
             self._locked = None
@@ -172,6 +204,7 @@ class OutputFolder:
         if self.index is None and not self.owned:
             (self.path / INDEX).unlink(missing_ok=True)
             if self.created:
+                self.close()  # and its lock file
                 try:
                     self.path.rmdir()
                 except OSError:
@@ -186,6 +219,17 @@ class OutputFolder:
         tmp = self.path / f".{INDEX}.partial-{os.getpid()}"
         tmp.write_text(json.dumps(index, indent=1))
         os.replace(tmp, self.path / INDEX)
+
+
+def _lock_whole_file(fd: int) -> None:
+    """An exclusive lock on the file open at `fd`, without waiting: an open file description's lock (Linux),
+    which other runs in this process cannot take either, else a POSIX one (the process's)."""
+    import fcntl
+    import struct
+    if hasattr(fcntl, "F_OFD_SETLK"):  # struct flock: type, whence, start, length (0: to the end), pid
+        fcntl.fcntl(fd, fcntl.F_OFD_SETLK, struct.pack("hhqqi", fcntl.F_WRLCK, os.SEEK_SET, 0, 0, 0))
+    else:
+        fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
 
 
 def lod_files(index: dict) -> set:

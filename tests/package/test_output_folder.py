@@ -34,7 +34,8 @@ def refused(out, inputs=()):
 
 FOREIGN = [("notes.txt", "file"), ("scans", "folder"),
            ("run_1", "link"), ("run_1", "file"),  # where the index has its run folder
-           (".index.json.partial-12", "link"), (".index.json.partial-12", "folder")]  # no index being written
+           (".index.json.partial-12", "link"), (".index.json.partial-12", "folder"),  # no index being written
+           (of.LOCK_FILE, "link"), (of.LOCK_FILE, "folder")]  # no lock of a run
 
 
 @pytest.mark.parametrize("name, kind", FOREIGN, ids=[f"{k} {n}" for n, k in FOREIGN])
@@ -197,6 +198,58 @@ def test_a_second_run_into_a_folder_a_run_is_writing_is_refused_until_that_one_e
     assert new == out / "run_2"
     (new / "tile_00000.laz").write_bytes(b"the second run's tile")
     early.commit({"tiles": [{"file": "run_2/tile_00000.laz"}]})
+    assert files_under(out) == sorted([of.INDEX, "run_2/tile_00000.laz"])
+
+
+@pytest.fixture
+def folders_unlockable(monkeypatch):
+    """A file system that locks files but no folder, as NFS (a lock needs a file open for writing)."""
+    import fcntl
+    flock = fcntl.flock
+
+    def no_folder(fd, op):
+        if os.path.isdir(f"/proc/self/fd/{fd}"):
+            raise OSError(9, "Bad file descriptor")
+        return flock(fd, op)
+    monkeypatch.setattr(fcntl, "flock", no_folder)
+
+
+@pytest.mark.parametrize("end", ["commit", "abort"])
+def test_where_no_folder_can_be_locked_a_second_run_is_refused_all_the_same(tmp_path, folders_unlockable, end):
+    """On a network share the folder's lock is a file of the tool's in it, held as long as the run writes and
+    removed as it ends, so the folder is left as a run leaves it anywhere else."""
+    out = tmp_path / "lod"
+    early = of.OutputFolder(out, [])
+    first = of.OutputFolder(out, [])
+    run = first.begin()
+    assert (out / of.LOCK_FILE).is_file()
+    (run / "tile_00000.laz").write_bytes(b"the first run's tile")
+    before = snapshot(tmp_path)
+    for second in (early, of.OutputFolder(out, [])):  # checked before and after the first began
+        with pytest.raises(PointFileError, match="another run of geodesic-lod is writing it"):
+            second.begin()
+    assert snapshot(tmp_path) == before
+    if end == "abort":
+        first.abort()
+        assert not out.exists()  # new, so removed whole
+    else:
+        first.commit({"tiles": [{"file": "run_1/tile_00000.laz"}]})
+        assert files_under(out) == sorted([of.INDEX, "run_1/tile_00000.laz"])
+    new = early.begin()
+    (new / "tile_00000.laz").write_bytes(b"the second run's tile")
+    early.commit({"tiles": [{"file": f"{new.name}/tile_00000.laz"}]})
+    assert files_under(out) == sorted([of.INDEX, f"{new.name}/tile_00000.laz"])
+
+
+def test_a_lock_file_left_by_a_killed_run_is_the_tools_and_taken(tmp_path, folders_unlockable):
+    out = own_folder(tmp_path / "lod")
+    (out / of.LOCK_FILE).write_bytes(b"")  # its run was killed: no one holds it
+    folder = of.OutputFolder(out, [])
+    run = folder.begin()
+    with pytest.raises(PointFileError, match="another run"):
+        of.OutputFolder(out, []).begin()
+    (run / "tile_00000.laz").write_bytes(b"a tile")
+    folder.commit({"tiles": [{"file": "run_2/tile_00000.laz"}]})
     assert files_under(out) == sorted([of.INDEX, "run_2/tile_00000.laz"])
 
 
