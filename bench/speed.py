@@ -294,9 +294,13 @@ def write_table(rows):
         lines += [f"\n{r['note']}" for r in rows if r.get("note")]
     last = rows[-1]["cli"]
     if last:
-        lines += ["", f"Where the time goes (lod_cli, {rows[-1]['n'] / 1e6:g}M points, normals estimated):", "",
-                  "| stage | s |", "|---|---|"]
-        lines += [f"| {name} | {s:.1f} |" for name, s in last["stages"]]
+        lines += ["", f"Where the time goes (lod_cli, {rows[-1]['n'] / 1e6:g}M points, normals estimated; a stage's "
+                  "reports summed where they interleave with another's, as the orientation walk's with the graph's, "
+                  "which run beside each other):", "", "| stage | s |", "|---|---|"]
+        summed = {}
+        for name, s in last["stages"]:
+            summed[name] = summed.get(name, 0.0) + s
+        lines += [f"| {name} | {s:.1f} |" for name, s in summed.items()]
     floors = [r for r in rows if r.get("floor") and r["cli"]]
     if floors:
         lines += ["", "Against what this machine gives: the same queries (each point's "
