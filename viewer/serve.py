@@ -5,6 +5,7 @@ usage: python3 viewer/serve.py scan.copc.laz [--port 8000]   (then open the addr
        python3 viewer/serve.py scan.copc.laz --snapshots DIR (far.png and near.png from headless Chromium)
 """
 import argparse
+import errno
 import functools
 import http.server
 import os
@@ -75,14 +76,40 @@ class Handler(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+def copc_problem(path) -> "str | None":
+    """Why `path` is no COPC file, or None: a COPC file is LAS 1.4 whose first record after the header (at byte
+    375) is COPC's info (user "copc", record 1), which is all a viewer reads first."""
+    with open(path, "rb") as f:
+        head = f.read(395)
+    if head[:4] != b"LASF":
+        return "is not a LAS or LAZ file"
+    if len(head) < 395 or head[377:393].rstrip(b"\0") != b"copc" or int.from_bytes(head[393:395], "little") != 1:
+        name = pathlib.Path(path).name
+        stem = name[:-len(".copc.laz")] if name.endswith(".copc.laz") else pathlib.Path(path).stem
+        return (f"is not a COPC file (a LAS/LAZ file without COPC's octree): write one with "
+                f"`geodesic-lod {name} -o {stem}.copc.laz`")
+    return None
+
+
 def server(copc, port: int = 0) -> http.server.ThreadingHTTPServer:
     """A server on 127.0.0.1 (port 0: any free one) for the viewer and the COPC file."""
     copc = pathlib.Path(copc).resolve()
+    if copc.is_dir():
+        raise ValueError(f"{copc}: is a folder: give a COPC file (such as geodesic-lod's scan.copc.laz)")
     if not copc.is_file():
         raise ValueError(f"{copc}: no such file")
+    problem = copc_problem(copc)
+    if problem:
+        raise ValueError(f"{copc}: {problem}")
     if not (DIST / "viewer.js").is_file():
         raise ValueError(f"{DIST} holds no built viewer: run `npm ci && npm run build` in {DIST.parent}")
-    return http.server.ThreadingHTTPServer(("127.0.0.1", port), functools.partial(Handler, copc=copc))
+    try:
+        return http.server.ThreadingHTTPServer(("127.0.0.1", port), functools.partial(Handler, copc=copc))
+    except OSError as e:
+        if e.errno == errno.EADDRINUSE:
+            raise ValueError(f"port {port} of 127.0.0.1 is in use (another server?): choose another with --port, "
+                             "or 0 for any free one") from None
+        raise
 
 
 def snapshots(copc, folder, timeout: float = 300, query: str = "") -> dict:
