@@ -236,12 +236,31 @@ def level_items(levels, name: str = "levels") -> list:
     out = []
     for t in items:
         if t.endswith("%"):
+            level_percentage(t, name)
             out.append(t)
         elif t.isdigit():
+            if int(t) < 1:
+                raise InputError(f"{name}: {t!r} is not a whole number of samples of at least 1")
             out.append(int(t))
         else:
             raise InputError(f"{name}: {t!r} is neither a whole number of samples nor a percentage such as 10%")
+    for kind in (str, int):  # what can be told without the points: levels of one kind get coarser
+        values = [float(v[:-1]) if kind is str else v for v in out if isinstance(v, kind)]
+        if any(b >= a for a, b in zip(values, values[1:])):
+            raise InputError(f"{name} must get strictly coarser, finest first: {levels}")
     return out
+
+
+def level_percentage(item: str, name: str = "levels") -> float:
+    """A level's percentage, such as '10%', as a number from above 0 to 100."""
+    text = item.strip()
+    try:
+        pct = float(text[:-1]) if text.endswith("%") else None
+    except ValueError:
+        pct = None
+    if pct is None or not math.isfinite(pct) or not 0 < pct <= 100:
+        raise InputError(f"{name}: {item!r} is not a percentage from above 0 to 100 such as '10%'")
+    return pct
 
 
 def level_label(item) -> str:
@@ -514,14 +533,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
     counts = []
     for item in levels:
         if isinstance(item, str):
-            text = item.strip()
-            try:
-                pct = float(text[:-1]) if text.endswith("%") else None
-            except ValueError:
-                pct = None
-            if pct is None or not math.isfinite(pct) or not 0 < pct <= 100:
-                raise InputError(f"levels: {item!r} is not a percentage from above 0 to 100 such as '10%'")
-            c = _core.percent_of(pct, n)
+            c = _core.percent_of(level_percentage(item), n)
             if c < 1:
                 raise InputError(f"levels: {item!r} of {n} points gives no samples")
             counts.append(int(c))

@@ -143,11 +143,6 @@ def _run_on_cluster(args, request: dict) -> int:
     if args.fps or args.height_field:
         raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
                          "one machine)")
-    if "levels" in request:  # what can be checked before the cluster starts: levels of one kind get coarser
-        for kind in (str, int):
-            values = [float(v[:-1]) if kind is str else v for v in request["levels"] if isinstance(v, kind)]
-            if any(b >= a for a, b in zip(values, values[1:])):
-                raise ValueError(f"--levels must get strictly coarser, finest first: {args.levels}")
     for flag, given in (("--recompute-normals", args.recompute_normals),
                         ("--overwrite", args.overwrite and not copc)):
         if given:

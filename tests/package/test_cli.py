@@ -163,6 +163,13 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "nan"], "--radius must be a positive length"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,,10%"], "comma-separated list"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "10%,50%"], "levels must get strictly coarser"),
+    # Checked as the option is read, naming it: no level is named twice, no file read first
+    *[(lambda d, v=levels: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", v], f"error: --levels{problem}\n")
+      for levels, problem in (("10%,10%", " must get strictly coarser, finest first: 10%,10%"),
+                              ("500,500", " must get strictly coarser, finest first: 500,500"),
+                              *[(v, f": {v.split(',')[-1]!r} is not a percentage from above 0 to 100 such as '10%'")
+                                for v in ("abc%", "50%,150%", "nan%")],
+                              ("50%,0", ": '0' is not a whole number of samples of at least 1"))],
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,10%", "--fps"], "--fps takes"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "1%", "--fps"], "--fps takes --rate or --count"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply"], "give one of --rate, --count, --radius, --levels"),

@@ -76,8 +76,15 @@ def test_a_file_made_at_the_output_name_during_the_run_is_replaced_only_when_ask
     assert out.read_text() == "the user's own file" and sorted(os.listdir(tmp_path)) == ["in.ply", "lod.ply"]
 
 
+def test_an_output_named_twice_is_refused(tmp_path):
+    """Level names differ whenever the levels do (the command refuses a level given twice); a list naming
+    one file twice, by any spelling, is refused all the same."""
+    with pytest.raises(pf.PointFileError, match="would be written twice"):
+        pf.check_outputs([], [tmp_path / "lod.ply", tmp_path / "." / "lod.ply"])
+
+
 @pytest.mark.parametrize("output, problem", [("folder.ply", "is a folder"), ("x" * 300 + ".ply", "name is longer"),
-                                             ("lod.ply,lod.ply", "written twice")])
+                                             ("lod.ply,lod.ply", "--levels must get strictly coarser")])
 def test_output_problems_are_found_before_reading(tmp_path, output, problem):
     (tmp_path / "folder.ply").mkdir()
     # An input that takes minutes to read would show a late check; an unreadable one shows an early one.
