@@ -417,7 +417,8 @@ TEXTS = {
     Parameters
     ----------
     points : (n, 3) array of float32 or float64
-        The points, z up; rows with the same x, y give at most one sample. Never modified.
+        The points, z up; rows with the same x, y give at most one sample. Never modified. A raster of
+        heights (rows by columns) is given as its nodes' rows x, y, z, as in the example.
     count : int, optional
         Exactly this many samples: at least the hull's corners, at most the distinct points in x, y.
     rate : float or str, optional

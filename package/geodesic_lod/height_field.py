@@ -15,6 +15,8 @@ from .errors import InputError
 
 HEIGHT_FIELD_DEFAULTS = _core.HeightFieldParam()
 SEPARATION_SPACES = {"xyz": True, "xy": False}  # the disks in x, y, z or in x, y (the core's in_height)
+GRID_HINT = ("A grid of heights? Give its nodes as rows x, y, z: y, x = np.mgrid[0:rows, 0:columns] * spacing; "
+             "points = np.column_stack([x.ravel(), y.ravel(), heights.ravel()]) (voids left out)")
 
 
 @documented  # its Attributes are docstrings.TEXTS'
@@ -42,7 +44,12 @@ def height_field_lod(points, *, count: Optional[int] = None, rate=None,
                      separation: float = HEIGHT_FIELD_DEFAULTS.separation,
                      separation_in: str = "xyz" if HEIGHT_FIELD_DEFAULTS.in_height else "xy",
                      progress: Progress = None) -> HeightFieldLod:
-    p, _ = point_arrays(points, None)
+    try:
+        p, _ = point_arrays(points, None)
+    except InputError as e:
+        if np.ndim(points) == 2 and np.shape(points)[1] != 3:  # rows by columns of heights, as GIS tools hold a DEM
+            raise InputError(f"{e}. {GRID_HINT}") from None
+        raise
     if (count is None) == (rate is None):
         raise InputError("give exactly one of count or rate" + (" (got both)" if count is not None else ""))
     param = _core.HeightFieldParam()

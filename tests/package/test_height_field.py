@@ -125,3 +125,18 @@ def test_bad_points_are_named(dem):
         gl.height_field_lod(twice, count=3601)
     with pytest.raises(gl.InputError, match="k must be from 4"):
         gl.height_field_lod(dem, count=10).tin(3)
+
+
+@pytest.mark.parametrize("grid", [np.zeros((60, 60)), np.zeros((60, 80), np.float32), np.zeros((60, 60), np.int16)],
+                         ids=["float64", "float32", "int16"])
+def test_a_grid_of_heights_is_refused_saying_how_to_give_its_nodes(grid):
+    """A raster as GIS tools hold a DEM (rows by columns of heights) is not the points: the message says so and
+    how to make them; a NaN void then gets the rows' message."""
+    with pytest.raises(gl.InputError) as e:
+        gl.height_field_lod(grid, rate=5)
+    message = str(e.value)
+    assert message.startswith("points must ") and (f"{grid.shape}" in message or "int16" in message), message
+    assert "grid of heights" in message and "np.column_stack([x.ravel(), y.ravel(), heights.ravel()])" in message
+    y, x = np.mgrid[0:grid.shape[0], 0:grid.shape[1]] * 30.0
+    points = np.column_stack([x.ravel(), y.ravel(), np.sin(x / 300).ravel() * 100])
+    assert len(gl.height_field_lod(points, count=100).indices) == 100
