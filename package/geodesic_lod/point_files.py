@@ -63,10 +63,15 @@ class PointFile:
     source: Any
 
 
+RASTERS = {".tif", ".tiff", ".asc", ".hgt", ".dem", ".img", ".bil", ".flt", ".vrt"}  # DEMs as GIS tools keep them
+
+
 def format_of(path, role: str = "input") -> str:
     ext = pathlib.Path(path).suffix.lower()
     if ext not in FORMATS:
-        raise PointFileError(path, f"unknown {role} format '{ext or '(none)'}': use .ply, .las, .laz or .npy")
+        raster = (" (a raster of heights: its nodes as x, y, z rows in .npy)"
+                  if ext in RASTERS and role == "input" else "")
+        raise PointFileError(path, f"unknown {role} format '{ext or '(none)'}': use .ply, .las, .laz or .npy{raster}")
     return FORMATS[ext]
 
 

@@ -97,6 +97,8 @@ def truncated(path):
     (lambda d: d / "absent.ply", "no such file"),
     (lambda d: (d / "scan.xyz").write_text("0 0 0\n") and d / "scan.xyz", "unknown input format '.xyz'"),
     (lambda d: d, "unknown input format"),
+    (lambda d: (d / "dem.tif").write_bytes(b"II*\0") and d / "dem.tif",
+     "unknown input format '.tif': use .ply, .las, .laz or .npy (a raster of heights: its nodes as x, y, z rows"),
     (lambda d: (d / "empty.laz").write_bytes(b"") or d / "empty.laz", "cannot be read as LAS"),
     (lambda d: truncated(las_cloud(d / "cut.laz")), "it is cut short or its header is wrong"),
     (lambda d: truncated(ply_cloud(d / "cut.ply")), "cannot be read as PLY"),
@@ -104,7 +106,7 @@ def truncated(path):
     (lambda d: np.save(d / "flat.npy", np.zeros(9)) or d / "flat.npy", "expected floats of shape (n, 3)"),
     (lambda d: np.save(d / "ints.npy", np.zeros((9, 3), dtype=int)) or d / "ints.npy", "expected floats"),
     (lambda d: np.save(d / "noxyz.npy", np.zeros(9, dtype=[("a", "f8")])) or d / "noxyz.npy", "has no x, y, z"),
-], ids=["missing", "extension", "folder", "empty laz", "truncated laz", "truncated ply", "not ply", "flat npy",
+], ids=["missing", "extension", "folder", "raster", "empty laz", "truncated laz", "truncated ply", "not ply", "flat npy",
         "integer npy", "table without xyz"])
 def test_unreadable_files_are_named(tmp_path, make, problem):
     path = make(tmp_path)
