@@ -104,6 +104,11 @@ class NormalVariation:
     estimated_normals: int
 
 
+# For an array of rows by columns of heights, as GIS tools hold a DEM, where points are asked for.
+GRID_HINT = ("A grid of heights? Give its nodes as rows x, y, z: y, x = np.mgrid[0:rows, 0:columns] * spacing; "
+             "points = np.column_stack([x.ravel(), y.ravel(), heights.ravel()]) (voids left out)")
+
+
 def _float_array(a, name: str, allow_none: bool = False):
     if a is None and allow_none:
         return None

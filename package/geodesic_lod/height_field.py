@@ -9,14 +9,12 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from .arrays import Progress, call_core, percent, point_arrays, real_number, whole_number
+from .arrays import GRID_HINT, Progress, call_core, percent, point_arrays, real_number, whole_number
 from .docstrings import documented
 from .errors import InputError
 
 HEIGHT_FIELD_DEFAULTS = _core.HeightFieldParam()
 SEPARATION_SPACES = {"xyz": True, "xy": False}  # the disks in x, y, z or in x, y (the core's in_height)
-GRID_HINT = ("A grid of heights? Give its nodes as rows x, y, z: y, x = np.mgrid[0:rows, 0:columns] * spacing; "
-             "points = np.column_stack([x.ravel(), y.ravel(), heights.ravel()]) (voids left out)")
 
 
 @documented  # its Attributes are docstrings.TEXTS'

@@ -104,10 +104,11 @@ def truncated(path):
     (lambda d: truncated(ply_cloud(d / "cut.ply")), "cannot be read as PLY"),
     (lambda d: (d / "text.ply").write_text("not a ply\n") and d / "text.ply", "cannot be read as PLY"),
     (lambda d: np.save(d / "flat.npy", np.zeros(9)) or d / "flat.npy", "expected floats of shape (n, 3)"),
+    (lambda d: np.save(d / "grid.npy", np.zeros((50, 60))) or d / "grid.npy", "A grid of heights? Give its nodes"),
     (lambda d: np.save(d / "ints.npy", np.zeros((9, 3), dtype=int)) or d / "ints.npy", "expected floats"),
     (lambda d: np.save(d / "noxyz.npy", np.zeros(9, dtype=[("a", "f8")])) or d / "noxyz.npy", "has no x, y, z"),
-], ids=["missing", "extension", "folder", "raster", "empty laz", "truncated laz", "truncated ply", "not ply", "flat npy",
-        "integer npy", "table without xyz"])
+], ids=["missing", "extension", "folder", "raster", "empty laz", "truncated laz", "truncated ply", "not ply",
+        "flat npy", "grid npy", "integer npy", "table without xyz"])
 def test_unreadable_files_are_named(tmp_path, make, problem):
     path = make(tmp_path)
     with pytest.raises(pf.PointFileError) as e:
