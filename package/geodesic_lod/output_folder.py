@@ -130,7 +130,10 @@ class OutputFolder:
             self.close()
         lock_file = self.path / LOCK_FILE
         for _ in range(3):  # again when the run that held it removed it between our open and our lock
-            fd = os.open(lock_file, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+            try:
+                fd = os.open(lock_file, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+            except OSError:  # a link or a folder of that name: someone else's, which the folder's check names
+                return
             try:
                 _lock_whole_file(fd)
             except (BlockingIOError, PermissionError):  # held (EAGAIN, or EACCES on some systems)

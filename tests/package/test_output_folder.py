@@ -241,6 +241,19 @@ def test_where_no_folder_can_be_locked_a_second_run_is_refused_all_the_same(tmp_
     assert files_under(out) == sorted([of.INDEX, f"{new.name}/tile_00000.laz"])
 
 
+@pytest.mark.parametrize("kind", ["link", "folder"])
+def test_a_stranger_at_the_lock_files_name_is_named_as_the_run_begins(tmp_path, folders_unlockable, kind):
+    out = own_folder(tmp_path / "lod")
+    folder = of.OutputFolder(out, [])
+    elsewhere = tmp_path / "elsewhere.txt"
+    elsewhere.write_text("the user's")
+    (out / of.LOCK_FILE).symlink_to(elsewhere) if kind == "link" else (out / of.LOCK_FILE).mkdir()
+    before = snapshot(tmp_path)
+    with pytest.raises(PointFileError, match=f"did not write \\({of.LOCK_FILE}\\)"):
+        folder.begin()
+    assert snapshot(tmp_path) == before
+
+
 def test_a_lock_file_left_by_a_killed_run_is_the_tools_and_taken(tmp_path, folders_unlockable):
     out = own_folder(tmp_path / "lod")
     (out / of.LOCK_FILE).write_bytes(b"")  # its run was killed: no one holds it
