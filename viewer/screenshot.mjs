@@ -25,12 +25,17 @@ try {
   }
   const far = await settled();
   await page.screenshot({ path: `${folder}/far.png` });
-  await page.evaluate(() => window.viewer.zoom(0.15));
-  const near = await settled();
-  await page.screenshot({ path: `${folder}/near.png` });
-  await page.evaluate(() => window.viewer.zoom(1 / 0.15));
-  const back = await settled();
-  console.log(JSON.stringify({ far, near, back, errors }));
+  if (await page.evaluate(() => Boolean(window.viewer))) {
+    await page.evaluate(() => window.viewer.zoom(0.15));
+    const near = await settled();
+    await page.screenshot({ path: `${folder}/near.png` });
+    await page.evaluate(() => window.viewer.zoom(1 / 0.15));
+    const back = await settled();
+    console.log(JSON.stringify({ far, near, back, errors }));
+  } else {  // it stopped before it could draw
+    console.error(`the page stopped: ${[...far.errors, ...errors].join('; ')}`);
+    process.exitCode = 1;
+  }
 } finally {
   await browser.close();
 }

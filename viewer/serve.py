@@ -124,7 +124,7 @@ def snapshots(copc, folder, timeout: float = 300, query: str = "") -> dict:
         proc = subprocess.run(["node", str(DIST.parent / "screenshot.mjs"), url, str(folder)], capture_output=True,
                               text=True, timeout=timeout, cwd=DIST.parent)
         if proc.returncode != 0:
-            raise RuntimeError(f"screenshot.mjs failed: {proc.stderr.strip()}")
+            raise RuntimeError(f"{copc}: {proc.stderr.strip()}")
         return json.loads(proc.stdout.strip().splitlines()[-1])
     finally:
         httpd.shutdown()
@@ -138,12 +138,12 @@ def main(argv=None):
     ap.add_argument("--port", type=int, default=8000)
     ap.add_argument("--snapshots", metavar="DIR", help="screenshots from headless Chromium into DIR, then stop")
     args = ap.parse_args(argv)
-    if args.snapshots:
-        print(json.dumps(snapshots(args.copc, args.snapshots)))
-        return 0
     try:
+        if args.snapshots:
+            print(json.dumps(snapshots(args.copc, args.snapshots)))
+            return 0
         httpd = server(args.copc, args.port)
-    except (ValueError, OSError) as e:
+    except (ValueError, OSError, RuntimeError) as e:
         print(f"serve.py: error: {e}", file=sys.stderr)
         return 2
     print(f"http://127.0.0.1:{httpd.server_address[1]}/ (Ctrl-C stops)", flush=True)

@@ -137,3 +137,14 @@ def test_a_paged_hierarchy_draws_the_same_reading_pages_as_the_view_reaches_them
     # page is all it reads. Closer, it reads the pages of the subtrees it refines into, not more.
     assert state["far"]["maxDepth"] <= 1 and state["far"]["pages"] == 1
     assert 1 < state["near"]["pages"] <= 1 + below
+
+
+def test_a_copc_file_the_page_cannot_open_is_one_line_naming_the_pages_error(copc_file, tmp_path):
+    """Cut short (a copy stopped midway): the header passes serve.py's check, the page stops on the file."""
+    cut = tmp_path / "cut.copc.laz"
+    data = copc_file.read_bytes()
+    cut.write_bytes(data[: len(data) // 2])
+    r = subprocess.run([sys.executable, str(VIEWER / "serve.py"), str(cut), "--snapshots", str(tmp_path)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert r.stderr.startswith(f"serve.py: error: {cut}: the page stopped: ") and "Traceback" not in r.stderr
