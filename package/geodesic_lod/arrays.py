@@ -257,15 +257,13 @@ def level_items(levels, name: str = "levels") -> list:
 
 
 def level_percentage(item: str, name: str = "levels") -> float:
-    """A level's percentage, such as '10%', as a number from above 0 to 100."""
-    text = item.strip()
-    try:
-        pct = float(text[:-1]) if text.endswith("%") else None
-    except ValueError:
-        pct = None
-    if pct is None or not math.isfinite(pct) or not 0 < pct <= 100:
-        raise InputError(f"{name}: {item!r} is not a percentage from above 0 to 100 such as '10%'")
-    return pct
+    """A level's percentage, such as '10%' (a level without '%' is a count), as `percent` reads it."""
+    if item.strip().endswith("%"):
+        try:
+            return percent(item, name)
+        except InputError:
+            pass
+    raise InputError(f"{name}: {item!r} is not a percentage from above 0 to 100 such as '10%'")
 
 
 def level_label(item) -> str:

@@ -14,6 +14,12 @@ SERVE = ROOT / "viewer" / "serve.py"
 LIDAR = ROOT.parent / "shared" / "data" / "lidar"
 
 
+def serve_module():
+    sys.path.insert(0, str(SERVE.parent))
+    import serve
+    return serve
+
+
 def serve(*args, timeout=20):
     return subprocess.run([sys.executable, str(SERVE), *map(str, args)], capture_output=True, text=True,
                           timeout=timeout)
@@ -62,15 +68,11 @@ def test_the_shared_copc_files_are_recognised(name):
     """Others' COPC files (PDAL's, untwine's) pass the check: it reads the header and the first record only."""
     if not (LIDAR / name).is_file():
         pytest.skip(f"needs ../shared/data/lidar/{name}")
-    sys.path.insert(0, str(SERVE.parent))
-    import serve as serve_module
-    assert serve_module.copc_problem(LIDAR / name) is None
+    assert serve_module().copc_problem(LIDAR / name) is None
 
 
 def test_a_port_in_use_names_the_port_and_the_option(plain_laz, tmp_path):
-    sys.path.insert(0, str(SERVE.parent))
-    import serve as serve_module
-    if not (serve_module.DIST / "viewer.js").is_file():
+    if not (serve_module().DIST / "viewer.js").is_file():
         pytest.skip("needs the built viewer (scripts/build)")
     copc = tmp_path / "scan.copc.laz"
     r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(plain_laz), "-o", str(copc), "-q"],
