@@ -18,6 +18,10 @@
 namespace geodesic_lod {
 namespace {
 
+// Counts as every message words them: "3,595", "1 connected part", "2 connected parts".
+QString Grouped(size_t n) { return QString::fromStdString(vcg_ext::Counted(n)); }
+QString Many(size_t n, const char* one, const char* many) { return Grouped(n) + " " + (n == 1 ? one : many); }
+
 // An enum parameter: each value beside its user-facing name, in the dialog's order.
 template <class E>
 struct Choices {
@@ -95,7 +99,7 @@ size_t Count(const char* name, double x, const CMeshO& in) {
   RequireVertices(in);
   if (!(x <= double(in.vn)))
     throw std::invalid_argument(std::string(name) + " must be between 1 and the number of points (" +
-                                std::to_string(in.vn) + "), got " + vcg_ext::Shown(x));
+                                vcg_ext::Counted(size_t(in.vn)) + "), got " + vcg_ext::Shown(x));
   return size_t(x);
 }
 
@@ -193,15 +197,17 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
                              : QString();
   QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric%6, %7 geodesics")
                   .arg(what)
-                  .arg(r.vertIndex.size())
-                  .arg(r.pointCount)
+                  .arg(Grouped(r.vertIndex.size()))
+                  .arg(Grouped(r.pointCount))
                   .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
                   .arg(kMetrics.NameOf(metric))
                   .arg(chosen)
                   .arg(metric == vcg_ext::Metric::Euclidean ? "no" : r.meshGeodesics ? "fast-marching" : "point-graph");
-  s += QString("; %1 normals estimated; %2 connected parts").arg(r.estimatedNormals).arg(r.components);
-  if (r.leftOut) s += QString("; %1 vertices in no triangle left out (use the point graph to keep them)").arg(r.leftOut);
-  if (!r.faces.empty()) s += QString("; %1 triangles").arg(r.faces.size());
+  s += QString("; %1 estimated; %2").arg(Many(r.estimatedNormals, "normal", "normals"))
+           .arg(Many(r.components, "connected part", "connected parts"));
+  if (r.leftOut)
+    s += QString("; %1 in no triangle left out (use the point graph to keep them)").arg(Many(r.leftOut, "vertex", "vertices"));
+  if (!r.faces.empty()) s += QString("; %1").arg(Many(r.faces.size(), "triangle", "triangles"));
   return s;
 }
 
@@ -282,8 +288,9 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     run.summary = Describe("Geodesic Poisson-disk LOD", run.result, p.domain.metric) +
                   QString("; radius %1; visiting order: %2").arg(r.radius).arg(kVisitOrders.NameOf(r.order));
     if (p.sampleNum > 0)
-      run.summary += QString("; %1 samples asked: radius found in %2 Poisson runs (%3 samples)%4")
-                         .arg(p.sampleNum).arg(r.iterations).arg(r.poissonCount)
+      run.summary += QString("; %1 asked: radius found in %2 (%3)%4")
+                         .arg(Many(p.sampleNum, "sample", "samples")).arg(Many(size_t(r.iterations), "Poisson run", "Poisson runs"))
+                         .arg(Many(r.poissonCount, "sample", "samples"))
                          .arg(r.trimmed ? ", thinned to the count" : "");
     run.values = {{"sample_num", QVariant(int(r.vertIndex.size()))}, {"radius", QVariant(double(r.radius))},
                   {"covering_radius", QVariant(r.coveringRadius)}, {"iterations", QVariant(r.iterations)}};
@@ -339,9 +346,10 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
       sum += v;
     }
     const double mean = sum / std::max<size_t>(1, all.size());
-    run.summary = QString("Normal variation curvature (eq. 1, k = %1) in the vertex quality of %2 vertices: "
-                          "min %3, mean %4, max %5; %6 normals estimated")
-                      .arg(d.normalNeighbours).arg(all.size()).arg(lo).arg(mean).arg(hi).arg(domain.estimatedNormals);
+    run.summary = QString("Normal variation curvature (eq. 1, k = %1) in the vertex quality of %2: "
+                          "min %3, mean %4, max %5; %6 estimated")
+                      .arg(d.normalNeighbours).arg(Many(all.size(), "vertex", "vertices")).arg(lo).arg(mean).arg(hi)
+                      .arg(Many(domain.estimatedNormals, "normal", "normals"));
     run.values = {{"min", QVariant(lo)}, {"mean", QVariant(mean)}, {"max", QVariant(hi)}};
     return run;
   });
@@ -362,8 +370,8 @@ std::vector<LodLevel> ParseLevels(const QString& list, size_t n) {
     const double count = percent ? vcg_ext::PercentOf(x, n) : x;  // at most n or x: no overflow here
     if (count < 1 || count > double(n))  // compared as doubles, converted only once in range
       throw std::invalid_argument(std::string(kLevels) + ": " + item.toStdString() + " gives " +
-                                  (count < 1 ? std::string("no") : "more than " + std::to_string(n)) +
-                                  " samples; a level needs 1 to " + std::to_string(n) + " (the layer's vertices)");
+                                  (count < 1 ? std::string("no") : "more than " + vcg_ext::Counted(n)) +
+                                  " samples; a level needs 1 to " + vcg_ext::Counted(n) + " (the layer's vertices)");
     LodLevel l;
     l.count = size_t(count);
     l.suffix = " LOD " + item;
@@ -411,10 +419,10 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     run.coarsest = r.coarsest;
     run.useInputNormals = p.domain.useInputNormals;
     QStringList counts;
-    for (size_t c : r.counts) counts << QString::number(c);
+    for (size_t c : r.counts) counts << Grouped(c);
     run.summary = Describe("Geodesic LOD pyramid", run.result, p.domain.metric) +
-                  QString("; levels of %1 samples, each a subset of the finer ones; finest radius %2 (%3 Poisson runs)")
-                      .arg(counts.join(", ")).arg(r.radius).arg(r.iterations);
+                  QString("; levels of %1 samples, each a subset of the finer ones; finest radius %2 (%3)")
+                      .arg(counts.join(", ")).arg(r.radius).arg(Many(size_t(r.iterations), "Poisson run", "Poisson runs"));
     run.values = {{"level_num", QVariant(int(r.counts.size()))}, {"sample_num", QVariant(int(r.counts[0]))},
                   {"radius", QVariant(r.radius)}};
     return run;
@@ -446,11 +454,11 @@ LodRun RunNormalProjection(const CMeshO&, const ParamSource& src, vcg::CallBackP
     p.maxDistance = src.number(kMaxDist);
     const auto r = vcg_ext::NormalProjection<CMeshO>::Compute(*ref, *surf, p, cb);
     LodRun run;
-    run.summary = QString("Normal projection deviation of %1 points: mean %2, RMS %3, max %4; %5% of the normal lines "
+    run.summary = QString("Normal projection deviation of %1: mean %2, RMS %3, max %4; %5% of the normal lines "
                           "miss the surface within %6")
-                      .arg(r.pointNum).arg(r.mean).arg(r.rms).arg(r.max).arg(100 * r.missFraction())
+                      .arg(Many(r.pointNum, "point", "points")).arg(r.mean).arg(r.rms).arg(r.max).arg(100 * r.missFraction())
                       .arg(p.maxDistance);
-    if (r.noNormal) run.summary += QString("; %1 points without a normal skipped").arg(r.noNormal);
+    if (r.noNormal) run.summary += QString("; %1 without a normal skipped").arg(Many(r.noNormal, "point", "points"));
     run.values = {{"point_num", QVariant(int(r.pointNum))}, {"hit_num", QVariant(int(r.hitNum))},
                   {"miss_fraction", QVariant(r.missFraction())}, {"min", QVariant(r.min)},
                   {"mean", QVariant(r.mean)}, {"rms", QVariant(r.rms)}, {"max", QVariant(r.max)}};
@@ -534,15 +542,22 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
     }
     run.levels = std::move(levels);
     QStringList sizes;
-    for (const LodLevel& l : run.levels) sizes << QString::number(l.count);
+    for (const LodLevel& l : run.levels) sizes << Grouped(l.count);
     const double maxError = r.error.back();
     run.summary = QString("Height-field LOD: levels of %1 of %2 vertices, each a subset of the finer ones; the finest "
                           "level's last vertex was %3 from its TIN; separation %4 in %5")
-                      .arg(sizes.join(", ")).arg(vertOf.size()).arg(maxError).arg(p.separation)
+                      .arg(sizes.join(", ")).arg(Grouped(vertOf.size())).arg(maxError).arg(p.separation)
                       .arg(kSeparationSpaces.NameOf(p.inHeight));
     if (r.separatedPrefix < r.samples.size())
       run.summary += QString(" (kept up to %1 vertices: the points cover too little of their hull)")
-                         .arg(r.separatedPrefix);
+                         .arg(Grouped(r.separatedPrefix));
+    // A careless user's bunny: its TIN keeps one height per x, y, the far side is lost. 1%: a DEM's
+    // grid has none; a city's walls and overhangs, little.
+    const double down = vcg_ext::HeightFieldLod::DownwardShare(in);
+    if (down > 0.01)
+      run.summary += QString("; %1% of the layer's triangles, seen from above, face down: it is no height field, and "
+                             "a TIN keeps one height at each x, y")
+                         .arg(100 * down, 0, 'f', 0);
     run.values = {{"level_num", QVariant(int(run.levels.size()))}, {"sample_num", QVariant(int(p.sampleNum))},
                   {"max_error", QVariant(maxError)}};
     return run;

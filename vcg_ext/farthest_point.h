@@ -44,7 +44,7 @@ class FarthestPoint {
   static Result Compute(size_t n, Propagator& prop, const Param& p, Progress progress = Progress(nullptr)) {
     const size_t m = p.candidates ? p.candidates->size() : n;
     if (p.sampleNum < 1 || p.sampleNum > m)
-      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(m) +
+      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + Counted(m) +
                                              "), got " + std::to_string(p.sampleNum));
     const Scalar inf = std::numeric_limits<Scalar>::infinity();
     std::vector<Scalar> dist(n, inf);

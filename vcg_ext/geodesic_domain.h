@@ -92,7 +92,7 @@ class GeodesicDomain {
     if (n == 1) throw InputError(Field::Points, "holds a single point: there is nothing to sample from");
     const vcg::Box3<Scalar> box = FiniteBox(ps);
     if (!(box.Diag() > 0))
-      throw InputError(Field::Points, "holds " + std::to_string(n) + " points at one position: there is no surface to sample");
+      throw InputError(Field::Points, "holds " + Counted(n) + " points at one position: there is no surface to sample");
     if (p.mode == GeodesicMode::Mesh && !hasTriangles && p.metric != Metric::Euclidean)
       throw InputError(Field::GeodesicMode, "Mesh needs faces; the input has none "
                                              "(use PointGraph or Auto for point clouds)");
@@ -220,7 +220,7 @@ class GeodesicDomain {
   }
   /// "30 points in triangles (30 vertices in none are not sampled with mesh geodesics)"
   static std::string InTriangles(size_t kept, size_t leftOut) {
-    return std::to_string(kept) + " points in triangles (" + std::to_string(leftOut) + (leftOut == 1 ? " vertex" : " vertices") +
+    return Counted(kept) + " points in triangles (" + Counted(leftOut) + (leftOut == 1 ? " vertex" : " vertices") +
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
@@ -334,7 +334,7 @@ class GeodesicDomain {
   static void CheckNeighbours(Field field, int k, size_t n) {
     if (k < 1) throw InputError(field, "must be at least 1 (got " + std::to_string(k) + ")");
     if (size_t(k) >= n)
-      throw InputError(field, "must be smaller than the number of points (" + std::to_string(n) + "), got " +
+      throw InputError(field, "must be smaller than the number of points (" + Counted(n) + "), got " +
                                   std::to_string(k) + ": lower it or give more points");
   }
 };

@@ -13,6 +13,7 @@
 #include "geodesic_fps_lod.h"
 #include "geodesic_delaunay.h"
 #include "geodesic_poisson_lod.h"
+#include "input_error.h"
 
 namespace vcg_ext {
 
@@ -47,8 +48,8 @@ class GeodesicLodPyramid {
     for (size_t k = 0; k + 1 < c.size(); ++k)
       if (c[k + 1] >= c[k])
         throw InputError(Field::Levels, "must get strictly coarser: level " + std::to_string(k + 2) + " has " +
-                                    std::to_string(c[k + 1]) + " samples, level " + std::to_string(k + 1) + " " +
-                                    std::to_string(c[k]));
+                                    Counted(c[k + 1]) + " samples, level " + std::to_string(k + 1) + " " +
+                                    Counted(c[k]));
   }
 
   /// Throws InputError for a parameter that no domain can satisfy.

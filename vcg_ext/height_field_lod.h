@@ -78,6 +78,24 @@ class HeightFieldLod {
     return s.Run(progress);
   }
 
+  /// Of a triangle mesh's area projected on x, y, the share whose triangles
+  /// face the minority way along z: 0 for a height field's surface, whichever
+  /// way its triangles wind; 1/2 for a closed one (a vertical line crosses it
+  /// going in as often as out). Walls add nearly nothing: their projection is
+  /// thin. Costs O(faces).
+  template <class MeshType>
+  static double DownwardShare(const MeshType& m) {
+    double up = 0, down = 0;
+    for (const auto& f : m.face) {
+      if (f.IsD()) continue;
+      const auto a = f.cP(0), b = f.cP(1), c = f.cP(2);
+      // z of the cross product: twice the signed area of the triangle's projection
+      const double z = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+      (z > 0 ? up : down) += std::abs(z);
+    }
+    return up + down > 0 ? std::min(up, down) / (up + down) : 0;
+  }
+
   /// The Delaunay TIN in x, y of the points `subset` (indices into xyz), as
   /// indices into subset, counter-clockwise: the TIN of a prefix of samples.
   template <class Scalar>
@@ -152,8 +170,8 @@ class HeightFieldLod {
       const auto [hull, distinct] = HullAndDistinct();
       r.hullSize = hull.size();
       if (p_.sampleNum < hull.size() || p_.sampleNum > distinct)
-        throw InputError(Field::SampleNum, "must be between the " + std::to_string(hull.size()) +
-                                               " points on the hull in x, y and the " + std::to_string(distinct) +
+        throw InputError(Field::SampleNum, "must be between the " + Counted(hull.size()) +
+                                               " points on the hull in x, y and the " + Counted(distinct) +
                                                " distinct points in x, y, got " + std::to_string(p_.sampleNum));
       r.area = Area(hull);
       r.separatedPrefix = p_.sampleNum;

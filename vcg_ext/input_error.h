@@ -61,9 +61,20 @@ inline std::string Shown(double x) {
   return s;
 }
 
+/// A count as every message shows it: digits grouped by thousands ("3,595"),
+/// as the Python front end and the command write theirs.
+inline std::string Counted(size_t n) {
+  std::string digits = std::to_string(n), s;
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) s += ',';
+    s += digits[k];
+  }
+  return s;
+}
+
 /// The one wording of points with NaN or infinite coordinates.
 inline InputError NonFiniteCoordinates(size_t bad) {
-  return InputError(Field::Coordinates, "holds " + std::to_string(bad) + (bad == 1 ? " point" : " points") +
+  return InputError(Field::Coordinates, "holds " + Counted(bad) + (bad == 1 ? " point" : " points") +
                                             " with NaN or infinite coordinates");
 }
 

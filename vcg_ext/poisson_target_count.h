@@ -196,7 +196,7 @@ class PoissonTargetCount {
   static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr)) {
     const size_t candidates = p.order->size();  // the points that may become samples
     if (p.sampleNum < 1 || p.sampleNum > candidates)
-      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + std::to_string(candidates) +
+      throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + Counted(candidates) +
                                              "), got " + std::to_string(p.sampleNum));
     CheckTolerance(p.tolerance);
     RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);

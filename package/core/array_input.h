@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vcg_ext/input_error.h>
 #include <vcg_ext/mesh_triangles.h>
 #include <vcg_ext/point_set.h>
 
@@ -38,7 +39,7 @@ void WithFloatType(const Array2& a, const char* name, F&& f) {
 /// The one wording of `bad` rows of points with NaN or infinite coordinates
 /// ("2 rows have ..."), for the arrays and, through the module, the files.
 inline std::string NonFiniteRows(size_t bad) {
-  return std::to_string(bad) + (bad == 1 ? " row has" : " rows have") + " NaN or infinite coordinates";
+  return vcg_ext::Counted(bad) + (bad == 1 ? " row has" : " rows have") + " NaN or infinite coordinates";
 }
 
 /// Points (n x 3) and optional normals (n x 3; rows of zeros or NaN count as
@@ -66,8 +67,8 @@ inline vcg_ext::PointSet<double> ReadPoints(const Array2& points, const Array2* 
   if (normals) {
     CheckColumns(*normals, "normals");
     if (normals->shape(0) != n)
-      throw std::invalid_argument("normals must have one row per point (" + std::to_string(n) + "), got " +
-                                  std::to_string(normals->shape(0)));
+      throw std::invalid_argument("normals must have one row per point (" + vcg_ext::Counted(n) + "), got " +
+                                  vcg_ext::Counted(normals->shape(0)));
     WithFloatType(*normals, "normals", [&](auto tag) {
       typedef decltype(tag) T;
       for (size_t i = 0; i < n; ++i)

@@ -149,7 +149,7 @@ def point_arrays(points, normals):
                          "at least 2 are needed to sample from")
     n = _float_array(normals, "normals", allow_none=True)
     if n is not None and n.shape[0] != p.shape[0]:
-        raise InputError(f"normals must have one row per point ({p.shape[0]}), got {n.shape[0]}")
+        raise InputError(f"normals must have one row per point ({p.shape[0]:,}), got {n.shape[0]:,}")
     return p, n
 
 
@@ -179,7 +179,7 @@ def whole_number(x, name: str, lo: int, hi: Optional[int] = None, hi_text: str =
         raise InputError(f"{name} must be an integer, not {type(x).__name__} ({x!r})")
     x = int(x)
     if x < lo or (hi is not None and x > hi):
-        bound = f"from {lo} to {hi}{hi_text}" if hi is not None else f"at least {lo}"
+        bound = f"from {lo:,} to {hi:,}{hi_text}" if hi is not None else f"at least {lo:,}"
         raise InputError(f"{name} must be {bound}, got {x}")
     return x
 
@@ -344,7 +344,7 @@ class DomainOptions:
             if problem:
                 raise InputError(f"points {problem}")
         most = None if n is None else n - 1
-        below_n = "" if n is None else f" (below the number of points, {n})"
+        below_n = "" if n is None else f" (below the number of points, {n:,})"
         d.normal_neighbors = whole_number(self.normal_neighbors, "normal_neighbors", 1, most, below_n)
         d.graph_neighbors = whole_number(self.graph_neighbors, "graph_neighbors", 1, most if point_graph else None,
                                          below_n)
@@ -412,7 +412,7 @@ def _indices(values, n: int, name: str) -> np.ndarray:
         raise InputError(f"{name} must be a non-empty 1-D array of point indices")
     if a.dtype == bool:
         if len(a) != n:
-            raise InputError(f"{name} as a mask must have one entry per point ({n}), got {len(a)}")
+            raise InputError(f"{name} as a mask must have one entry per point ({n:,}), got {len(a):,}")
         a = np.flatnonzero(a)
         if a.size == 0:
             raise InputError(f"{name} selects no point")
@@ -538,7 +538,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
         if isinstance(item, str):
             c = _core.percent_of(level_percentage(item), n)
             if c < 1:
-                raise InputError(f"levels: {item!r} of {n} points gives no samples")
+                raise InputError(f"levels: {item!r} of {n:,} points gives no samples")
             counts.append(int(c))
         else:
             counts.append(whole_number(item, "levels", 1, n, " (the number of points)"))

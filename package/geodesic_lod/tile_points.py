@@ -11,5 +11,5 @@ MINIMUM = 1000       # below this the halo would outweigh the tile
 def checked(tile_points, name: str = "tile_points") -> int:
     """tile_points, or InputError naming it as `name` (the command's option, the functions' argument)."""
     if isinstance(tile_points, bool) or not isinstance(tile_points, int) or tile_points < MINIMUM:
-        raise InputError(f"{name} must be a whole number of at least {MINIMUM}, got {tile_points!r}")
+        raise InputError(f"{name} must be a whole number of at least {MINIMUM:,}, got {tile_points!r}")
     return tile_points

@@ -116,7 +116,7 @@ def test_dragon_100k_degenerate_mesh(plugin, shared):
     ms.set_current_mesh(0)
     res = ms.apply_filter(FPS, samplenum=n, geodesicmode="Point graph (Dijkstra)")
     assert res["sample_num"] == n  # the point graph keeps the unreferenced vertices
-    with pytest.raises(pymeshlab.PyMeshLabException, match=rf"samplenum must be at most the {n - 43} points in "
+    with pytest.raises(pymeshlab.PyMeshLabException, match=rf"samplenum must be at most the {n - 43:,} points in "
                                                            r"triangles \(43 vertices in none are not sampled"):
         ms.set_current_mesh(0)
         ms.apply_filter(FPS, samplenum=n)  # mesh geodesics leave the 43 unreferenced vertices out

@@ -135,7 +135,7 @@ def test_the_cluster_functions_raise_an_input_error_for_a_bad_tile_size(tmp_path
     las.header.scales = [1e-3] * 3
     las.xyz = P
     las.write(tmp_path / "cloud.las")
-    words = f"tile_points must be a whole number of at least 1000, got {tile_points!r}"
+    words = f"tile_points must be a whole number of at least 1,000, got {tile_points!r}"
     with pytest.raises(gl.InputError, match=words.replace(".", r"\.")):
         distributed.lod_files([npy_cloud], tmp_path / "lod", radius=0.5, tile_points=tile_points, client=_Client(0, 0))
     with pytest.raises(gl.InputError, match=words.replace(".", r"\.")):

@@ -103,7 +103,7 @@ def test_progress_and_interrupt(dem):
     (dict(count=10, rate=5), "exactly one of count or rate"),
     (dict(), "exactly one of count or rate"),
     (dict(count=10, separation=-1), "separation must be a non-negative"),
-    (dict(count=10**6), "count must be from 1 to 3600"),
+    (dict(count=10**6), "count must be from 1 to 3,600"),
     (dict(rate="x"), "rate must be a percentage"),
     (dict(count=10, separation_in="z"), "separation_in must be 'xyz' or 'xy'"),
 ])
@@ -121,7 +121,7 @@ def test_bad_points_are_named(dem):
     with pytest.raises(gl.InputError, match="points: 1 row has NaN"):
         gl.height_field_lod(bad, count=10)
     twice = np.vstack([dem, dem + [0, 0, 5]])
-    with pytest.raises(gl.InputError, match="3600 distinct points in x, y"):
+    with pytest.raises(gl.InputError, match="3,600 distinct points in x, y"):
         gl.height_field_lod(twice, count=3601)
     with pytest.raises(gl.InputError, match="k must be from 4"):
         gl.height_field_lod(dem, count=10).tin(3)

@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 #include <common/mlexception.h>
+#include <vcg/complex/algorithms/create/platonic.h>
 #include "lod_layers.h"
 
 namespace {
@@ -512,6 +513,53 @@ TEST(LodFilters, HeightFieldMakesNestedTinLayersOfInputVertices) {
   // Points only: no faces.
   p.set("output", 1);
   EXPECT_TRUE(OutputLevels(RunHeightField(in, p, nullptr)).front().faces.empty());
+}
+
+TEST(LodFilters, LevelMessagesGroupCountsByThousands) {
+  // As the command words them: "3,595", not "3595".
+  Mesh in;
+  Bumpy(in, 60);  // 3600 vertices
+  auto error = [&](auto params, auto run, const char* levels) {
+    MapSource p(in, params);
+    p.set("levels", levels);
+    try {
+      run(in, p, nullptr);
+    } catch (const MLException& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (auto [params, run] : {std::pair{PyramidParams, RunPyramid}, std::pair{HeightFieldParams, RunHeightField}}) {
+    const std::string coarser = error(params, run, "2000,3000"), above = error(params, run, "4000");
+    EXPECT_NE(coarser.find("levels must get strictly coarser: level 2 has 3,000 samples, level 1 2,000"),
+              std::string::npos) << coarser;
+    EXPECT_NE(above.find("levels: 4000 gives more than 3,600 samples; a level needs 1 to 3,600 (the layer's vertices)"),
+              std::string::npos) << above;
+  }
+  MapSource fps(in, FpsLodParams);
+  fps.set("samplenum", 5000);
+  try {
+    RunFpsLod(in, fps, nullptr);
+    ADD_FAILURE() << "no error";
+  } catch (const MLException& e) {
+    EXPECT_NE(std::string(e.what()).find("samplenum must be between 1 and the number of points (3,600), got 5000"),
+              std::string::npos) << e.what();
+  }
+}
+
+TEST(LodFilters, HeightFieldTellsWhenTheLayerIsNoHeightField) {
+  Mesh grid;
+  Bumpy(grid, 30, true);
+  MapSource p(grid, HeightFieldParams);
+  const QString quiet = RunHeightField(grid, p, nullptr).summary;
+  EXPECT_FALSE(quiet.contains("face down")) << quiet.toStdString();
+  Mesh ball;  // a closed surface: half of it, seen from above, faces down
+  vcg::tri::Sphere(ball, 3);
+  vcg::tri::UpdateBounding<CMeshO>::Box(ball);
+  MapSource q(ball, HeightFieldParams);
+  const QString told = RunHeightField(ball, q, nullptr).summary;
+  EXPECT_TRUE(told.contains("; 50% of the layer's triangles, seen from above, face down: it is no height field"))
+      << told.toStdString();
 }
 
 TEST(LodFilters, HeightFieldNamesBadParameters) {

@@ -1,12 +1,15 @@
 // vcg_ext/height_field_lod.h: exact counts, nested prefixes, separation of every
 // prefix, the greedy choice (each sample the point farthest from the TIN before
-// it), a TIN that covers the hull, and the refusals.
+// it), a TIN that covers the hull, the refusals, and the share of a mesh facing
+// down (what tells a height field from a closed surface).
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
+#include <vcg/complex/algorithms/create/platonic.h>
 #include <vcg_ext/height_field_lod.h>
+#include "test_mesh.h"
 
 namespace height_field_lod_test {
 
@@ -240,3 +243,19 @@ TEST(HeightFieldLod, RefusesBadInput) {
 }
 
 }  // namespace height_field_lod_test
+
+TEST(HeightFieldLod, DownwardShareTellsAHeightFieldFromAClosedSurface) {
+  test::TMesh grid;
+  test::GridMesh(grid, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.3f); });
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(grid), 0);
+  for (auto& f : grid.face) std::swap(f.V(0), f.V(1));  // wound the other way: still one height at each x, y
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(grid), 0);
+  test::TMesh sphere;
+  vcg::tri::Sphere(sphere, 3);
+  EXPECT_NEAR(vcg_ext::HeightFieldLod::DownwardShare(sphere), 0.5, 1e-6);
+  for (auto& f : sphere.face)  // deleted faces do not count: the lower half left is a height field
+    if (((f.cP(1) - f.cP(0)) ^ (f.cP(2) - f.cP(0)))[2] > 0) vcg::tri::Allocator<test::TMesh>::DeleteFace(sphere, f);
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(sphere), 0);
+  test::TMesh none;
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(none), 0);
+}

@@ -34,7 +34,18 @@ TEST(InputError, NonFiniteCoordinatesCountsThePointsInOneWording) {
   EXPECT_STREQ(one.what(), "holds 1 point with NaN or infinite coordinates");
   const vcg_ext::InputError many = vcg_ext::NonFiniteCoordinates(1234567);
   EXPECT_EQ(many.field, Field::Coordinates);
-  EXPECT_STREQ(many.what(), "holds 1234567 points with NaN or infinite coordinates");
+  EXPECT_STREQ(many.what(), "holds 1,234,567 points with NaN or infinite coordinates");
+}
+
+TEST(InputError, CountsAreGroupedByThousands) {
+  // As the Python front end and the command count (f"{n:,}"): a layer's millions read at a glance.
+  EXPECT_EQ(vcg_ext::Counted(0), "0");
+  EXPECT_EQ(vcg_ext::Counted(999), "999");
+  EXPECT_EQ(vcg_ext::Counted(1000), "1,000");
+  EXPECT_EQ(vcg_ext::Counted(3595), "3,595");
+  EXPECT_EQ(vcg_ext::Counted(100000), "100,000");
+  EXPECT_EQ(vcg_ext::Counted(14000001), "14,000,001");
+  EXPECT_EQ(vcg_ext::Counted(size_t(-1)), "18,446,744,073,709,551,615");
 }
 
 TEST(InputError, NumbersAreShownAsTheyWereGiven) {
