@@ -551,10 +551,9 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
     if (r.separatedPrefix < r.samples.size())
       run.summary += QString(" (kept up to %1 vertices: the points cover too little of their hull)")
                          .arg(Grouped(r.separatedPrefix));
-    // A careless user's bunny: its TIN keeps one height per x, y, the far side is lost. 1%: a DEM's
-    // grid has none; a city's walls and overhangs, little.
+    // A careless user's bunny: its TIN keeps one height per x, y, the far side is lost.
     const double down = vcg_ext::HeightFieldLod::DownwardShare(in);
-    if (down > 0.01)
+    if (down > vcg_ext::HeightFieldLod::kNoHeightFieldAbove)
       run.summary += QString("; %1% of the layer's triangles, seen from above, face down: it is no height field, and "
                              "a TIN keeps one height at each x, y")
                          .arg(100 * down, 0, 'f', 0);

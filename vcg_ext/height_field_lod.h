@@ -82,19 +82,24 @@ class HeightFieldLod {
   /// face the minority way along z: 0 for a height field's surface, whichever
   /// way its triangles wind; 1/2 for a closed one (a vertical line crosses it
   /// going in as often as out). Walls add nearly nothing: their projection is
-  /// thin. Costs O(faces).
+  /// thin. Costs O(faces). Over the live faces of a vcglib mesh:
   template <class MeshType>
   static double DownwardShare(const MeshType& m) {
-    double up = 0, down = 0;
-    for (const auto& f : m.face) {
-      if (f.IsD()) continue;
-      const auto a = f.cP(0), b = f.cP(1), c = f.cP(2);
-      // z of the cross product: twice the signed area of the triangle's projection
-      const double z = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
-      (z > 0 ? up : down) += std::abs(z);
-    }
-    return up + down > 0 ? std::min(up, down) / (up + down) : 0;
+    Facing facing;
+    for (const auto& f : m.face)
+      if (!f.IsD()) facing.Add(f.cP(0), f.cP(1), f.cP(2));
+    return facing.Share();
   }
+  /// The same over `xyz` (x, y, z each) and index triples into it.
+  template <class Scalar>
+  static double DownwardShare(const Scalar* xyz, const std::vector<std::array<int, 3>>& triangles) {
+    Facing facing;
+    for (const auto& t : triangles) facing.Add(xyz + 3 * size_t(t[0]), xyz + 3 * size_t(t[1]), xyz + 3 * size_t(t[2]));
+    return facing.Share();
+  }
+  /// Above this DownwardShare a front end tells its user the surface is no
+  /// height field: a DEM's grid has none, a city's walls and overhangs little.
+  static constexpr double kNoHeightFieldAbove = 0.01;
 
   /// The Delaunay TIN in x, y of the points `subset` (indices into xyz), as
   /// indices into subset, counter-clockwise: the TIN of a prefix of samples.
@@ -109,6 +114,18 @@ class HeightFieldLod {
   }
 
  private:
+  /// The projected area on x, y of triangles facing up and down.
+  struct Facing {
+    double up = 0, down = 0;
+    template <class P>
+    void Add(const P& a, const P& b, const P& c) {
+      // z of the cross product: twice the signed area of the triangle's projection
+      const double z = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+      (z > 0 ? up : down) += std::abs(z);
+    }
+    double Share() const { return up + down > 0 ? std::min(up, down) / (up + down) : 0; }
+  };
+
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Point = K::Point_2;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // the vertex's index

@@ -1,7 +1,8 @@
 #ifndef GEODESIC_LOD_PACKAGE_HEIGHT_FIELD_BINDINGS_H
 #define GEODESIC_LOD_PACKAGE_HEIGHT_FIELD_BINDINGS_H
 // _core's height-field LOD (geodesic_lod/height_field.py): greedy insertion
-// under a Poisson-disk constraint, and the TIN of any prefix of its samples.
+// under a Poisson-disk constraint, the TIN of any prefix of its samples, and
+// the share of a mesh facing down (which tells a height field from an object).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <cstdint>
@@ -63,6 +64,14 @@ inline nb::ndarray<nb::numpy, int64_t> HeightFieldTin(
   return Triangles(TinOfSubset(xyz, s));
 }
 
+/// Of the triangles' area seen from above, the share facing down (vcg_ext's DownwardShare).
+inline double DownwardShare(const Array2& points, const Array2& faces) {
+  const std::vector<double> xyz = FlatPoints(points);
+  const vcg_ext::MeshTriangles t = ReadFaces(faces, xyz.size() / 3);
+  nb::gil_scoped_release unlocked;
+  return vcg_ext::HeightFieldLod::DownwardShare(xyz.data(), t.tri);
+}
+
 inline void BindHeightField(nb::module_& m) {
   nb::class_<vcg_ext::HeightFieldLod::Param>(m, "HeightFieldParam")
       .def(nb::init<>())
@@ -71,6 +80,10 @@ inline void BindHeightField(nb::module_& m) {
       .def_rw("in_height", &vcg_ext::HeightFieldLod::Param::inHeight);
   m.def("height_field_lod", &HeightFieldLod, "points"_a, "param"_a, "progress"_a.none());
   m.def("height_field_tin", &HeightFieldTin, "points"_a, "subset"_a);
+  m.def("downward_share", &DownwardShare, "points"_a, "faces"_a,
+        "Of the triangles' area seen from above, the share facing down: 0 on a height field, 1/2 on a closed "
+        "surface");
+  m.attr("NO_HEIGHT_FIELD_ABOVE") = vcg_ext::HeightFieldLod::kNoHeightFieldAbove;
 }
 
 }  // namespace geodesic_lod_package

@@ -102,6 +102,33 @@ def test_height_field_levels_are_prefixes_of_one_lod(tmp_path):
     assert laspy.read(str(tmp_path / "one.laz")).points.array.tobytes() == records[np.sort(lod[:150])].tobytes()
 
 
+def closed_ply(path, n=2000):
+    """A closed triangle mesh (the convex hull of a sphere's points, wound outwards) as a PLY."""
+    from scipy.spatial import ConvexHull
+    p = bumpy_sphere(n)
+    hull = ConvexHull(p)
+    tris = hull.simplices.copy()
+    outward = np.einsum("ij,ij->i", np.cross(p[tris[:, 1]] - p[tris[:, 0]], p[tris[:, 2]] - p[tris[:, 0]]),
+                        hull.equations[:, :3]) > 0
+    tris[~outward] = tris[~outward][:, ::-1]
+    v = np.array([tuple(r) for r in p], dtype=[("x", "f8"), ("y", "f8"), ("z", "f8")])
+    faces = np.array([(t,) for t in tris.astype(np.int32)], dtype=[("vertex_indices", "i4", (3,))])
+    plyfile.PlyData([plyfile.PlyElement.describe(v, "vertex"), plyfile.PlyElement.describe(faces, "face")]).write(
+        str(path))
+    return path
+
+
+@pytest.mark.parametrize("closed", [True, False])
+def test_height_field_of_a_mesh_that_is_none_is_noted(tmp_path, closed):
+    src = closed_ply(tmp_path / "in.ply") if closed else ply_mesh(tmp_path / "in.ply")[0]
+    r = run(src, "-o", tmp_path / "tin.ply", "--height-field", "--rate", "10%", "-q")
+    assert r.returncode == 0, r.stderr
+    note = f"note: {src}: 50% of its triangles, seen from above, face down: it is no height field"
+    assert (note in r.stderr) == closed, r.stderr
+    assert r.stderr.count("\n") == int(closed)
+    assert (tmp_path / "tin.ply").is_file()
+
+
 @pytest.mark.parametrize("rate, noted", [("0.5", True), ("0.5%", False), ("5", False)])
 def test_a_rate_below_one_without_a_percent_sign_is_noted_and_taken_as_a_percentage(tmp_path, rate, noted):
     src = ply_cloud(tmp_path / "in.ply", n=4000)

@@ -258,4 +258,15 @@ TEST(HeightFieldLod, DownwardShareTellsAHeightFieldFromAClosedSurface) {
   EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(sphere), 0);
   test::TMesh none;
   EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(none), 0);
+  // Over arrays, as the Python package calls it: the same share.
+  test::TMesh ball;
+  vcg::tri::Sphere(ball, 3);
+  std::vector<float> xyz;
+  for (const auto& v : ball.vert) xyz.insert(xyz.end(), {v.cP()[0], v.cP()[1], v.cP()[2]});
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& f : ball.face)
+    tri.push_back({int(vcg::tri::Index(ball, f.cV(0))), int(vcg::tri::Index(ball, f.cV(1))),
+                   int(vcg::tri::Index(ball, f.cV(2)))});
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(xyz.data(), tri), vcg_ext::HeightFieldLod::DownwardShare(ball));
+  EXPECT_EQ(vcg_ext::HeightFieldLod::DownwardShare(xyz.data(), {}), 0);
 }
