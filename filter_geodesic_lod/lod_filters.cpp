@@ -195,10 +195,10 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
                              ? QString(" (chosen: %1% of the points' neighbourhoods scatter)")
                                    .arg(100 * r.scatterShare, 0, 'f', 1)
                              : QString();
-  QString s = QString("%1: %2 samples of %3 points (%4%) in the %5 metric%6, %7 geodesics")
+  QString s = QString("%1: %2 of %3 (%4%) in the %5 metric%6, %7 geodesics")
                   .arg(what)
-                  .arg(Grouped(r.vertIndex.size()))
-                  .arg(Grouped(r.pointCount))
+                  .arg(Many(r.vertIndex.size(), "sample", "samples"))
+                  .arg(Many(r.pointCount, "point", "points"))
                   .arg(100.0 * r.vertIndex.size() / std::max<size_t>(1, r.pointCount), 0, 'f', 2)
                   .arg(kMetrics.NameOf(metric))
                   .arg(chosen)

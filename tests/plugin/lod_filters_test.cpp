@@ -545,6 +545,10 @@ TEST(LodFilters, LevelMessagesGroupCountsByThousands) {
     EXPECT_NE(std::string(e.what()).find("samplenum must be between 1 and the number of points (3,600), got 5000"),
               std::string::npos) << e.what();
   }
+  fps.set("samplenum", 1);  // and the log's counts, a singular where one
+  const QString log = RunFpsLod(in, fps, nullptr).summary;
+  EXPECT_TRUE(log.contains(": 1 sample of 3,600 points (0.03%)")) << log.toStdString();
+  EXPECT_TRUE(log.contains("; 1 connected part;")) << log.toStdString();
 }
 
 TEST(LodFilters, HeightFieldTellsWhenTheLayerIsNoHeightField) {
