@@ -121,7 +121,8 @@ def test_filters_menu_dialog_apply_and_export(gui, tmp_path):
     s.click(apply)
     s.wait_for("samples of", name="13_applied", timeout=120, region=LOG)
     log = " ".join(w[0] for w in s.words(s.shot("13_applied"), LOG))
-    count = int(re.search(r"(\d[\d,]*) samples of", log).group(1).replace(",", ""))  # "3,595 samples of"
+    # "3,595 samples of": OCR may read the separator as a full stop, or apart from the digits.
+    count = int(re.sub(r"\D", "", re.search(r"(\d(?:[\d,. ]*\d)?) samples of", log).group(1)))
     s.click(s.wait_for("Close", name="14_applied", region=DIALOG))
     # Hide the input layer (its eye, left of its row) to see the LOD alone.
     row = s.wait_for(name, name="15_layers", region=LAYERS)
