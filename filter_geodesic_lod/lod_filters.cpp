@@ -554,8 +554,8 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
     // A careless user's bunny: its TIN keeps one height per x, y, the far side is lost.
     const double down = vcg_ext::HeightFieldLod::DownwardShare(in);
     if (down > vcg_ext::HeightFieldLod::kNoHeightFieldAbove)
-      run.summary += QString("; %1% of the layer's triangles, seen from above, face down: it is no height field, and "
-                             "a TIN keeps one height at each x, y")
+      run.summary += QString("; %1% of the layer's triangles, seen from above, face down (an object's far side, "
+                             "overhangs, or triangles wound the other way): a TIN keeps one height at each x, y")
                          .arg(100 * down, 0, 'f', 0);
     run.values = {{"level_num", QVariant(int(run.levels.size()))}, {"sample_num", QVariant(int(p.sampleNum))},
                   {"max_error", QVariant(maxError)}};

@@ -79,10 +79,11 @@ class HeightFieldLod {
   }
 
   /// Of a triangle mesh's area projected on x, y, the share whose triangles
-  /// face the minority way along z: 0 for a height field's surface, whichever
-  /// way its triangles wind; 1/2 for a closed one (a vertical line crosses it
-  /// going in as often as out). Walls add nearly nothing: their projection is
-  /// thin. Costs O(faces). Over the live faces of a vcglib mesh:
+  /// face the minority way along z: 0 for a height field's surface wound one
+  /// way, either way; 1/2 for a closed one (a vertical line crosses it going in
+  /// as often as out). Walls add nearly nothing: their projection is thin.
+  /// Triangles wound against their neighbours count as facing down. Costs
+  /// O(faces). Over the live faces of a vcglib mesh:
   template <class MeshType>
   static double DownwardShare(const MeshType& m) {
     Facing facing;

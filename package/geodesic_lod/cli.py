@@ -392,8 +392,8 @@ def _height_field_levels(request: dict, source: point_files.PointFile, progress)
     if source.faces is not None:  # a careless user's statue: its TIN keeps one height per x, y
         down = _core.downward_share(source.points, source.faces)
         if down > _core.NO_HEIGHT_FIELD_ABOVE:
-            say(f"note: {source.path}: {100 * down:.0f}% of its triangles, seen from above, face down: it is no "
-                "height field, and a TIN keeps one height at each x, y")
+            say(f"note: {source.path}: {100 * down:.0f}% of its triangles, seen from above, face down (an object's "
+                "far side, overhangs, or triangles wound the other way): a TIN keeps one height at each x, y")
     indices = height_field_lod(source.points, count=max(counts), progress=progress).indices
     return [np.sort(indices[:c]) for c in counts]
 
