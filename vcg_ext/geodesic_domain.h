@@ -88,7 +88,7 @@ class GeodesicDomain {
   /// Throws InputError for the first bad input.
   static void Check(const PointSet<Scalar>& ps, bool hasTriangles, const Param& p) {
     const size_t n = ps.size();
-    if (n == 0) throw InputError(Field::Points, "holds no points");
+    if (n == 0) throw InputError(Field::Points, kNoPoints);
     if (n == 1) throw InputError(Field::Points, "holds a single point: there is nothing to sample from");
     const vcg::Box3<Scalar> box = FiniteBox(ps);
     if (!(box.Diag() > 0))

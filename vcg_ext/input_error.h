@@ -72,6 +72,10 @@ inline std::string Counted(size_t n) {
   return s;
 }
 
+/// The one wording of an empty point set, for every front end (the Python
+/// package reads it for files as well as arrays).
+inline constexpr const char* kNoPoints = "holds no points";
+
 /// The one wording of points with NaN or infinite coordinates.
 inline InputError NonFiniteCoordinates(size_t bad) {
   return InputError(Field::Coordinates, "holds " + Counted(bad) + (bad == 1 ? " point" : " points") +

@@ -289,6 +289,7 @@ NB_MODULE(_core, m) {
 
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;
+  m.attr("NO_POINTS") = vcg_ext::kNoPoints;
 
   m.def("stop_at_exit", &stop_at_exit::Arm, "line"_a, "signals"_a,
         "From now on each of `signals` writes `line` to stderr and ends the process with 128 + its number");

@@ -288,7 +288,7 @@ def too_few_points(n: int, neighbours: Optional[int] = None) -> Optional[str]:
     if n > neighbours:
         return None
     if n == 0:
-        return "holds no points"  # as the core says it
+        return _core.NO_POINTS
     return (f"holds {counted(n, 'point')}: at least {neighbours + 1} are needed (the neighbours each "
             "normal and the geodesics are built from)")
 
