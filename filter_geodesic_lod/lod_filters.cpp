@@ -20,7 +20,9 @@ namespace {
 
 // Counts as every message words them: "3,595", "1 connected part", "2 connected parts".
 QString Grouped(size_t n) { return QString::fromStdString(vcg_ext::Counted(n)); }
-QString Many(size_t n, const char* one, const char* many) { return Grouped(n) + " " + (n == 1 ? one : many); }
+QString Many(size_t n, const char* one, const char* many) {
+  return QString::fromStdString(vcg_ext::Counted(n, one, many));
+}
 
 // An enum parameter: each value beside its user-facing name, in the dialog's order.
 template <class E>

@@ -220,7 +220,7 @@ class GeodesicDomain {
   }
   /// "30 points in triangles (30 vertices in none are not sampled with mesh geodesics)"
   static std::string InTriangles(size_t kept, size_t leftOut) {
-    return Counted(kept) + " points in triangles (" + Counted(leftOut) + (leftOut == 1 ? " vertex" : " vertices") +
+    return Counted(kept) + " points in triangles (" + Counted(leftOut, "vertex", "vertices") +
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }

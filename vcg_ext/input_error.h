@@ -71,6 +71,10 @@ inline std::string Counted(size_t n) {
   }
   return s;
 }
+/// And its noun, singular for one: "1 point", "3,595 points".
+inline std::string Counted(size_t n, const char* one, const char* many) {
+  return Counted(n) + " " + (n == 1 ? one : many);
+}
 
 /// The one wording of an empty point set, for every front end (the Python
 /// package reads it for files as well as arrays).
@@ -78,7 +82,7 @@ inline constexpr const char* kNoPoints = "holds no points";
 
 /// The one wording of points with NaN or infinite coordinates.
 inline InputError NonFiniteCoordinates(size_t bad) {
-  return InputError(Field::Coordinates, "holds " + Counted(bad) + (bad == 1 ? " point" : " points") +
+  return InputError(Field::Coordinates, "holds " + Counted(bad, "point", "points") +
                                             " with NaN or infinite coordinates");
 }
 

@@ -39,7 +39,7 @@ void WithFloatType(const Array2& a, const char* name, F&& f) {
 /// The one wording of `bad` rows of points with NaN or infinite coordinates
 /// ("2 rows have ..."), for the arrays and, through the module, the files.
 inline std::string NonFiniteRows(size_t bad) {
-  return vcg_ext::Counted(bad) + (bad == 1 ? " row has" : " rows have") + " NaN or infinite coordinates";
+  return vcg_ext::Counted(bad, "row has", "rows have") + " NaN or infinite coordinates";
 }
 
 /// Points (n x 3) and optional normals (n x 3; rows of zeros or NaN count as
