@@ -16,10 +16,11 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <vcg/space/point3.h>
 #include "ball_share.h"
 #include "exact_moments.h"
+#include "least_eigenvector.h"
 #include "parallel.h"
 
 namespace vcg_ext {
@@ -59,12 +60,11 @@ class BorderOrder {
       if (m < 3) return;  // no plane to lie at the rim of
       const Eigen::Vector3d mean = ball.Sum() / double(m);
       const Eigen::Matrix3d cov = ball.Outer() / double(m) - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-      const Eigen::Vector3d n = eig.eigenvectors().col(0);  // eigenvalues ascend: the plane's normal
+      const LeastEigenvector eig(cov);
+      const Eigen::Vector3d n = eig.vector;  // the plane's normal
       const Eigen::Vector3d along = mean - n * n.dot(mean);
       // The spread of the points along the plane, per axis: the two larger eigenvalues.
-      const double spread = std::max(0.0, eig.eigenvalues()(1) + eig.eigenvalues()(2)) / 2;
+      const double spread = std::max(0.0, eig.values(1) + eig.values(2)) / 2;
       out[size_t(i)] = float(std::max(0.0, along.norm() - noise * std::sqrt(spread / double(m))) / R);
     }, progress, kWhat);
     return out;

@@ -11,9 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <vcg/space/point3.h>
 #include "knn_table.h"
+#include "least_eigenvector.h"
 #include "neighbourhood_covariance.h"
 #include "parallel.h"
 
@@ -54,12 +55,11 @@ class SurfaceDensity {
         const vcg::Point3d p = vcg::Point3d::Construct(pos[i]), m = nc.mean - p;
         const Eigen::Vector3d mean(m[0], m[1], m[2]);  // from the point
         const double far2 = (vcg::Point3d::Construct(pos[size_t(row[size_t(k - 1)])]) - p).SquaredNorm();  // rows ascend
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-        eig.computeDirect(cov, Eigen::ComputeEigenvectors);
-        const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
+        const LeastEigenvector eig(cov);
+        const Eigen::Vector3d l = eig.values.cwiseMax(0.0);  // ascending
         if (!(l(1) > 0) || !(far2 > 0)) continue;  // the points on one line through p, or at p
         const double flat = Flatness(l);
-        const Eigen::Vector3d n = eig.eigenvectors().col(0);
+        const Eigen::Vector3d n = eig.vector;
         const Eigen::Vector3d along = mean - n * n.dot(mean);
         const double spread = (l(1) + l(2)) / 2;
         const double offset = std::max(0.0, along.norm() - kRimNoise * std::sqrt(spread / double(k)));
