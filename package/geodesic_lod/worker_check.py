@@ -2,13 +2,16 @@
 footprint (with what every task imports) already fills past Dask's pause threshold would pause before any
 task, and a job on a cluster whose workers are lost (a nanny stops a worker past its limit) would wait for
 ever on tasks no worker runs. During the job, ``completed`` and ``gather`` wait for its tasks as Dask's
-``as_completed`` and ``Client.gather`` do, but not for ever where the last worker was lost: a nanny may fail
-to start its worker again, or start one that is stopped at once. A job stopped or failed ``settle``s its
-tasks before it clears its files.
+``as_completed`` and ``Client.gather`` do, but not for ever where the last worker was lost (a nanny may fail
+to start its worker again, or start one that is stopped at once), nor where the client's results are lost
+with their workers again and again (a worker stopped between tasks, its results computed again by the next
+one, stopped too: Dask's KilledWorker counts only tasks lost while they run). A job stopped or failed
+``settle``s its tasks before it clears its files.
 """
 from __future__ import annotations
 
 import time
+from collections import Counter
 from contextlib import contextmanager
 from typing import Optional
 
@@ -27,8 +30,9 @@ SETTLE_WAIT = 30.0
 
 
 class WorkersLost(ClusterJobError):
-    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT (`problem`
-    says how), which a caller that knows the job's tiles may add its tile size to."""
+    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT, or one of the
+    client's results was lost with its worker more often than Dask lets a task (`problem` says which), which
+    a caller that knows the job's tiles may add its tile size to."""
 
     def __reduce__(self):
         return WorkersLost, (self.problem,)
@@ -100,13 +104,23 @@ def _lost(event: dict, worker: Optional[str] = None) -> bool:
 
 class _Watch:
     """Raises WorkersLost once the cluster has had no worker for LOST_WORKER_WAIT, its last one lost
-    unexpectedly (a cluster scaled down to none waits for workers to join)."""
+    unexpectedly (a cluster scaled down to none waits for workers to join), or once a result the client
+    holds was lost with its worker more often than Dask's allowed-failures lets a task be: the nanny that
+    stops a worker past its limit while it holds the results, and the next once it has computed them again,
+    would otherwise go on for ever. The scheduler's event log is read at the first look and where the
+    workers changed since the last (a job's keys are its own: losses before the first look count too)."""
 
     def __init__(self, client):
-        self.client, self.alone_since = client, None
+        self.client, self.alone_since, self.workers = client, None, None
+        self.since = float("-inf")  # the last event counted, on the scheduler's clock
+        self.losses = Counter()  # per key of the client's, how often it was lost with its worker
 
     def look(self) -> None:
-        if self.client.scheduler_info()["workers"]:
+        workers = set(self.client.scheduler_info()["workers"])
+        if workers != self.workers:
+            self.workers = workers
+            self._count_losses()
+        if workers:
             self.alone_since = None
             return
         now = time.monotonic()
@@ -118,6 +132,18 @@ class _Watch:
                 raise WorkersLost(f"the cluster's last worker was lost during the job (it stopped unexpectedly, as "
                                   f"its nanny stops one past its memory limit) and none joined within "
                                   f"{LOST_WORKER_WAIT:g} s")
+
+    def _count_losses(self) -> None:
+        import dask
+        held = {str(k) for k in self.client.futures}
+        for t, e in _worker_events(self.client):
+            if t > self.since and _lost(e):
+                self.losses.update(held.intersection(map(str, e.get("lost-computed-tasks") or ())))
+            self.since = max(self.since, t)
+        times = max(self.losses.values(), default=0)
+        if times > dask.config.get("distributed.scheduler.allowed-failures", 3):
+            raise WorkersLost(f"the job's results were lost with their worker {times} times (it stopped "
+                              f"unexpectedly, as its nanny stops one past its memory limit)")
 
 
 def completed(client, futures):
