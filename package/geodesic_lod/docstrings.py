@@ -372,7 +372,8 @@ TEXTS = {
         workers may join later; where the last was lost unexpectedly (a nanny stops a worker past its
         memory limit) and none joins within {worker_check.LOST_WORKER_WAIT:g} s, or one is lost meanwhile, a
         ClusterJobError. So too where the last worker is lost during the job and none joins within
-        {worker_check.LOST_WORKER_WAIT:g} s (a nanny may fail to start its worker again), or where the job's
+        {worker_check.LOST_WORKER_WAIT:g} s (a nanny may fail to start its worker again), where every worker
+        stays paused for {worker_check.PAUSED_WAIT:g} s (its memory past Dask's pause threshold), or where the job's
         results are lost with their worker more often than Dask's ``distributed.scheduler.allowed-failures``
         lets a task be (a nanny stops a worker past its limit between tasks too).
     threads : int, optional

@@ -3,7 +3,8 @@ footprint (with what every task imports) already fills past Dask's pause thresho
 task, and a job on a cluster whose workers are lost (a nanny stops a worker past its limit) would wait for
 ever on tasks no worker runs. During the job, ``completed`` and ``gather`` wait for its tasks as Dask's
 ``as_completed`` and ``Client.gather`` do, but not for ever where the last worker was lost (a nanny may fail
-to start its worker again, or start one that is stopped at once), nor where the client's results are lost
+to start its worker again, or start one that is stopped at once), where every worker stays paused (memory
+not the tasks' results past Dask's pause threshold), nor where the client's results are lost
 with their workers again and again (a worker stopped between tasks, its results computed again by the next
 one, stopped too: Dask's KilledWorker counts only tasks lost while they run). A job stopped or failed
 ``settle``s its tasks before it clears its files.
@@ -22,6 +23,10 @@ from .task_memory import process_rss
 # How long a cluster whose last worker was lost unexpectedly is given to start another (a nanny
 # restarts a worker it stopped within seconds) before the job names the loss.
 LOST_WORKER_WAIT = 30.0
+# How long every worker of the cluster may stay paused (its memory past Dask's pause threshold, which
+# spilling its results to disk brings down within seconds where they are what fills it) before the job
+# names it: memory that is not the tasks' results keeps a worker paused for ever.
+PAUSED_WAIT = 120.0
 POLL = 1.0  # seconds between looks at the cluster while a job's tasks are pending
 # A gather's first try, in seconds, and its longest: one cut short starts its transfers again.
 FIRST_TRY, MAX_TRY = 8.0, 64.0
@@ -30,9 +35,10 @@ SETTLE_WAIT = 30.0
 
 
 class WorkersLost(ClusterJobError):
-    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT, or one of the
-    client's results was lost with its worker more often than Dask lets a task (`problem` says which), which
-    a caller that knows the job's tiles may add its tile size to."""
+    """The cluster's last worker was lost during a job, and none joined within LOST_WORKER_WAIT, its workers
+    stayed paused for PAUSED_WAIT, or one of the client's results was lost with its worker more often than
+    Dask lets a task (`problem` says which), which a caller that knows the job's tiles may add its tile size
+    to."""
 
     def __reduce__(self):
         return WorkersLost, (self.problem,)
@@ -104,26 +110,37 @@ def _lost(event: dict, worker: Optional[str] = None) -> bool:
 
 class _Watch:
     """Raises WorkersLost once the cluster has had no worker for LOST_WORKER_WAIT, its last one lost
-    unexpectedly (a cluster scaled down to none waits for workers to join), or once a result the client
+    unexpectedly (a cluster scaled down to none waits for workers to join), once every worker has been
+    paused for PAUSED_WAIT (as long as one runs, the job goes on), or once a result the client
     holds was lost with its worker more often than Dask's allowed-failures lets a task be: the nanny that
     stops a worker past its limit while it holds the results, and the next once it has computed them again,
     would otherwise go on for ever. The scheduler's event log is read at the first look and where the
     workers changed since the last (a job's keys are its own: losses before the first look count too)."""
 
     def __init__(self, client):
-        self.client, self.alone_since, self.workers = client, None, None
+        self.client, self.alone_since, self.paused_since, self.workers = client, None, None, None
         self.since = float("-inf")  # the last event counted, on the scheduler's clock
         self.losses = Counter()  # per key of the client's, how often it was lost with its worker
 
     def look(self) -> None:
-        workers = set(self.client.scheduler_info()["workers"])
+        info = self.client.scheduler_info()["workers"]
+        workers = set(info)
         if workers != self.workers:
             self.workers = workers
             self._count_losses()
+        now = time.monotonic()
+        if not workers or any(w.get("status") != "paused" for w in info.values()):
+            self.paused_since = None
+        elif self.paused_since is None:
+            self.paused_since = now
+        elif now - self.paused_since > PAUSED_WAIT:
+            import dask
+            pause = dask.config.get("distributed.worker.memory.pause", 0.8)
+            raise WorkersLost(f"the cluster's workers stayed paused for {PAUSED_WAIT:g} s, their memory past "
+                              f"Dask's pause threshold ({pause:.0%} of their limit), while the job's tasks waited")
         if workers:
             self.alone_since = None
             return
-        now = time.monotonic()
         if self.alone_since is None:
             self.alone_since = now
         elif now - self.alone_since > LOST_WORKER_WAIT:

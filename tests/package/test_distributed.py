@@ -500,6 +500,26 @@ def test_a_cluster_whose_worker_was_lost_before_the_job_is_named_not_waited_on(c
     assert not (tmp_path / "lod").exists()
 
 
+def job_running(client, folder, out):
+    """A job of two levels and a count search on `client` in a thread, once a task of it runs: the thread,
+    and the list it puts what the job raised in."""
+    raised = []
+
+    def job():
+        try:
+            dist.lod_files([str(folder)], out, levels=["20%", "5%"], tolerance=2.0, tile_points=6000,
+                           client=client, threads=1)
+        except Exception as e:  # noqa: BLE001 (the caller checks it)
+            raised.append(e)
+    t = threading.Thread(target=job, daemon=True)
+    t.start()
+    deadline = time.monotonic() + 60
+    while not any(client.processing().values()) and t.is_alive() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert t.is_alive(), "the job ended before any task ran: nothing to test"
+    return t, raised
+
+
 def test_a_cluster_whose_last_worker_is_lost_during_the_job_is_named_not_waited_on(cloud, tmp_path):
     """A nanny whose worker stopped may fail to start another (it logs "Failed to restart worker"): the
     job's tasks then wait for a worker that never comes, and the job names the loss instead."""
@@ -509,25 +529,35 @@ def test_a_cluster_whose_last_worker_is_lost_during_the_job_is_named_not_waited_
         async def no_restart():
             raise RuntimeError("the worker could not be started again")
         nanny.instantiate = no_restart
-        raised = []
-
-        def job():
-            try:
-                dist.lod_files([str(cloud[0])], tmp_path / "lod", levels=["20%", "5%"], tolerance=2.0,
-                               tile_points=6000, client=c, threads=1)
-            except Exception as e:  # noqa: BLE001 (checked below)
-                raised.append(e)
-        t = threading.Thread(target=job, daemon=True)
-        t.start()
-        deadline = time.monotonic() + 60
-        while not any(c.processing().values()) and t.is_alive() and time.monotonic() < deadline:
-            time.sleep(0.01)
-        assert t.is_alive(), "the job ended before any task ran: nothing to test"
+        t, raised = job_running(c, cloud[0], tmp_path / "lod")
         os.kill(nanny.pid, signal.SIGKILL)
         t.join(worker_check.LOST_WORKER_WAIT + 60)
         assert not t.is_alive(), "the job waited for a worker that will never run its tasks"
     assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
     assert "lost" in str(raised[0]) and "lower tile_points" in str(raised[0]), raised
+    assert not (tmp_path / "lod").exists()
+
+
+def hold_memory(share, dask_worker):
+    """Makes the worker hold memory that is none of its tasks' results (a leak, another library's cache) up
+    to `share` of its limit: spilling cannot bring it down."""
+    held = int(share * dask_worker.memory_manager.memory_limit) - process_rss()
+    dask_worker.held_memory = np.ones(max(held, 0), np.uint8)
+
+
+def test_a_job_whose_workers_stay_paused_is_named_not_waited_on(cloud, tmp_path, monkeypatch):
+    """A worker past Dask's pause threshold runs no task until its memory falls, which spilling the
+    results cannot bring about where they are not what fills it: the job names the pause."""
+    monkeypatch.setattr(worker_check, "PAUSED_WAIT", 5.0)
+    pause = dask.config.get("distributed.worker.memory.pause")
+    terminate = dask.config.get("distributed.worker.memory.terminate")
+    with dist.local_cluster(1, memory_limit="400MB") as cluster, Client(cluster) as c:
+        t, raised = job_running(c, cloud[0], tmp_path / "lod")
+        c.run(hold_memory, (pause + terminate) / 2)
+        t.join(worker_check.PAUSED_WAIT + 60)
+        assert not t.is_alive(), "the job waited for a paused worker"
+    assert len(raised) == 1 and isinstance(raised[0], gl.ClusterJobError), raised
+    assert "stayed paused" in str(raised[0]) and "lower tile_points" in str(raised[0]), raised
     assert not (tmp_path / "lod").exists()
 
 

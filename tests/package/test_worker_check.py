@@ -1,7 +1,9 @@
 """How a job waits on its cluster's tasks: not for ever where the cluster loses the job's results again and
 again (a worker stopped by its nanny between tasks, its results computed again by the next, stopped too:
-Dask's KilledWorker counts only tasks lost while running)."""
+Dask's KilledWorker counts only tasks lost while running), nor where every worker stays paused."""
 import itertools
+import pathlib
+import time
 
 import dask
 import distributed  # noqa: F401 (registers its config, allowed-failures among it)
@@ -61,3 +63,37 @@ def test_the_number_of_losses_follows_dasks_setting(allowed):
     with dask.config.set({"distributed.scheduler.allowed-failures": allowed}):
         n, _ = looks_until_raised(LosingCluster(held=["a-1"], lost=["a-1"]))
     assert n == allowed + 1
+
+
+class PausedCluster:
+    """A fake client's cluster whose workers have the given statuses."""
+
+    def __init__(self, statuses):
+        self.futures = {}
+        self.info = {f"tcp://127.0.0.1:{k}": {"status": s} for k, s in enumerate(statuses)}
+
+    def scheduler_info(self):
+        return {"workers": self.info}
+
+    def get_events(self, topic):
+        return []
+
+
+@pytest.mark.parametrize("statuses, ends", [(["paused"], True), (["paused", "paused"], True),
+                                            (["paused", "running"], False), ([], False)])
+def test_a_cluster_whose_every_worker_stays_paused_ends_the_wait(monkeypatch, statuses, ends):
+    monkeypatch.setattr(worker_check, "PAUSED_WAIT", 0.05)
+    watch = worker_check._Watch(PausedCluster(statuses))
+    watch.look()
+    time.sleep(0.1)
+    if ends:
+        with pytest.raises(worker_check.WorkersLost, match="stayed paused"):
+            watch.look()
+    else:
+        watch.look()
+
+
+def test_the_readme_gives_the_waits_these_are():
+    readme = (pathlib.Path(__file__).parents[2] / "README.md").read_text()
+    assert f"none joins within {worker_check.LOST_WORKER_WAIT:g} s" in readme
+    assert f"stays paused for {worker_check.PAUSED_WAIT:g} s" in readme
