@@ -12,11 +12,11 @@
 // pick the subsample, then a k-d tree of it and at most about 4,096 queries.
 #include <algorithm>
 #include <vector>
-#include <Eigen/Eigenvalues>
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "ball_share.h"
 #include "cell_grid.h"
 #include "geodesic_metric.h"
+#include "least_eigenvector.h"
 #include "neighbourhood_covariance.h"
 #include "priority_order.h"
 #include "surface_density.h"
@@ -54,9 +54,7 @@ class ScatterShare {
       tree.doQueryK(sub[i], k, q);
       for (int c = 0; c < k; ++c) row[size_t(c)] = int(q.getIndex(c));
       const NeighbourhoodCovariance nc = NeighbourhoodCovariance::Of(sub, size_t(row[0]), row.data(), k);
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(nc.scatter / double(k), Eigen::EigenvaluesOnly);
-      const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
+      const Eigen::Vector3d l = LeastEigenvector(nc.scatter / double(k)).values.cwiseMax(0.0);  // ascending
       if (!(l(1) > 0)) continue;
       ++counted;
       scattered += SurfaceDensity<Scalar>::Flatness(l) < kFlat;
