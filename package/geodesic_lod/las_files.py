@@ -142,7 +142,9 @@ def open_source(path) -> LasSource:
                   "cut short or its header is wrong")
     else:
         room = _laz_room(path, header)
-        if room is not None and count > room:
+        if room is None:
+            _check_table_offset(path, header)
+        elif count > room:
             _fail(path, f"its header announces {arrays.counted(count, 'point')} but its compressed chunks hold at "
                   f"most {room:,}: it is cut short or its header is wrong")
     vlrs, evlrs = _own_records(path, header)
@@ -154,6 +156,22 @@ def _laz_room(path, header) -> Optional[int]:
     streamed file has none), and the records are counted as they are decoded."""
     _, table = _chunk_table(path, header)
     return None if table is None else sum(n for n, _ in table)
+
+
+def _check_table_offset(path, header) -> None:
+    """Refuses a LAZ file whose chunk table's offset (the 8 bytes where its point records start) lies past
+    its end, as a cut takes the table a writer puts last: the decoder says only that a read fell short."""
+    size = os.path.getsize(path)
+    with open(path, "rb") as f:
+        f.seek(header.offset_to_point_data)
+        at = f.read(8)
+    if len(at) < 8:
+        _fail(path, f"it ends before its point records (byte {header.offset_to_point_data:,}): it is cut short "
+              "or its header is wrong")
+    table_at = struct.unpack("<q", at)[0]
+    if table_at + 8 > size:  # -1: a table the writer could not place; the decoder names that
+        _fail(path, f"its chunk table's offset (byte {table_at:,}) lies past its end ({size:,} bytes): it is cut "
+              "short or damaged")
 
 
 def _own_records(path, header) -> tuple:

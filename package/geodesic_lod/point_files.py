@@ -265,7 +265,7 @@ def _read_npy(path):
         return PointFile(path, "npy", _xyz(a, path), _normals(a), None, a, None)
     if a.ndim != 2 or a.shape[1] not in (3, 6) or a.dtype.kind != "f":
         grid = f". {arrays.GRID_HINT}" if a.ndim == 2 and a.shape[1] not in (3, 6) else ""
-        raise PointFileError(path, f"holds a {a.dtype} array of shape {a.shape}: expected floats of shape "
+        raise PointFileError(path, f"holds an array of shape {a.shape} of {a.dtype}: expected floats of shape "
                              f"(n, 3) (x y z), (n, 6) (x y z nx ny nz) or a table with fields x, y, z{grid}")
     return PointFile(path, "npy", np.asarray(a[:, :3], dtype=np.float64),
                      np.asarray(a[:, 3:], dtype=np.float64) if a.shape[1] == 6 else None, None, a, None)

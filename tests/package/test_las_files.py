@@ -114,7 +114,10 @@ DAMAGED = [
     ("a 2^62 point count", lambda d: with_bytes(las_of(d), 247, "<Q", 2 ** 62),
      "header announces 4,611,686,018,427,387,904 points"),
     ("a 2^64-1 point count", lambda d: with_bytes(las_of(d), 247, "<Q", 2 ** 64 - 1), "beyond 63-bit ids"),
-    ("a LAZ cut short", lambda d: cut_bytes(las_cloud(d / "in.laz"), 0.6), "in.laz: "),
+    ("a LAZ cut short", lambda d: cut_bytes(las_cloud(d / "in.laz"), 0.6), "it is cut short"),
+    # Without EVLRs the cut takes the chunk table, whose offset the decoder then reads past the end.
+    ("a LAS 1.2 LAZ cut short", lambda d: cut_bytes(las_cloud(d / "in.laz", version="1.2", point_format=3), 0.6),
+     "its chunk table's offset (byte "),
     ("a LAZ header count beyond its chunks", lambda d: with_bytes(las_cloud(d / "in.laz"), 247, "<Q", 4 * 10 ** 9),
      "header announces 4,000,000,000 points but its compressed chunks hold at most"),
     ("LAS 1.0", lambda d: with_bytes(las_of(d, version="1.2", fmt=1), 25, "<B", 0), "is LAS 1.0"),

@@ -105,7 +105,8 @@ def truncated(path):
     (lambda d: (d / "text.ply").write_text("not a ply\n") and d / "text.ply", "cannot be read as PLY"),
     (lambda d: np.save(d / "flat.npy", np.zeros(9)) or d / "flat.npy", "expected floats of shape (n, 3)"),
     (lambda d: np.save(d / "grid.npy", np.zeros((50, 60))) or d / "grid.npy", "A grid of heights? Give its nodes"),
-    (lambda d: np.save(d / "ints.npy", np.zeros((9, 3), dtype=int)) or d / "ints.npy", "expected floats"),
+    (lambda d: np.save(d / "ints.npy", np.zeros((9, 3), dtype=np.int64)) or d / "ints.npy",
+     "holds an array of shape (9, 3) of int64: expected floats"),
     (lambda d: np.save(d / "noxyz.npy", np.zeros(9, dtype=[("a", "f8")])) or d / "noxyz.npy", "has no x, y, z"),
 ], ids=["missing", "extension", "folder", "raster", "empty laz", "truncated laz", "truncated ply", "not ply",
         "flat npy", "grid npy", "integer npy", "table without xyz"])
