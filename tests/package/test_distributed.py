@@ -319,7 +319,7 @@ def test_a_file_cut_short_is_named(client, tmp_path):
     a = write_parts(tmp_path / "a", bumpy_sphere(20000), parts=2)
     data = (a / "part1.laz").read_bytes()
     (a / "part1.laz").write_bytes(data[: len(data) * 2 // 3])  # the header intact, points missing
-    with pytest.raises(pf.PointFileError, match="part1.laz: cannot be read as LAS"):
+    with pytest.raises(pf.PointFileError, match="part1.laz: .*: it is cut short"):
         dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client, tile_points=5000)
 
 
