@@ -35,13 +35,20 @@ def speed_section(docs):
 
 def visit_order_section(docs):
     """Which point a disk keeps: bench/visit_order.py's rows (docs/visit_order*.json), random order against
-    the prominent points first, on the tuning models (the noise discount swept) and on the reported ones."""
+    the prominent points first, on the tuning models (the noise discount and the off-surface weight swept)
+    and on the reported ones."""
+    from geodesic_lod import _core
+    default = _core.PoissonParam()
     lines = ["## Tuning the visiting order", "",
              "`bench/visit_order.py` (`--tune` on the tuning models): our default Poisson LOD (exact count, "
-             "seed 0; meshes over their triangles, raw scans on the point graph, as the filter runs them) visiting the points in the paper's random order and by prominence "
-             "(`vcg_ext/prominence.h`; on the tuning models with each noise discount, in standard errors), scored "
-             "by the reconstruction error above. Below 1: lower than random order's. The default visits the "
-             "prominent points first, discount 2."]
+             "seed 0; meshes over their triangles, raw scans on the point graph, as the filter runs them) visiting "
+             "the points in the paper's random order and by prominence (`vcg_ext/prominence.h`), scored by the "
+             "reconstruction error above. On the tuning models each noise discount (in standard errors) with the "
+             "default off-surface weight, and each off-surface weight (on clouds: each point's own offset from the "
+             "surface its balls fit, in units of the scale, taken from its prominence; a mesh's vertices take "
+             "none, so the tuning terrain's vertices are also run as a cloud) with the default discount. Below 1: "
+             "lower than random order's. The default visits the prominent points first, discount "
+             f"{default.prominence_noise:g}, off-surface weight {default.prominence_off_surface:g}."]
     for name, title in (("visit_order_tuning", "Tuning models"), ("visit_order", "Reported models")):
         path = docs / f"{name}.json"
         if not path.is_file():

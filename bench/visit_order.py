@@ -2,8 +2,9 @@
 visiting points in random order against by prominence (vcg_ext/prominence.h), on the quality
 benchmark's models and normals, scored by its reconstruction error (bench/quality.py). Meshes run fast
 marching over their triangles, raw scans the point graph, as the filter takes them. With --tune: the
-prominence's noise discount swept on the tuning models instead (the quality benchmark's and the mesh
-benchmark's tuning mesh).
+prominence's noise discount and its off-surface weight swept on the tuning models instead (the quality
+benchmark's and the mesh benchmark's tuning mesh, and the tuning terrain's vertices as a cloud: the weight
+applies to clouds only), each with the other at its default.
 
 usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py [--tune]
        (writes docs/visit_order.json, or docs/visit_order_tuning.json)
@@ -19,26 +20,31 @@ from results import publish
 
 RATES = [0.10, 0.05, 0.02]
 NOISE_SWEEP = [0, 1, 2, 3]
+OFF_SURFACE_SWEEP = [0, 1, 2, 4]  # the default's runs are the default discount's
+AS_CLOUD = " (vertices as a cloud)"  # a tuning mesh's key with this: its vertices without the triangles
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--tune", action="store_true", help="sweep the noise discount on the tuning models")
+    ap.add_argument("--tune", action="store_true", help="sweep the noise discount and the off-surface weight on the tuning models")
     tune = ap.parse_args().tune
     load_plugin()  # the reconstruction error's measure
     from geodesic_lod import _core
-    runs = [("random", _core.VisitOrder.Random, None)]
-    runs += ([(f"noise {k:g}", _core.VisitOrder.Prominence, k) for k in NOISE_SWEEP] if tune
-             else [("prominence", _core.VisitOrder.Prominence, None)])
+    default = _core.PoissonParam()
+    runs = [("random", _core.VisitOrder.Random, {})]
+    runs += ([(f"noise {k:g}", _core.VisitOrder.Prominence, dict(prominence_noise=k)) for k in NOISE_SWEEP]
+             + [(f"off-surface {w:g}", _core.VisitOrder.Prominence, dict(prominence_off_surface=w))
+                for w in OFF_SURFACE_SWEEP if w != default.prominence_off_surface] if tune
+             else [("prominence", _core.VisitOrder.Prominence, {})])
     rows = []
-    for key in ([*TUNING_MODELS, *TUNING_MESHES] if tune else MODELS):
-        model = quality.Model(key)
+    meshes = [k for k in TUNING_MODELS if isinstance(TUNING_MODELS[k], tuple)]  # the terrain crop's grid
+    for key in ([*TUNING_MODELS, *TUNING_MESHES, *(k + AS_CLOUD for k in meshes)] if tune else MODELS):
+        model = quality.Model(key.removesuffix(AS_CLOUD))
         for rate in RATES:
             target = int(round(rate * len(model.points)))
             row = dict(model=key, rate=rate, target=target)
-            for name, order, noise in runs:
-                idx, seconds = model.ours_indices(target, faces=True, order=order,
-                                                  **({} if noise is None else dict(prominence_noise=noise)))
+            for name, order, fields in runs:
+                idx, seconds = model.ours_indices(target, faces=not key.endswith(AS_CLOUD), order=order, **fields)
                 err, _ = quality.reconstruction_error(model, dict(points=model.points[idx],
                                                                   normals=model.normals[idx]))
                 row[name] = dict(count=len(idx), seconds=seconds, recon_mean=err["mean"])

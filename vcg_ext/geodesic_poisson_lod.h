@@ -51,10 +51,19 @@ class GeodesicPoissonLod {
     /// (docs/airborne_classes.md).
     VisitOrder order = VisitOrder::Automatic;
     /// With Prominence: the standard errors of the noise discounted from each
-    /// point's prominence (Prominence::Compute). On the tuning models
-    /// (docs/visit_order_tuning.json) 2 and 3 tie for the lowest mean error
-    /// ratio; 2 has the smaller worst one.
+    /// point's prominence (Prominence::Compute). Chosen before the off-surface
+    /// weight, when 2 and 3 tied for the lowest mean error ratio on the tuning
+    /// models and 2 had the smaller worst one; with the weight 0 is lower there
+    /// (docs/visit_order_tuning.json), meshes' mainly, whose LOD benchmark
+    /// (docs/mesh_lod.md) is not yet run with it.
     double prominenceNoise = 2.0;
+    /// With Prominence on a cloud: the weight of each point's own offset from the
+    /// surface its balls fit, taken from its prominence (Prominence::Compute):
+    /// of a raw scan's scattered layers, the points nearest the surface first
+    /// (Prominence::OffSurfaceOn: not on a mesh). Of 0, 1, 2 and 4, the lowest
+    /// mean error ratio on the tuning models (docs/visit_order_tuning.json);
+    /// 0: prominence alone.
+    double prominenceOffSurface = 1.0;
     /// With Border: the standard errors discounted from each point's offset
     /// (BorderOrder::Compute): well beyond an even scatter's, so that flat
     /// ground keeps the random order (docs/airborne_classes.md).
@@ -78,10 +87,12 @@ class GeodesicPoissonLod {
   /// point's input index, so the same point has the same rank in any subset;
   /// with VisitOrder::Prominence first by their prominence at `scale`, with
   /// VisitOrder::Border by their offset from the rim of their surroundings
-  /// (noise < 0: the order's default discount); a mesh's border points
-  /// before the rest (BorderFirst). A key order reports to `progress`.
+  /// (noise < 0: the order's default discount; offSurface: Prominence's);
+  /// a mesh's border points before the rest (BorderFirst). A key order reports
+  /// to `progress`.
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
                                         VisitOrder visit = Param().order, double scale = 0, double noise = -1,
+                                        double offSurface = Param().prominenceOffSurface,
                                         Progress progress = Progress(nullptr)) {
     visit = ChosenOrder(visit, d.Scatters());
     if (noise < 0) noise = NoiseOf(visit, Param());
@@ -98,7 +109,7 @@ class GeodesicPoissonLod {
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
                                     BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
-                                noise, progress),
+                                noise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, offSurface), progress),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);
@@ -135,11 +146,12 @@ class GeodesicPoissonLod {
   /// Samples of the domain, by disks of its metric and geodesics.
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
-                                    VisitOrder visit = Param().order, double noise = -1) {
+                                    VisitOrder visit = Param().order, double noise = -1,
+                                    double offSurface = Param().prominenceOffSurface) {
     CheckRadius(radius);
     visit = ChosenOrder(visit, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
-    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, ordering);
+    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, offSurface, ordering);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -164,7 +176,7 @@ class GeodesicPoissonLod {
     const VisitOrder visit = ChosenOrder(p.order, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, visit, tp.initialRadius, NoiseOf(visit, p),
-                                                 ordering);
+                                                 p.prominenceOffSurface, ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;
@@ -222,7 +234,8 @@ class GeodesicPoissonLod {
       r.trimmed = t.trimmed;
       r.coveringRadius = t.coveringRadius;
     } else {
-      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, r.order, NoiseOf(r.order, p));
+      PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, r.order, NoiseOf(r.order, p),
+                                     p.prominenceOffSurface);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

@@ -51,10 +51,10 @@ class PoissonTile {
     /// a ball it reads (and the prominence's smoothing radius) from the whole
     /// cloud's cell side, `keyCellSide`: SurfaceCellSide of its points in id
     /// order, as BallShare::CellSide takes them,
-    /// at `keyScale` less `keyNoise` standard errors: as GeodesicPoissonLod's
-    /// order at that scale; or Random.
+    /// at `keyScale` less `keyNoise` standard errors (Prominence: with
+    /// `keyOffSurface`): as GeodesicPoissonLod's order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
-    double keyScale = 0, keyNoise = 0, keyCellSide = 0;
+    double keyScale = 0, keyNoise = 0, keyOffSurface = 0, keyCellSide = 0;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -107,6 +107,7 @@ class PoissonTile {
                                              BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering)
               : Prominence<Scalar>::Compute(d.points.pos, d.normal, pid,
                                             Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise,
+                                            Prominence<Scalar>::OffSurfaceOn(d.hasFaces, p.keyOffSurface),
                                             ordering);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);

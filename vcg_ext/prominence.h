@@ -11,7 +11,9 @@
 // (coarse levels): O(n kBallPoints), on all threads. Only the offsets' parts
 // along the point's normal are summed, and exactly (ExactLineMoments), so a
 // point's value is the same on any thread count and in any subset holding its
-// R-ball (a cluster's tile, poisson_tile.h).
+// R-ball (a cluster's tile, poisson_tile.h). On clouds each point's own
+// offset from the surface its balls fit is taken from its value, so that of a
+// raw scan's scattered layers the points nearest the surface come first.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -59,16 +61,29 @@ class Prominence {
     }
   };
 
+  /// The off-surface weight (Compute) to take on a mesh's vertices (`mesh`: the
+  /// input has faces) or a cloud's: none on a mesh's vertices, which carry no scan's scatter, and
+  /// whose sharp peaks, narrower than the quadratic it assumes, would lose
+  /// their tops to their sides.
+  static double OffSurfaceOn(bool mesh, double offSurface) { return mesh ? 0 : offSurface; }
+
   /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
   /// units of R, less `noise` standard errors of the smoothed position along
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
   /// points, only a shape that stands out of that scatter comes first. `id`:
   /// the points' ids, which choose the share of the points within R read.
-  /// `progress` may stop it (vcg_ext::Cancelled).
+  /// With `offSurface` > 0 the value is 1 + that prominence less offSurface
+  /// times the point's own offset from the surface its two balls fit (at least
+  /// 0): on a locally quadratic surface the mean offset of a ball of radius x
+  /// along the normal grows as x^2, so the smoothed position's offset less
+  /// (s/R)^2 times the far one's is what curvature does not explain, a raw
+  /// scan's noise, near 0 on a clean surface. Of two points standing out
+  /// alike, the one nearer the surface then comes first. `progress` may stop
+  /// it (vcg_ext::Cancelled).
   template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
                                     const std::vector<Id>& id, const Scale& scale, double noise,
-                                    Progress progress = Progress(nullptr)) {
+                                    double offSurface, Progress progress = Progress(nullptr)) {
     const double R = scale.R, s = std::min(scale.s, scale.R);
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
@@ -77,7 +92,9 @@ class Prominence {
       const double mean = nearBall.Sum() / nNear;
       const double sigma = std::sqrt(std::max(0.0, nearBall.Squares() / nNear - mean * mean));
       // Both means hold the point itself.
-      out[size_t(i)] = float(std::max(0.0, std::abs(mean - farMean) - noise * sigma / std::sqrt(nNear)) / R);
+      const double prominence = std::max(0.0, std::abs(mean - farMean) - noise * sigma / std::sqrt(nNear)) / R;
+      const double offset = std::abs(mean - s * s / (R * R) * farMean) / R;
+      out[size_t(i)] = float(offSurface > 0 ? std::max(0.0, 1 + prominence - offSurface * offset) : prominence);
     };
     auto along = [&](int i) {  // an offset's part along point i's normal
       const vcg::Point3f& n = normal[size_t(i)];

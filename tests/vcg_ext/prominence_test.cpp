@@ -44,13 +44,13 @@ int Nearest(const Domain& d, float x, float y) {
 
 TEST(Prominence, APeakStandsOutAtItsScaleAndAPlaneDoesNot) {
   const Domain d = PeakDomain();
-  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0);
+  const std::vector<float> p = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0, 0);
   const int peak = Nearest(d, 0.3f, 0.3f), flat = Nearest(d, 0.1f, 0.9f);
   EXPECT_EQ(std::max_element(p.begin(), p.end()) - p.begin(), peak);
   EXPECT_LT(p[size_t(flat)], 0.01f * p[size_t(peak)]);
   // At a scale far wider than the peak, the broad hill's top stands out too.
   const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
-  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.25, 0.075}, 0);
+  const std::vector<float> wide = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.25, 0.075}, 0, 0);
   EXPECT_GT(wide[size_t(hill)], wide[size_t(side)]);
 }
 
@@ -68,12 +68,78 @@ TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
       if (d.points.pos[i][0] < 0.15f && d.points.pos[i][1] > 0.5f) ++flat, zero += p[i] == 0;
     return double(zero) / double(flat);
   };
-  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0);
-  const std::vector<float> discounted = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 2);
+  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 0, 0);
+  const std::vector<float> discounted = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 2, 0);
   EXPECT_LT(flatShare(raw), 0.01);
   EXPECT_GT(flatShare(discounted), 0.5);
   EXPECT_GT(discounted[size_t(peak)], 0.5f * raw[size_t(peak)]);
   EXPECT_EQ(std::max_element(discounted.begin(), discounted.end()) - discounted.begin(), peak);
+}
+
+// Of a scan's scatter, the points nearest the surface come first: with an
+// off-surface weight a flat stretch's keys fall with each point's own offset.
+TEST(Prominence, OfAScansScatterThePointsNearestTheSurfaceComeFirst) {
+  auto scatter = [](float x, float y) {
+    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
+    return 0.004f * (h - std::floor(h) - 0.5f);
+  };
+  test::TMesh m;
+  test::HeightField(m, 61, [&](float x, float y) { return PeakAndHill(x, y) + scatter(x, y); });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const std::vector<float> key = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 2, 2);
+  std::vector<std::pair<float, float>> flat;  // (own offset, key) far from the peak, the hill and the border
+  for (size_t i = 0; i < d.size(); ++i) {
+    const auto& p = d.points.pos[i];
+    if (p[0] > 0.1f && p[0] < 0.2f && p[1] > 0.55f && p[1] < 0.9f) flat.push_back({std::abs(scatter(p[0], p[1])), key[i]});
+  }
+  ASSERT_GE(flat.size(), 100u);
+  size_t agree = 0, pairs = 0;  // pairs ranked by their keys as by their offsets, nearer first
+  for (size_t a = 0; a < flat.size(); ++a)
+    for (size_t b = a + 1; b < flat.size(); ++b)
+      if (std::abs(flat[a].first - flat[b].first) > 0.001f)
+        ++pairs, agree += (flat[a].first < flat[b].first) == (flat[a].second > flat[b].second);
+  EXPECT_GT(double(agree) / double(pairs), 0.9);
+}
+
+// A mesh's vertices carry no scan's scatter: their order ignores the weight,
+// which the same points as a cloud take.
+TEST(Prominence, AMeshsOrderTakesNoOffSurfaceWeight) {
+  auto height = [](float x, float y) {
+    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
+    return PeakAndHill(x, y) + 0.004f * (h - std::floor(h) - 0.5f);
+  };
+  test::TMesh mesh, cloud;
+  test::GridMesh(mesh, 41, height);
+  test::HeightField(cloud, 41, height);
+  const Domain onMesh = Domain::FromMesh(mesh, Domain::Param()), onCloud = Domain::FromMesh(cloud, Domain::Param());
+  ASSERT_TRUE(onMesh.hasFaces);
+  ASSERT_FALSE(onCloud.hasFaces);
+  auto order = [](const Domain& d, double offSurface) {
+    return LOD::VisitingOrder(d, 5, {}, vcg_ext::VisitOrder::Prominence, 0.1, -1, offSurface);
+  };
+  EXPECT_EQ(order(onMesh, 2), order(onMesh, 0));
+  EXPECT_NE(order(onCloud, 2), order(onCloud, 0));
+}
+
+// On a clean curved surface the smoothed position's offset is what curvature
+// explains: the off-surface weight leaves the keys 1 + the prominence, nearly.
+TEST(Prominence, ACleanSurfacesCurvatureIsNoOffset) {
+  test::TMesh m;
+  test::HeightField(m, 61, [](float x, float y) { return 0.5f * ((x - 0.5f) * (x - 0.5f) + 2 * (y - 0.5f) * (y - 0.5f)); });
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const Prominence::Scale scale{0.1, 0.03};
+  const std::vector<float> raw = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, scale, 0, 0);
+  const std::vector<float> key = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, scale, 0, 2);
+  double offset = 0, prominence = 0;
+  size_t inner = 0;
+  for (size_t i = 0; i < d.size(); ++i) {
+    const auto& p = d.points.pos[i];
+    if (std::min({p[0], p[1], 1 - p[0], 1 - p[1]}) < 0.15) continue;  // the balls cut by the border
+    ++inner, offset += (1 + raw[i] - key[i]) / 2, prominence += raw[i];
+  }
+  ASSERT_GT(inner, 1000u);
+  ASSERT_GT(prominence, 0);
+  EXPECT_LT(offset, 0.1 * prominence);
 }
 
 // At a scale whose ball holds thousands of points the mean within R reads a
@@ -87,8 +153,8 @@ TEST(Prominence, AtACoarseScaleAShareOfTheBallByIdGivesTheSameShape) {
   ASSERT_LT(coarse.nearShare, 0.5);  // and of some 250 within s
   Prominence::Scale every = coarse;
   every.farShare = 1;
-  const std::vector<float> share = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 0);
-  const std::vector<float> all = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, every, 0);
+  const std::vector<float> share = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 0, 0);
+  const std::vector<float> all = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, every, 0, 0);
   const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
   EXPECT_GT(share[size_t(hill)], share[size_t(side)]);
   EXPECT_NE(share, all);
@@ -100,18 +166,27 @@ TEST(Prominence, AtACoarseScaleAShareOfTheBallByIdGivesTheSameShape) {
   std::vector<vcg::Point3<test::TMesh::ScalarType>> pos(d.points.pos.rbegin(), d.points.pos.rend());
   std::vector<vcg::Point3f> normal(d.normal.rbegin(), d.normal.rend());
   std::vector<int> id(d.points.vertIndex.rbegin(), d.points.vertIndex.rend());
-  const std::vector<float> backwards = test::OnThreads(1, [&] { return Prominence::Compute(pos, normal, id, coarse, 0); });
+  const std::vector<float> backwards = test::OnThreads(1, [&] { return Prominence::Compute(pos, normal, id, coarse, 0, 0); });
   for (size_t i = 0; i < all.size(); ++i) ASSERT_EQ(backwards[all.size() - 1 - i], share[i]) << i;
 }
 
 TEST(Prominence, PoissonByProminenceKeepsThePeakSeparatesAndCovers) {
   const Domain d = PeakDomain();
   const double r = 0.12;
-  const auto s = test::OnThreads(1, [&] {
-    return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence).samples;
-  });
-  ASSERT_GT(s.size(), 10u);
-  EXPECT_EQ(s[0], Nearest(d, 0.3f, 0.3f));  // the peak is visited first, so it is a sample
+  auto sample = [&](double offSurface) {
+    return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence, -1, offSurface)
+        .samples;
+  };
+  const auto bare = test::OnThreads(1, [&] { return sample(0); });
+  ASSERT_GT(bare.size(), 10u);
+  const int peak = Nearest(d, 0.3f, 0.3f);
+  EXPECT_EQ(bare[0], peak);  // the peak is visited first, so it is a sample
+  test::ExpectSeparatedAndCovering(d, bare, r);
+  // With the off-surface weight a peak narrower than the balls' quadratic
+  // gives its top's place to a point within a grid step of it.
+  const auto s = test::OnThreads(1, [&] { return sample(LOD::Param().prominenceOffSurface); });
+  ASSERT_GT(LOD::Param().prominenceOffSurface, 0);
+  EXPECT_LT(vcg::Distance(d.points.pos[size_t(s[0])], d.points.pos[size_t(peak)]), 1.5 / 60);
   test::ExpectSeparatedAndCovering(d, s, r);
   const auto two = test::OnThreads(2, [&] {
     return LOD::Sample(d, r, 5, vcg_ext::Progress(nullptr), {}, vcg_ext::VisitOrder::Prominence).samples;
