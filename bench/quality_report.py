@@ -4,6 +4,7 @@ import json
 import os
 import pathlib
 import platform
+import sys
 import time
 
 import matplotlib
@@ -33,12 +34,20 @@ def speed_section(docs):
             "otherwise idle machine).", "", body.replace("\n## ", "\n### ")]
 
 
+def poisson_defaults():
+    """The core's PoissonParam, from the build's package (bench/run_quality runs without it on the path)."""
+    build = pathlib.Path(os.environ.get("GEODESIC_LOD_BUILD_DIR", config.ROOT / "build"))
+    if str(build / "python") not in sys.path:
+        sys.path.insert(0, str(build / "python"))
+    from geodesic_lod import _core
+    return _core.PoissonParam()
+
+
 def visit_order_section(docs):
     """Which point a disk keeps: bench/visit_order.py's rows (docs/visit_order*.json), random order against
     the prominent points first, on the tuning models (the noise discount and the off-surface weight swept)
     and on the reported ones."""
-    from geodesic_lod import _core
-    default = _core.PoissonParam()
+    default = poisson_defaults()
     lines = ["## Tuning the visiting order", "",
              "`bench/visit_order.py` (`--tune` on the tuning models): our default Poisson LOD (exact count, "
              "seed 0; meshes over their triangles, raw scans on the point graph, as the filter runs them) visiting "
