@@ -25,6 +25,15 @@ float PeakAndHill(float x, float y) {
   return peak + hill;
 }
 
+// A scan's scatter along z: +-2 per mille, a hash of the position.
+float Scatter(float x, float y) {
+  const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
+  return 0.004f * (h - std::floor(h) - 0.5f);
+}
+
+// The peak and the hill, scattered.
+float ScatteredPeakAndHill(float x, float y) { return PeakAndHill(x, y) + Scatter(x, y); }
+
 Domain PeakDomain(int n = 61) {
   test::TMesh m;
   test::HeightField(m, n, PeakAndHill);
@@ -56,10 +65,7 @@ TEST(Prominence, APeakStandsOutAtItsScaleAndAPlaneDoesNot) {
 
 TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
   test::TMesh m;
-  test::HeightField(m, 61, [](float x, float y) {
-    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
-    return PeakAndHill(x, y) + 0.004f * (h - std::floor(h) - 0.5f);  // a scatter of +-2 per mille
-  });
+  test::HeightField(m, 61, ScatteredPeakAndHill);
   const Domain d = Domain::FromMesh(m, Domain::Param());
   const int peak = Nearest(d, 0.3f, 0.3f);
   auto flatShare = [&](const std::vector<float>& p) {  // of the points far from the peak and the hill
@@ -79,18 +85,14 @@ TEST(Prominence, AScansScatterIsDiscountedAndItsShapeIsNot) {
 // Of a scan's scatter, the points nearest the surface come first: with an
 // off-surface weight a flat stretch's keys fall with each point's own offset.
 TEST(Prominence, OfAScansScatterThePointsNearestTheSurfaceComeFirst) {
-  auto scatter = [](float x, float y) {
-    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
-    return 0.004f * (h - std::floor(h) - 0.5f);
-  };
   test::TMesh m;
-  test::HeightField(m, 61, [&](float x, float y) { return PeakAndHill(x, y) + scatter(x, y); });
+  test::HeightField(m, 61, ScatteredPeakAndHill);
   const Domain d = Domain::FromMesh(m, Domain::Param());
   const std::vector<float> key = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, {0.1, 0.03}, 2, 2);
   std::vector<std::pair<float, float>> flat;  // (own offset, key) far from the peak, the hill and the border
   for (size_t i = 0; i < d.size(); ++i) {
     const auto& p = d.points.pos[i];
-    if (p[0] > 0.1f && p[0] < 0.2f && p[1] > 0.55f && p[1] < 0.9f) flat.push_back({std::abs(scatter(p[0], p[1])), key[i]});
+    if (p[0] > 0.1f && p[0] < 0.2f && p[1] > 0.55f && p[1] < 0.9f) flat.push_back({std::abs(Scatter(p[0], p[1])), key[i]});
   }
   ASSERT_GE(flat.size(), 100u);
   size_t agree = 0, pairs = 0;  // pairs ranked by their keys as by their offsets, nearer first
@@ -104,13 +106,9 @@ TEST(Prominence, OfAScansScatterThePointsNearestTheSurfaceComeFirst) {
 // A mesh's vertices carry no scan's scatter: their order ignores the weight,
 // which the same points as a cloud take.
 TEST(Prominence, AMeshsOrderTakesNoOffSurfaceWeight) {
-  auto height = [](float x, float y) {
-    const float h = std::sin(x * 12.9898f + y * 78.233f) * 43758.5453f;
-    return PeakAndHill(x, y) + 0.004f * (h - std::floor(h) - 0.5f);
-  };
   test::TMesh mesh, cloud;
-  test::GridMesh(mesh, 41, height);
-  test::HeightField(cloud, 41, height);
+  test::GridMesh(mesh, 41, ScatteredPeakAndHill);
+  test::HeightField(cloud, 41, ScatteredPeakAndHill);
   const Domain onMesh = Domain::FromMesh(mesh, Domain::Param()), onCloud = Domain::FromMesh(cloud, Domain::Param());
   ASSERT_TRUE(onMesh.hasFaces);
   ASSERT_FALSE(onCloud.hasFaces);
