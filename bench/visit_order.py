@@ -4,7 +4,8 @@ benchmark's models and normals, scored by its reconstruction error (bench/qualit
 marching over their triangles, raw scans the point graph, as the filter takes them. With --tune: the
 prominence's noise discount and its off-surface weight swept on the tuning models instead (the quality
 benchmark's and the mesh benchmark's tuning mesh, and the tuning terrain's vertices as a cloud: the weight
-applies to clouds only), each with the other at its default.
+applies to clouds only), each with the other at its default, and a mesh's vertices' positions smoothed as a
+cloud's are against unsmoothed (meshes only; the default's runs are the other).
 
 usage: cd bench && PYTHONPATH=../build/python ../.venv/bin/python visit_order.py [--tune]
        (writes docs/visit_order.json, or docs/visit_order_tuning.json)
@@ -34,7 +35,9 @@ def main():
     runs = [("random", _core.VisitOrder.Random, {})]
     runs += ([(f"noise {k:g}", _core.VisitOrder.Prominence, dict(prominence_noise=k)) for k in NOISE_SWEEP]
              + [(f"off-surface {w:g}", _core.VisitOrder.Prominence, dict(prominence_off_surface=w))
-                for w in OFF_SURFACE_SWEEP if w != default.prominence_off_surface] if tune
+                for w in OFF_SURFACE_SWEEP if w != default.prominence_off_surface]
+             + [(f"{'un' if default.prominence_smooth_mesh else ''}smoothed on meshes", _core.VisitOrder.Prominence,
+                 dict(prominence_smooth_mesh=not default.prominence_smooth_mesh))] if tune
              else [("prominence", _core.VisitOrder.Prominence, {})])
     rows = []
     meshes = [k for k in TUNING_MODELS if isinstance(TUNING_MODELS[k], tuple)]  # the terrain crop's grid

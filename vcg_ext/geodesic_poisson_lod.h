@@ -50,12 +50,10 @@ class GeodesicPoissonLod {
     /// Border with the surface-density metric on airborne LiDAR
     /// (docs/airborne_classes.md).
     VisitOrder order = VisitOrder::Automatic;
-    /// With Prominence: the standard errors of the noise discounted from each
-    /// point's prominence (Prominence::Compute). Chosen before the off-surface
-    /// weight, when 2 and 3 tied for the lowest mean error ratio on the tuning
-    /// models and 2 had the smaller worst one; with the weight 0 is lower there
-    /// (docs/visit_order_tuning.json), meshes' mainly, whose LOD benchmark
-    /// (docs/mesh_lod.md) is not yet run with it.
+    /// With Prominence on a cloud: the standard errors of the noise discounted
+    /// from each point's prominence (Prominence::Compute; a mesh's vertices,
+    /// unsmoothed, take none). Of 0, 1, 2 and 3, the lowest mean error ratio
+    /// on the tuning models (docs/visit_order_tuning.json).
     double prominenceNoise = 2.0;
     /// With Prominence on a cloud: the weight of each point's own offset from the
     /// surface its balls fit, taken from its prominence (Prominence::Compute):
@@ -64,6 +62,12 @@ class GeodesicPoissonLod {
     /// mean error ratio on the tuning models (docs/visit_order_tuning.json);
     /// 0: prominence alone.
     double prominenceOffSurface = 1.0;
+    /// With Prominence on a mesh: each vertex's position smoothed as a cloud's
+    /// points are (true), or the vertex itself (Prominence::SmoothOn): a mesh's
+    /// vertices carry no scan's scatter, and unsmoothed the error was lower in
+    /// every tuning cell of the meshes (docs/visit_order_tuning.json) and level
+    /// on the mesh benchmark's tuning mesh (docs/mesh_lod.md).
+    bool prominenceSmoothMesh = false;
     /// With Border: the standard errors discounted from each point's offset
     /// (BorderOrder::Compute): well beyond an even scatter's, so that flat
     /// ground keeps the random order (docs/airborne_classes.md).
@@ -87,12 +91,13 @@ class GeodesicPoissonLod {
   /// point's input index, so the same point has the same rank in any subset;
   /// with VisitOrder::Prominence first by their prominence at `scale`, with
   /// VisitOrder::Border by their offset from the rim of their surroundings
-  /// (noise < 0: the order's default discount; offSurface: Prominence's);
+  /// (noise < 0: the order's default discount; offSurface, smoothMesh: Prominence's);
   /// a mesh's border points before the rest (BorderFirst). A key order reports
   /// to `progress`.
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
                                         VisitOrder visit = Param().order, double scale = 0, double noise = -1,
                                         double offSurface = Param().prominenceOffSurface,
+                                        bool smoothMesh = Param().prominenceSmoothMesh,
                                         Progress progress = Progress(nullptr)) {
     visit = ChosenOrder(visit, d.Scatters());
     if (noise < 0) noise = NoiseOf(visit, Param());
@@ -108,7 +113,8 @@ class GeodesicPoissonLod {
             ? KeyFirstOrder(Prominence<Scalar>::Compute(
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
-                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
+                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale,
+                                    Prominence<Scalar>::SmoothOn(d.hasFaces, smoothMesh)),
                                 noise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, offSurface), progress),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
@@ -147,11 +153,13 @@ class GeodesicPoissonLod {
   static PoissonDisk::Result Sample(const Domain& d, double radius, uint64_t seed,
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
                                     VisitOrder visit = Param().order, double noise = -1,
-                                    double offSurface = Param().prominenceOffSurface) {
+                                    double offSurface = Param().prominenceOffSurface,
+                                    bool smoothMesh = Param().prominenceSmoothMesh) {
     CheckRadius(radius);
     visit = ChosenOrder(visit, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
-    const std::vector<int> order = VisitingOrder(d, seed, within, visit, radius, noise, offSurface, ordering);
+    const std::vector<int> order =
+        VisitingOrder(d, seed, within, visit, radius, noise, offSurface, smoothMesh, ordering);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -176,7 +184,7 @@ class GeodesicPoissonLod {
     const VisitOrder visit = ChosenOrder(p.order, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, visit, tp.initialRadius, NoiseOf(visit, p),
-                                                 p.prominenceOffSurface, ordering);
+                                                 p.prominenceOffSurface, p.prominenceSmoothMesh, ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;
@@ -235,7 +243,7 @@ class GeodesicPoissonLod {
       r.coveringRadius = t.coveringRadius;
     } else {
       PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, r.order, NoiseOf(r.order, p),
-                                     p.prominenceOffSurface);
+                                     p.prominenceOffSurface, p.prominenceSmoothMesh);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

@@ -52,7 +52,8 @@ class PoissonTile {
     /// cloud's cell side, `keyCellSide`: SurfaceCellSide of its points in id
     /// order, as BallShare::CellSide takes them,
     /// at `keyScale` less `keyNoise` standard errors (Prominence: with
-    /// `keyOffSurface`): as GeodesicPoissonLod's order at that scale; or Random.
+    /// `keyOffSurface`, a mesh's vertices unsmoothed): as GeodesicPoissonLod's
+    /// default order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
     double keyScale = 0, keyNoise = 0, keyOffSurface = 0, keyCellSide = 0;
   };
@@ -105,10 +106,11 @@ class PoissonTile {
           p.order == VisitOrder::Border
               ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
                                              BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering)
-              : Prominence<Scalar>::Compute(d.points.pos, d.normal, pid,
-                                            Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale), p.keyNoise,
-                                            Prominence<Scalar>::OffSurfaceOn(d.hasFaces, p.keyOffSurface),
-                                            ordering);
+              : Prominence<Scalar>::Compute(
+                    d.points.pos, d.normal, pid,
+                    Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
+                                                  Prominence<Scalar>::SmoothOn(d.hasFaces, false)),
+                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, p.keyOffSurface), ordering);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];

@@ -13,7 +13,9 @@
 // point's value is the same on any thread count and in any subset holding its
 // R-ball (a cluster's tile, poisson_tile.h). On clouds each point's own
 // offset from the surface its balls fit is taken from its value, so that of a
-// raw scan's scattered layers the points nearest the surface come first.
+// raw scan's scattered layers the points nearest the surface come first; a
+// mesh's vertices, which carry no scan's scatter, are their own smoothed
+// positions (s = 0).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -48,18 +50,24 @@ class Prominence {
     double nearShare = 1;  ///< of the points within s, the share (by id) their mean reads
 
     /// At scale R for points spaced like `cellSide` (BallShare::CellSide: a
-    /// cell of that side holds about one point).
-    static Scale Of(double cellSide, double R) {
+    /// cell of that side holds about one point); unless `smooth`, each point
+    /// is its own smoothed position (s = 0).
+    static Scale Of(double cellSide, double R, bool smooth) {
       Scale sc;
       sc.R = R;
       // A cell of side cellSide holds one point: a ball of radius cellSide sqrt(m / pi) holds about m.
       const double spacing = cellSide * std::sqrt(kSmoothingPoints / M_PI);
-      sc.s = std::max(kSmoothing * R, std::min(spacing, R));
+      sc.s = smooth ? std::max(kSmoothing * R, std::min(spacing, R)) : 0;
       sc.farShare = BallShare<Scalar>::Of(cellSide, sc.R, kBallPoints);
       sc.nearShare = BallShare<Scalar>::Of(cellSide, sc.s, kBallPoints);
       return sc;
     }
   };
+
+  /// Whether the points' positions are smoothed (Scale::Of) on a mesh's
+  /// vertices (`mesh`: the input has faces) or a cloud's: always on a cloud,
+  /// whose scan scatters them; on a mesh's only when asked (`smoothMesh`).
+  static bool SmoothOn(bool mesh, bool smoothMesh) { return !mesh || smoothMesh; }
 
   /// The off-surface weight (Compute) to take on a mesh's vertices (`mesh`: the
   /// input has faces) or a cloud's: none on a mesh's vertices, which carry no scan's scatter, and
@@ -70,7 +78,8 @@ class Prominence {
   /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
   /// units of R, less `noise` standard errors of the smoothed position along
   /// the normal (at least 0): where a raw scan's overlapping layers scatter the
-  /// points, only a shape that stands out of that scatter comes first. `id`:
+  /// points, only a shape that stands out of that scatter comes first. With
+  /// s = 0 the smoothed position is the point itself, and nothing is discounted. `id`:
   /// the points' ids, which choose the share of the points within R read.
   /// With `offSurface` > 0 the value is 1 + that prominence less offSurface
   /// times the point's own offset from the surface its two balls fit (at least
@@ -123,6 +132,12 @@ class Prominence {
         farMean[size_t(i)] = farBall.Sum() / nFar;
     }, all ? progress : progress.Sub(0, 50), kWhat);
     if (all) return out;
+    if (!(s > 0)) {  // each point its own smoothed position: no second pass
+      ExactLineMoments itself(R);
+      itself.Add(0);
+      for (size_t i = 0; i < pos.size(); ++i) value(int(i), itself, farMean[i]);
+      return out;
+    }
     BallShare<Scalar>::ForEachBall(pos, id, s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
       const auto x = along(i);
       ExactLineMoments nearBall(R);

@@ -179,7 +179,7 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPoints
 // R reads a share of them chosen by id: the same share in a tile as in the whole.
 TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheProminentPointsFirstAtACoarseScale) {
   using P = vcg_ext::Prominence<double>;
-  ASSERT_LT(P::Scale::Of(vcg_ext::CellGrid<double>::SurfaceCellSide(Cloud(), 1), 0.16).farShare, 0.7);
+  ASSERT_LT(P::Scale::Of(vcg_ext::CellGrid<double>::SurfaceCellSide(Cloud(), 1), 0.16, true).farShare, 0.7);
   ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Prominence, 0.16);
 }
 

@@ -103,20 +103,52 @@ TEST(Prominence, OfAScansScatterThePointsNearestTheSurfaceComeFirst) {
   EXPECT_GT(double(agree) / double(pairs), 0.9);
 }
 
-// A mesh's vertices carry no scan's scatter: their order ignores the weight,
-// which the same points as a cloud take.
-TEST(Prominence, AMeshsOrderTakesNoOffSurfaceWeight) {
+// A mesh's vertices carry no scan's scatter: each is its own smoothed position,
+// so their order ignores the noise discount and the off-surface weight, which
+// the same points as a cloud take.
+TEST(Prominence, AMeshsOrderTakesNoNoiseDiscountNorOffSurfaceWeight) {
   test::TMesh mesh, cloud;
   test::GridMesh(mesh, 41, ScatteredPeakAndHill);
   test::HeightField(cloud, 41, ScatteredPeakAndHill);
   const Domain onMesh = Domain::FromMesh(mesh, Domain::Param()), onCloud = Domain::FromMesh(cloud, Domain::Param());
   ASSERT_TRUE(onMesh.hasFaces);
   ASSERT_FALSE(onCloud.hasFaces);
-  auto order = [](const Domain& d, double offSurface) {
-    return LOD::VisitingOrder(d, 5, {}, vcg_ext::VisitOrder::Prominence, 0.1, -1, offSurface);
+  auto order = [](const Domain& d, double noise, double offSurface) {
+    return LOD::VisitingOrder(d, 5, {}, vcg_ext::VisitOrder::Prominence, 0.1, noise, offSurface);
   };
-  EXPECT_EQ(order(onMesh, 2), order(onMesh, 0));
-  EXPECT_NE(order(onCloud, 2), order(onCloud, 0));
+  EXPECT_EQ(order(onMesh, 0, 2), order(onMesh, 0, 0));
+  EXPECT_EQ(order(onMesh, 2, 0), order(onMesh, 0, 0));
+  EXPECT_NE(order(onCloud, 0, 2), order(onCloud, 0, 0));
+  EXPECT_NE(order(onCloud, 2, 0), order(onCloud, 0, 0));
+}
+
+// Unsmoothed (a mesh's vertices), a point's key is its own offset along its
+// normal from the mean of the points within R, in units of R; at a coarse
+// scale, where that mean reads a share of the ball, the hill still stands out.
+TEST(Prominence, UnsmoothedAPointsKeyIsItsOffsetFromItsBallsMean) {
+  const Domain d = PeakDomain();
+  const double R = 0.06;  // a ball of some 40 points, each read
+  const double cellSide = vcg_ext::BallShare<test::TMesh::ScalarType>::CellSide(d.points.pos, d.points.vertIndex);
+  const Prominence::Scale scale = Prominence::Scale::Of(cellSide, R, false);
+  ASSERT_EQ(scale.s, 0);
+  ASSERT_GE(scale.farShare, 1);
+  const std::vector<float> key = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, scale, 2, 0);
+  for (size_t i = 0; i < d.size(); i += 37) {
+    const auto& p = d.points.pos[i];
+    const auto& n = d.normal[i];
+    double sum = 0;
+    int count = 0;
+    for (const auto& q : d.points.pos)
+      if (vcg::SquaredDistance(p, q) <= R * R)
+        sum += (q[0] - p[0]) * n[0] + (q[1] - p[1]) * n[1] + (q[2] - p[2]) * n[2], ++count;
+    EXPECT_NEAR(key[i], std::abs(sum / count) / R, 1e-5) << i;
+  }
+  const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25, false);
+  ASSERT_LT(coarse.farShare, 0.5);  // a share of the ball read
+  const std::vector<float> share = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 2, 0);
+  const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
+  EXPECT_GT(share[size_t(hill)], share[size_t(side)]);
+  EXPECT_TRUE(std::all_of(share.begin(), share.end(), [](float v) { return std::isfinite(v); }));
 }
 
 // On a clean curved surface the smoothed position's offset is what curvature
@@ -146,7 +178,7 @@ TEST(Prominence, ACleanSurfacesCurvatureIsNoOffset) {
 TEST(Prominence, AtACoarseScaleAShareOfTheBallByIdGivesTheSameShape) {
   const Domain d = PeakDomain(121);
   const double cellSide = vcg_ext::BallShare<test::TMesh::ScalarType>::CellSide(d.points.pos, d.points.vertIndex);
-  const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25);
+  const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25, true);
   ASSERT_LT(coarse.farShare, 0.05);  // about 64 of some 2,800 points within R
   ASSERT_LT(coarse.nearShare, 0.5);  // and of some 250 within s
   Prominence::Scale every = coarse;
