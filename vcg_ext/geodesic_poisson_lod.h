@@ -65,8 +65,7 @@ class GeodesicPoissonLod {
     /// With Prominence on a mesh: each vertex's position smoothed as a cloud's
     /// points are (true), or the vertex itself (Prominence::SmoothOn): a mesh's
     /// vertices carry no scan's scatter, and unsmoothed the error was lower in
-    /// every tuning cell of the meshes (docs/visit_order_tuning.json) and level
-    /// on the mesh benchmark's tuning mesh (docs/mesh_lod.md).
+    /// every tuning cell of the meshes (docs/visit_order_tuning.json).
     bool prominenceSmoothMesh = false;
     /// With Border: the standard errors discounted from each point's offset
     /// (BorderOrder::Compute): well beyond an even scatter's, so that flat
