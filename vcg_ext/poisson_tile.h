@@ -52,10 +52,11 @@ class PoissonTile {
     /// cloud's cell side, `keyCellSide`: SurfaceCellSide of its points in id
     /// order, as BallShare::CellSide takes them,
     /// at `keyScale` less `keyNoise` standard errors (Prominence: with
-    /// `keyOffSurface`, a mesh's vertices unsmoothed): as GeodesicPoissonLod's
-    /// default order at that scale; or Random.
+    /// `keyOffSurface`, a mesh's vertices smoothed when `keySmoothMesh`): as
+    /// GeodesicPoissonLod's default order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
     double keyScale = 0, keyNoise = 0, keyOffSurface = 0, keyCellSide = 0;
+    bool keySmoothMesh = false;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -109,7 +110,7 @@ class PoissonTile {
               : Prominence<Scalar>::Compute(
                     d.points.pos, d.normal, pid,
                     Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
-                                                  Prominence<Scalar>::SmoothOn(d.hasFaces, false)),
+                                                  Prominence<Scalar>::SmoothOn(d.hasFaces, p.keySmoothMesh)),
                     p.keyNoise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, p.keyOffSurface), ordering);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);

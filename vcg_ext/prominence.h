@@ -130,7 +130,7 @@ class Prominence {
         value(i, nearBall, farBall.Sum() / nFar);
       else
         farMean[size_t(i)] = farBall.Sum() / nFar;
-    }, all ? progress : progress.Sub(0, 50), kWhat);
+    }, all || !(s > 0) ? progress : progress.Sub(0, 50), kWhat);  // unsmoothed: one pass
     if (all) return out;
     if (!(s > 0)) {  // each point its own smoothed position: no second pass
       ExactLineMoments itself(R);

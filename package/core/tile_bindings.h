@@ -172,7 +172,7 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
                                std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
                                std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
                                vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide,
-                               double keyOffSurface) {
+                               double keyOffSurface, bool keySmoothMesh) {
   const size_t rows = ids.shape(0);
   CheckTileRows(d, ids, core, candidate);
   if (order == vcg_ext::VisitOrder::Automatic)
@@ -185,6 +185,7 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
     tp.keyScale = keyScale;
     tp.keyNoise = keyNoise;
     tp.keyOffSurface = keyOffSurface;
+    tp.keySmoothMesh = keySmoothMesh;
     tp.keyCellSide = keyCellSide;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
     std::vector<char> isCore(core.data(), core.data() + rows), may;
@@ -319,7 +320,8 @@ inline void BindTiles(nb::module_& m) {
   m.def("poisson_tile", &PoissonTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a,
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
-        "key_cell_side"_a = 0.0, "key_off_surface"_a = Poisson::Param().prominenceOffSurface);
+        "key_cell_side"_a = 0.0, "key_off_surface"_a = Poisson::Param().prominenceOffSurface,
+        "key_smooth_mesh"_a = Poisson::Param().prominenceSmoothMesh);
   m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
         "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
         "the count search's pilot disks of a tile's core, at radius");

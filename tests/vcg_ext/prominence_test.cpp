@@ -40,6 +40,13 @@ Domain PeakDomain(int n = 61) {
   return Domain::FromMesh(m, Domain::Param());
 }
 
+// The largest percent a Compute reported.
+int reached = -1;
+bool Reached(const int pct, const char*) {
+  reached = std::max(reached, pct);
+  return true;
+}
+
 int Nearest(const Domain& d, float x, float y) {
   int best = 0;
   for (size_t i = 0; i < d.size(); ++i) {
@@ -124,7 +131,8 @@ TEST(Prominence, AMeshsOrderTakesNoNoiseDiscountNorOffSurfaceWeight) {
 
 // Unsmoothed (a mesh's vertices), a point's key is its own offset along its
 // normal from the mean of the points within R, in units of R; at a coarse
-// scale, where that mean reads a share of the ball, the hill still stands out.
+// scale, where that mean reads a share of the ball, the hill still stands out
+// and the one pass reports the whole progress range.
 TEST(Prominence, UnsmoothedAPointsKeyIsItsOffsetFromItsBallsMean) {
   const Domain d = PeakDomain();
   const double R = 0.06;  // a ball of some 40 points, each read
@@ -145,7 +153,10 @@ TEST(Prominence, UnsmoothedAPointsKeyIsItsOffsetFromItsBallsMean) {
   }
   const Prominence::Scale coarse = Prominence::Scale::Of(cellSide, 0.25, false);
   ASSERT_LT(coarse.farShare, 0.5);  // a share of the ball read
-  const std::vector<float> share = Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 2, 0);
+  reached = -1;
+  const std::vector<float> share =
+      Prominence::Compute(d.points.pos, d.normal, d.points.vertIndex, coarse, 2, 0, vcg_ext::Progress(Reached));
+  EXPECT_EQ(reached, 100);
   const int hill = Nearest(d, 0.7f, 0.7f), side = Nearest(d, 0.7f, 0.45f);
   EXPECT_GT(share[size_t(hill)], share[size_t(side)]);
   EXPECT_TRUE(std::all_of(share.begin(), share.end(), [](float v) { return std::isfinite(v); }));
