@@ -55,12 +55,13 @@ def visit_order_section(docs):
              "reconstruction error above. On the tuning models each noise discount (in standard errors) with the "
              "default off-surface weight, and each off-surface weight (on clouds: each point's own offset from the "
              "surface its balls fit, in units of the scale, taken from its prominence; a mesh's vertices take "
-             "none, so the tuning terrain's vertices are also run as a cloud) with the default discount; and a "
-             "mesh's vertices smoothed over their nearest as a cloud's points are, or each vertex as it is "
-             "(a mesh carries no scan's scatter; unsmoothed, no noise is discounted). Below 1: "
+             "none, so the tuning terrain's vertices are also run as a cloud) with the default discount; and the "
+             "points of a clean surface (a mesh's vertices, a cloud whose thinnest spread grows as curvature's: "
+             "vcg_ext/clean_surface.h) smoothed over their nearest as a scan's points are, or each point as it "
+             "is (a clean surface carries no scan's scatter; unsmoothed, no noise is discounted). Below 1: "
              "lower than random order's. The default visits the prominent points first, discount "
-             f"{default.prominence_noise:g}, off-surface weight {default.prominence_off_surface:g}, a mesh's "
-             f"vertices {'smoothed' if default.prominence_smooth_mesh else 'as they are'}."]
+             f"{default.prominence_noise:g}, off-surface weight {default.prominence_off_surface:g}, a clean "
+             f"surface's points {'smoothed' if default.prominence_smooth_clean else 'as they are'}."]
     for name, title in (("visit_order_tuning", "Tuning models"), ("visit_order", "Reported models")):
         path = docs / f"{name}.json"
         if not path.is_file():

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 #include "bounded_dijkstra.h"
 #include "euclidean_ball.h"
 #include "fast_marching.h"
+#include "clean_surface.h"
 #include "geodesic_metric.h"
 #include "knn_table.h"
 #include "mesh_triangles.h"
@@ -53,6 +55,9 @@ class GeodesicDomain {
     /// The ScatterShare of the whole cloud where a caller measured it (a
     /// cluster, once for all its tiles); < 0: measured here.
     double scatterShare = -1;
+    /// A cloud's CleanSurface exponent where a caller measured it; < 0:
+    /// measured here (on a cloud; a mesh's vertices are clean).
+    double cleanExponent = -1;
   };
 
   /// Numbered in the cells' Morton order, near points at near numbers
@@ -67,6 +72,9 @@ class GeodesicDomain {
   /// The points' ScatterShare: where it Scatters, automatic choices take the
   /// surface-density metric and the rims first.
   double scatterShare = 0;
+  /// The points' CleanSurface exponent (infinity on a mesh's vertices): where
+  /// they are Clean, the prominence order does not smooth them.
+  double cleanExponent = std::numeric_limits<double>::infinity();
   double curvatureExponent = Param().curvatureExponent;
   double adaptivity = Param().adaptivity;
   bool meshGeodesics = false;       ///< fast marching (else point graph or Euclidean)
@@ -138,6 +146,8 @@ class GeodesicDomain {
     }
     d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::Of(ps.pos, ps.vertIndex);
     d.metric = ChosenMetric(p.metric, d.Scatters());
+    if (!d.hasFaces)
+      d.cleanExponent = p.cleanExponent >= 0 ? p.cleanExponent : CleanSurface<Scalar>::Of(ps.pos, ps.vertIndex);
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a
@@ -224,6 +234,7 @@ class GeodesicDomain {
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
+  bool Clean() const { return CleanSurface<Scalar>::Clean(cleanExponent); }
 
   /// The edge lengths g_ij of this domain's metric (eq. 2-3), from its
   /// positions and curvature: valid while the domain is neither moved nor changed.

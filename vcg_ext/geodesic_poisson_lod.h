@@ -62,11 +62,12 @@ class GeodesicPoissonLod {
     /// mean error ratio on the tuning models (docs/visit_order_tuning.json);
     /// 0: prominence alone.
     double prominenceOffSurface = 1.0;
-    /// With Prominence on a mesh: each vertex's position smoothed as a cloud's
-    /// points are (true), or the vertex itself (Prominence::SmoothOn): a mesh's
-    /// vertices carry no scan's scatter, and unsmoothed the error was lower in
-    /// every tuning cell of the meshes (docs/visit_order_tuning.json).
-    bool prominenceSmoothMesh = false;
+    /// With Prominence on a clean surface (a mesh's vertices, a cloud the
+    /// domain finds Clean): each point's position smoothed as a scan's points
+    /// are (true), or the point itself (Prominence::SmoothOn): a clean surface
+    /// carries no scan's scatter, and unsmoothed the error was lower in every
+    /// tuning cell of the meshes and the clean cloud (docs/visit_order_tuning.json).
+    bool prominenceSmoothClean = false;
     /// With Border: the standard errors discounted from each point's offset
     /// (BorderOrder::Compute): well beyond an even scatter's, so that flat
     /// ground keeps the random order (docs/airborne_classes.md).
@@ -90,13 +91,13 @@ class GeodesicPoissonLod {
   /// point's input index, so the same point has the same rank in any subset;
   /// with VisitOrder::Prominence first by their prominence at `scale`, with
   /// VisitOrder::Border by their offset from the rim of their surroundings
-  /// (noise < 0: the order's default discount; offSurface, smoothMesh: Prominence's);
+  /// (noise < 0: the order's default discount; offSurface, smoothClean: Prominence's);
   /// a mesh's border points before the rest (BorderFirst). A key order reports
   /// to `progress`.
   static std::vector<int> VisitingOrder(const Domain& d, uint64_t seed, const std::vector<int>& within = {},
                                         VisitOrder visit = Param().order, double scale = 0, double noise = -1,
                                         double offSurface = Param().prominenceOffSurface,
-                                        bool smoothMesh = Param().prominenceSmoothMesh,
+                                        bool smoothClean = Param().prominenceSmoothClean,
                                         Progress progress = Progress(nullptr)) {
     visit = ChosenOrder(visit, d.Scatters());
     if (noise < 0) noise = NoiseOf(visit, Param());
@@ -113,8 +114,8 @@ class GeodesicPoissonLod {
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
                                     BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale,
-                                    Prominence<Scalar>::SmoothOn(d.hasFaces, smoothMesh)),
-                                noise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, offSurface), progress),
+                                    Prominence<Scalar>::SmoothOn(d.Clean(), smoothClean)),
+                                noise, Prominence<Scalar>::OffSurfaceOn(d.Clean(), offSurface), progress),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);
@@ -153,12 +154,12 @@ class GeodesicPoissonLod {
                                     Progress progress = Progress(nullptr), const std::vector<int>& within = {},
                                     VisitOrder visit = Param().order, double noise = -1,
                                     double offSurface = Param().prominenceOffSurface,
-                                    bool smoothMesh = Param().prominenceSmoothMesh) {
+                                    bool smoothClean = Param().prominenceSmoothClean) {
     CheckRadius(radius);
     visit = ChosenOrder(visit, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order =
-        VisitingOrder(d, seed, within, visit, radius, noise, offSurface, smoothMesh, ordering);
+        VisitingOrder(d, seed, within, visit, radius, noise, offSurface, smoothClean, ordering);
     PoissonDisk::Param pp;
     pp.radius = radius;
     pp.order = &order;
@@ -183,7 +184,7 @@ class GeodesicPoissonLod {
     const VisitOrder visit = ChosenOrder(p.order, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);
     const std::vector<int> order = VisitingOrder(d, p.seed, p.within, visit, tp.initialRadius, NoiseOf(visit, p),
-                                                 p.prominenceOffSurface, p.prominenceSmoothMesh, ordering);
+                                                 p.prominenceOffSurface, p.prominenceSmoothClean, ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
     PoissonTargetCount::Result r;
@@ -242,7 +243,7 @@ class GeodesicPoissonLod {
       r.coveringRadius = t.coveringRadius;
     } else {
       PoissonDisk::Result s = Sample(d, p.radius, p.seed, sampling, p.within, r.order, NoiseOf(r.order, p),
-                                     p.prominenceOffSurface, p.prominenceSmoothMesh);
+                                     p.prominenceOffSurface, p.prominenceSmoothClean);
       samples = std::move(s.samples);
       disk = std::move(s.owner);
       r.radius = p.radius;

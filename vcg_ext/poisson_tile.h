@@ -52,11 +52,12 @@ class PoissonTile {
     /// cloud's cell side, `keyCellSide`: SurfaceCellSide of its points in id
     /// order, as BallShare::CellSide takes them,
     /// at `keyScale` less `keyNoise` standard errors (Prominence: with
-    /// `keyOffSurface`, a mesh's vertices smoothed when `keySmoothMesh`): as
-    /// GeodesicPoissonLod's default order at that scale; or Random.
+    /// `keyOffSurface` and `keySmoothClean`, for a cloud that is `keyClean` or
+    /// not: the whole cloud's GeodesicDomain::Clean): as GeodesicPoissonLod's
+    /// default order at that scale; or Random.
     VisitOrder order = VisitOrder::Random;
     double keyScale = 0, keyNoise = 0, keyOffSurface = 0, keyCellSide = 0;
-    bool keySmoothMesh = false;
+    bool keyClean = false, keySmoothClean = false;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -110,8 +111,8 @@ class PoissonTile {
               : Prominence<Scalar>::Compute(
                     d.points.pos, d.normal, pid,
                     Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
-                                                  Prominence<Scalar>::SmoothOn(d.hasFaces, p.keySmoothMesh)),
-                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(d.hasFaces, p.keyOffSurface), ordering);
+                                                  Prominence<Scalar>::SmoothOn(p.keyClean, p.keySmoothClean)),
+                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(p.keyClean, p.keyOffSurface), ordering);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];

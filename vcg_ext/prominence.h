@@ -64,16 +64,17 @@ class Prominence {
     }
   };
 
-  /// Whether the points' positions are smoothed (Scale::Of) on a mesh's
-  /// vertices (`mesh`: the input has faces) or a cloud's: always on a cloud,
-  /// whose scan scatters them; on a mesh's only when asked (`smoothMesh`).
-  static bool SmoothOn(bool mesh, bool smoothMesh) { return !mesh || smoothMesh; }
+  /// Whether the points' positions are smoothed (Scale::Of): where a scan
+  /// scatters them; on a clean surface (`clean`: a mesh's vertices, a cloud
+  /// CleanSurface finds clean) only when asked (`smoothClean`).
+  static bool SmoothOn(bool clean, bool smoothClean) { return !clean || smoothClean; }
 
-  /// The off-surface weight (Compute) to take on a mesh's vertices (`mesh`: the
-  /// input has faces) or a cloud's: none on a mesh's vertices, which carry no scan's scatter, and
-  /// whose sharp peaks, narrower than the quadratic it assumes, would lose
-  /// their tops to their sides.
-  static double OffSurfaceOn(bool mesh, double offSurface) { return mesh ? 0 : offSurface; }
+  /// The off-surface weight (Compute) to take on a clean surface (`clean`: a
+  /// mesh's vertices, a cloud CleanSurface finds clean) or a scan's points:
+  /// none on a clean surface, which carries no scan's scatter, and whose sharp
+  /// peaks, narrower than the quadratic it assumes, would lose their tops to
+  /// their sides.
+  static double OffSurfaceOn(bool clean, double offSurface) { return clean ? 0 : offSurface; }
 
   /// Per point, its prominence at scale R > 0 (smoothing radius s <= R), in
   /// units of R, less `noise` standard errors of the smoothed position along

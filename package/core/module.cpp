@@ -258,7 +258,7 @@ NB_MODULE(_core, m) {
       .def_rw("order", &Poisson::Param::order)
       .def_rw("prominence_noise", &Poisson::Param::prominenceNoise)
       .def_rw("prominence_off_surface", &Poisson::Param::prominenceOffSurface)
-      .def_rw("prominence_smooth_mesh", &Poisson::Param::prominenceSmoothMesh)
+      .def_rw("prominence_smooth_clean", &Poisson::Param::prominenceSmoothClean)
       .def_rw("border_noise", &Poisson::Param::borderNoise)
       .def(
           "noise_of", [](const Poisson::Param& p, vcg_ext::VisitOrder order) { return Poisson::NoiseOf(order, p); },

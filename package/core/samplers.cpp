@@ -42,6 +42,7 @@ Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg
     throw std::invalid_argument("a tile takes a chosen metric: the cluster chooses for the whole cloud");
   Domain::Param dp = domain;
   dp.scatterShare = 0;  // the metric is chosen: nothing here reads the share
+  dp.cleanExponent = 0;  // the tile's prominence takes the whole cloud's (key_clean)
   dp.keepReach = true;
   dp.orientNormals = false;  // a tile's output is the input's records: nothing reads the signs
   dp.mode = vcg_ext::GeodesicMode::PointGraph;

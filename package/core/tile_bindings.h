@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 #include <vcg_ext/poisson_target_count.h>
+#include <vcg_ext/clean_surface.h>
 #include <vcg_ext/scatter_share.h>
 #include "array_input.h"
 #include "call_support.h"
@@ -172,7 +173,7 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
                                std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
                                std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
                                vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide,
-                               double keyOffSurface, bool keySmoothMesh) {
+                               double keyOffSurface, bool keyClean, bool keySmoothClean) {
   const size_t rows = ids.shape(0);
   CheckTileRows(d, ids, core, candidate);
   if (order == vcg_ext::VisitOrder::Automatic)
@@ -185,7 +186,8 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
     tp.keyScale = keyScale;
     tp.keyNoise = keyNoise;
     tp.keyOffSurface = keyOffSurface;
-    tp.keySmoothMesh = keySmoothMesh;
+    tp.keyClean = keyClean;
+    tp.keySmoothClean = keySmoothClean;
     tp.keyCellSide = keyCellSide;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
     std::vector<char> isCore(core.data(), core.data() + rows), may;
@@ -277,6 +279,11 @@ inline double ScatterShareOf(const Array2& sub) {
   return vcg_ext::ScatterShare<double>::OfSubsample(ReadPoints(sub, nullptr).pos);
 }
 
+// CleanSurface's exponent of n points from the points of CellSideSubsample(n), in order.
+inline double CleanExponentOf(const Array2& sub) {
+  return vcg_ext::CleanSurface<double>::OfSubsample(ReadPoints(sub, nullptr).pos);
+}
+
 // The ids of the points SurfaceCellSide reads of n points, in order.
 inline nb::ndarray<nb::numpy, uint64_t> CellSideSubsample(uint64_t n) {
   std::vector<uint64_t> ids(Cells::SubsampleSize(size_t(n)));
@@ -321,7 +328,7 @@ inline void BindTiles(nb::module_& m) {
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
         "key_cell_side"_a = 0.0, "key_off_surface"_a = Poisson::Param().prominenceOffSurface,
-        "key_smooth_mesh"_a = Poisson::Param().prominenceSmoothMesh);
+        "key_clean"_a = false, "key_smooth_clean"_a = Poisson::Param().prominenceSmoothClean);
   m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
         "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
         "the count search's pilot disks of a tile's core, at radius");
@@ -339,6 +346,10 @@ inline void BindTiles(nb::module_& m) {
   m.def("scatter_share", &ScatterShareOf, "subsample"_a,
         "the share of n points whose neighbourhoods scatter, from their cell_side_subsample (in id order)");
   m.attr("SCATTERED_ABOVE") = vcg_ext::ScatterShare<double>::kScattered;
+  m.def("clean_exponent", &CleanExponentOf, "subsample"_a,
+        "how n points' thinnest spread grows with the neighbourhood, from their cell_side_subsample (in id order)");
+  m.def("is_clean", &vcg_ext::CleanSurface<double>::Clean, "exponent"_a,
+        "whether points of this clean_exponent lie on a clean surface (the prominence order takes them as they are)");
   m.def("chosen_metric", [](vcg_ext::Metric asked, double share) {
     return vcg_ext::ChosenMetric(asked, vcg_ext::ScatterShare<double>::Scatters(share)); }, "asked"_a, "share"_a,
         "the metric asked for, or the automatic choice for points of this scatter_share");

@@ -43,7 +43,8 @@ METRIC = f"""metric : {{'automatic', 'curvature-density', 'eq3', 'geodesic', 'eu
         Estimate every normal, ignoring ``normals``. Default {not _D.use_input_normals}."""
 
 RUN = """seed : int
-        Seed of the visiting order (and of the first farthest point), 0 to 2**64 - 1. Default 0.
+        Seed of the visiting order (with a key order, of the points whose keys tie) and of the first farthest
+        point, 0 to 2**64 - 1. Default 0.
     threads : int, optional
         Threads to use (default: all cores). The result is the same on any number.
     progress : callable, optional

@@ -192,6 +192,9 @@ class Order:
     cell_side : float
         With a key order: the whole cloud's point spacing (``_core.cell_side``), which sets the share of a
         large ball's points the keys read and the prominence's smoothing radius.
+    clean : bool
+        With 'prominence': the whole cloud lies on a clean surface (``_core.is_clean``), whose points the
+        keys take as they are, a scan's smoothed.
     keyed : bool
         A key order (not random).
     """
@@ -199,6 +202,7 @@ class Order:
     scale: float = 0.0
     noise: float = 0.0
     cell_side: float = 0.0
+    clean: bool = False
 
     @property
     def keyed(self) -> bool:
@@ -206,7 +210,7 @@ class Order:
 
     def core_args(self) -> dict:
         return dict(visit_order=arrays.VISIT_ORDERS[self.kind], key_scale=float(self.scale),
-                    key_noise=float(self.noise), key_cell_side=float(self.cell_side))
+                    key_noise=float(self.noise), key_cell_side=float(self.cell_side), key_clean=bool(self.clean))
 
 
 RANDOM = Order()

@@ -105,9 +105,11 @@ void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radi
   p.keyScale = p.radius;  // a run at a radius orders by that scale
   p.keyNoise = Whole::NoiseOf(order, whole);
   p.keyOffSurface = whole.prominenceOffSurface;
-  p.keySmoothMesh = whole.prominenceSmoothMesh;
+  p.keySmoothClean = whole.prominenceSmoothClean;
   p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);  // the whole cloud's, in id order
-  const auto w = Whole::Compute(DomainOf(cloud, Graph(false)), whole);
+  const Domain wholeDomain = DomainOf(cloud, Graph(false));
+  p.keyClean = wholeDomain.Clean();  // the whole cloud's, as a cluster measures it
+  const auto w = Whole::Compute(wholeDomain, whole);
   const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
   ASSERT_GT(expected.size(), atLeast);
 

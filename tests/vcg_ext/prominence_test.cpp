@@ -129,6 +129,23 @@ TEST(Prominence, AMeshsOrderTakesNoNoiseDiscountNorOffSurfaceWeight) {
   EXPECT_NE(order(onCloud, 2, 0), order(onCloud, 0, 0));
 }
 
+// A clean cloud (a smooth surface's points, unscattered) is a mesh's vertices
+// without their triangles: unsmoothed, its order too ignores the noise discount
+// and the off-surface weight, unless smoothing clean surfaces is asked for.
+TEST(Prominence, ACleanCloudsOrderTakesNoNoiseDiscountNorOffSurfaceWeight) {
+  test::TMesh cloud;
+  test::HeightField(cloud, 41, PeakAndHill);
+  const Domain d = Domain::FromMesh(cloud, Domain::Param());
+  ASSERT_FALSE(d.hasFaces);
+  ASSERT_TRUE(d.Clean());
+  auto order = [&](double noise, double offSurface, bool smoothClean) {
+    return LOD::VisitingOrder(d, 5, {}, vcg_ext::VisitOrder::Prominence, 0.1, noise, offSurface, smoothClean);
+  };
+  EXPECT_EQ(order(0, 2, false), order(0, 0, false));
+  EXPECT_EQ(order(2, 0, false), order(0, 0, false));
+  EXPECT_NE(order(0, 0, true), order(0, 0, false));
+}
+
 // Unsmoothed (a mesh's vertices), a point's key is its own offset along its
 // normal from the mean of the points within R, in units of R; at a coarse
 // scale, where that mean reads a share of the ball, the hill still stands out

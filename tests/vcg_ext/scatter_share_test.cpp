@@ -18,17 +18,8 @@ using Poisson = vcg_ext::GeodesicPoissonLod<float>;
 using test::P3;
 using test::TMesh;
 
-std::vector<P3> Positions(const TMesh& m) {
-  std::vector<P3> pos;
-  for (const auto& v : m.vert) pos.push_back(v.cP());
-  return pos;
-}
-
-std::vector<int> Ids(size_t n) {
-  std::vector<int> id(n);
-  std::iota(id.begin(), id.end(), 0);
-  return id;
-}
+using test::Ids;
+using test::Positions;
 
 // Airborne-like: a jittered ground grid on [0, 1]^2 and, over a quarter of it, `crowns` points
 // spread evenly through a box up to 0.3 above it (tree crowns).

@@ -22,6 +22,18 @@ class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>>
 
 typedef vcg::Point3f P3;
 
+/// The vertices' positions, in order, and ids 0..n-1 for n of them.
+inline std::vector<P3> Positions(const TMesh& m) {
+  std::vector<P3> pos;
+  for (const auto& v : m.vert) pos.push_back(v.cP());
+  return pos;
+}
+inline std::vector<int> Ids(size_t n) {
+  std::vector<int> id(n);
+  for (size_t i = 0; i < n; ++i) id[i] = int(i);
+  return id;
+}
+
 /// n x n grid on [0,1]^2 lifted by z = h(x, y); normals left zero.
 inline void HeightField(TMesh& m, int n, const std::function<float(float, float)>& h) {
   vcg::tri::Allocator<TMesh>::AddVertices(m, size_t(n) * n);
