@@ -48,17 +48,19 @@ def visit_order_section(docs):
     the prominent points first, on the tuning models (the noise discount and the off-surface weight swept)
     and on the reported ones."""
     default = poisson_defaults()
+    from geodesic_lod import _core  # poisson_defaults put it on the path
     lines = ["## Tuning the visiting order", "",
              "`bench/visit_order.py` (`--tune` on the tuning models): our default Poisson LOD (exact count, "
              "seed 0; meshes over their triangles, raw scans on the point graph, as the filter runs them) visiting "
              "the points in the paper's random order and by prominence (`vcg_ext/prominence.h`), scored by the "
              "reconstruction error above. On the tuning models each noise discount (in standard errors) with the "
              "default off-surface weight, and each off-surface weight (on clouds: each point's own offset from the "
-             "surface its balls fit, in units of the scale, taken from its prominence; a mesh's vertices take "
-             "none, so the tuning terrain's vertices are also run as a cloud) with the default discount; and the "
-             "points of a clean surface (a mesh's vertices, a cloud whose thinnest spread grows as curvature's: "
-             "vcg_ext/clean_surface.h) smoothed over their nearest as a scan's points are, or each point as it "
-             "is (a clean surface carries no scan's scatter; unsmoothed, no noise is discounted). Below 1: "
+             "surface its balls fit, in units of the scale, taken from its prominence) with the default discount; "
+             "and the points of a clean surface (a mesh's vertices, a cloud whose thinnest spread grows as "
+             f"curvature's, its clean exponent above {_core.CLEAN_ABOVE:g}: vcg_ext/clean_surface.h) smoothed over "
+             "their nearest as a scan's points are, or each point as it is (a clean surface carries no scan's "
+             "scatter: unsmoothed, it takes no noise discount and no off-surface weight, the same on the tuning "
+             "terrain's grid and on its vertices as a cloud). Below 1: "
              "lower than random order's. The default visits the prominent points first, discount "
              f"{default.prominence_noise:g}, off-surface weight {default.prominence_off_surface:g}, a clean "
              f"surface's points {'smoothed' if default.prominence_smooth_clean else 'as they are'}."]
@@ -69,11 +71,11 @@ def visit_order_section(docs):
             continue
         rows = json.loads(path.read_text())
         keys = [k for k in rows[0] if isinstance(rows[0][k], dict) and k != "random"]
-        lines += ["", f"{title}:", "", "| model | rate | random (‰) | " + " | ".join(f"{k} / random" for k in keys)
-                  + " |", "|---|---:|---:|" + "---:|" * len(keys)]
+        lines += ["", f"{title}:", "", "| model | rate | clean exponent | random (‰) | "
+                  + " | ".join(f"{k} / random" for k in keys) + " |", "|---|---:|---:|---:|" + "---:|" * len(keys)]
         for r in rows:
             base = r["random"]["recon_mean"]
-            lines.append(f"| {r['model']} | {r['rate']:.0%} | {1000 * base:.3f} | "
+            lines.append(f"| {r['model']} | {r['rate']:.0%} | {r['clean_exponent']:.2f} | {1000 * base:.3f} | "
                          + " | ".join(f"{r[k]['recon_mean'] / base:.3f}" for k in keys) + " |")
         lines.append("")
         for k in keys:

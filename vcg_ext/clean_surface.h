@@ -30,7 +30,7 @@ class CleanSurface {
   /// A cloud is clean above this median exponent: midway between the tuning
   /// models' raw scans (1.88) and terrain grid nodes (2.76); the meshes measure
   /// 4.06 (docs/visit_order_tuning.json). Of the reported models the raw scans
-  /// measure 1.69, the others 3.17-3.84 (docs/visit_order.json).
+  /// measure 1.69, the others 3.17-3.80 (docs/visit_order.json).
   static constexpr double kClean = 2.3;
 
   /// The median, over every (m / 4096)-th of the subsample's m points, of

@@ -348,6 +348,7 @@ inline void BindTiles(nb::module_& m) {
   m.attr("SCATTERED_ABOVE") = vcg_ext::ScatterShare<double>::kScattered;
   m.def("clean_exponent", &CleanExponentOf, "subsample"_a,
         "how n points' thinnest spread grows with the neighbourhood, from their cell_side_subsample (in id order)");
+  m.attr("CLEAN_ABOVE") = vcg_ext::CleanSurface<double>::kClean;
   m.def("is_clean", &vcg_ext::CleanSurface<double>::Clean, "exponent"_a,
         "whether points of this clean_exponent lie on a clean surface (the prominence order takes them as they are)");
   m.def("chosen_metric", [](vcg_ext::Metric asked, double share) {
