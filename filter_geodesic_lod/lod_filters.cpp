@@ -236,8 +236,8 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
   p.push_back({ParamKind::Enum, kVisitOrder, "Visiting order",
                "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
-               "Prominent points first: those standing out of the scan's scatter at the disks' scale, on a "
-               "cloud those off the surface their neighbours fit later (docs/visit_order.json). Random: the paper's seeded order. Rims first: the points at the rim of their "
+               "Prominent points first: those standing out of the scan's scatter at the disks' scale, on a scan's "
+               "scattered points those off the surface their neighbours fit later (docs/visit_order.json). Random: the paper's seeded order. Rims first: the points at the rim of their "
                "surroundings, such as a roof's edges (docs/airborne_classes.md). Automatic (the default): rims "
                "first where the points' neighbourhoods scatter, as the automatic metric chooses, else prominent "
                "points first; the log names the order taken.",

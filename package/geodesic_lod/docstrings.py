@@ -138,8 +138,8 @@ LOD_ATTRIBUTES = f"""Attributes
 
 VISIT_ORDER = f"""visit_order : {{'automatic', 'random', 'prominence', 'rims'}}
         Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage.
-        'prominence': the points that stand out of their scan's scatter at the disks' scale first, on a
-        cloud those off the surface their neighbours fit later (docs/visit_order.json). 'random': the paper's seeded order. 'rims': the points at the rim of their
+        'prominence': the points that stand out of their scan's scatter at the disks' scale first, on a scan's
+        scattered points those off the surface their neighbours fit later (docs/visit_order.json). 'random': the paper's seeded order. 'rims': the points at the rim of their
         surroundings first, such as a roof's edges (docs/airborne_classes.md). 'automatic' (the default):
         'rims' where the points scatter (as the automatic metric chooses), else 'prominence'. The same on
         a cluster (``lod_files``, ``copc_file``)."""
