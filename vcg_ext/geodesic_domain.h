@@ -144,10 +144,14 @@ class GeodesicDomain {
                                             " are needed, the neighbours each normal is fitted to");
       Check(ps, true, p);  // what is left must still be samplable
     }
-    d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::Of(ps.pos, ps.vertIndex);
+    // Both measures read one subsample, taken once (O(n)).
+    const bool measureClean = !d.hasFaces && !(p.cleanExponent >= 0);
+    const std::vector<Coord> sub = !(p.scatterShare >= 0) || measureClean
+                                       ? BallShare<Scalar>::SubsampleById(ps.pos, ps.vertIndex)
+                                       : std::vector<Coord>();
+    d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::OfSubsample(sub);
     d.metric = ChosenMetric(p.metric, d.Scatters());
-    if (!d.hasFaces)
-      d.cleanExponent = p.cleanExponent >= 0 ? p.cleanExponent : CleanSurface<Scalar>::Of(ps.pos, ps.vertIndex);
+    if (!d.hasFaces) d.cleanExponent = measureClean ? CleanSurface<Scalar>::OfSubsample(sub) : p.cleanExponent;
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a
