@@ -54,13 +54,8 @@ TEST(CleanSurface, TheSameInAnyNumberingOfThePoints) {
   ScatteredSphere(m, 70000, 0.1f, 2);  // above the subsample's 65,536 points: a strided share of them
   const std::vector<P3> pos = Positions(m);
   const std::vector<int> id = Ids(pos.size());
-  std::vector<size_t> perm(pos.size());
-  std::iota(perm.begin(), perm.end(), size_t(0));
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
-  std::vector<P3> shuffledPos;
-  std::vector<int> shuffledId;
-  for (size_t i : perm) shuffledPos.push_back(pos[i]), shuffledId.push_back(id[i]);
-  EXPECT_EQ(Clean::Of(shuffledPos, shuffledId), Clean::Of(pos, id));
+  const auto shuffled = test::Shuffled(pos, id, 3);
+  EXPECT_EQ(Clean::Of(shuffled.first, shuffled.second), Clean::Of(pos, id));
 }
 
 TEST(CleanSurface, TheDomainMeasuresACloudsAndTakesACallers) {

@@ -68,15 +68,10 @@ TEST(ScatterShare, TheSameInAnyNumberingOfThePoints) {
   GroundWithTrees(m, 300, 20000, 2);  // above the subsample's 65,536 points: a strided share of them
   const std::vector<P3> pos = Positions(m);
   const std::vector<int> id = Ids(pos.size());
-  std::vector<size_t> perm(pos.size());
-  std::iota(perm.begin(), perm.end(), size_t(0));
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(4));
-  std::vector<P3> shuffledPos;
-  std::vector<int> shuffledId;
-  for (size_t k : perm) shuffledPos.push_back(pos[k]), shuffledId.push_back(id[k]);
+  const auto shuffled = test::Shuffled(pos, id, 4);
   const double share = Share::Of(pos, id);
   EXPECT_GT(share, 0.0);
-  EXPECT_EQ(Share::Of(shuffledPos, shuffledId), share);
+  EXPECT_EQ(Share::Of(shuffled.first, shuffled.second), share);
 }
 
 TEST(ScatterShare, TheAutomaticMetricIsSurfaceDensityWhereThePointsScatter) {

@@ -1,8 +1,12 @@
 #ifndef GEODESIC_LOD_TESTS_TEST_MESH_H
 #define GEODESIC_LOD_TESTS_TEST_MESH_H
 // A small vcglib mesh type and synthetic point sets with known geometry.
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
+#include <random>
+#include <utility>
 #include <vector>
 #include <vcg/complex/complex.h>
 
@@ -32,6 +36,16 @@ inline std::vector<int> Ids(size_t n) {
   std::vector<int> id(n);
   for (size_t i = 0; i < n; ++i) id[i] = int(i);
   return id;
+}
+/// The points and their ids in one seeded shuffled order.
+inline std::pair<std::vector<P3>, std::vector<int>> Shuffled(const std::vector<P3>& pos, const std::vector<int>& id,
+                                                             unsigned seed) {
+  std::vector<size_t> perm(pos.size());
+  std::iota(perm.begin(), perm.end(), size_t(0));
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+  std::pair<std::vector<P3>, std::vector<int>> out;
+  for (size_t k : perm) out.first.push_back(pos[k]), out.second.push_back(id[k]);
+  return out;
 }
 
 /// n x n grid on [0,1]^2 lifted by z = h(x, y); normals left zero.
