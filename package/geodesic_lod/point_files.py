@@ -92,8 +92,10 @@ def check_not_a_folder(output, input) -> None:
         folder = False
     if folder or text.endswith(("/", os.sep)):
         src = pathlib.Path(input)
+        # A COPC input's LOD is plain LAZ unless named *.copc.laz (write_copc): offer the plain name.
+        stem = src.name[:-len(COPC_SUFFIX)] if is_copc(src) else src.stem
         raise PointFileError(out, f"is a folder: give the LOD file's name, such as "
-                             f"{out / (src.stem + '_lod' + src.suffix.lower())}")
+                             f"{out / (stem + '_lod' + src.suffix.lower())}")
 
 
 def no_folder(folder: pathlib.Path) -> str:

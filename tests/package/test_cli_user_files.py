@@ -104,6 +104,15 @@ def test_a_folder_as_the_output_of_one_file_is_named_as_such(tmp_path, output):
     assert not (tmp_path / "new").exists() and not any((tmp_path / "out").iterdir())
 
 
+def test_a_copc_input_s_suggested_lod_name_is_plain_laz(tmp_path):
+    # A LOD of a COPC file is plain LAZ unless named *.copc.laz: the name offered says so.
+    src = las_cloud(tmp_path / "scan.laz")
+    copc = src.rename(tmp_path / "scan.COPC.laz")
+    (tmp_path / "out").mkdir()
+    r = run(copc, "-o", tmp_path / "out", "--rate", "10%", "-q")
+    assert r.returncode == 2 and f"such as {tmp_path / 'out' / 'scan_lod.laz'}" in r.stderr, r.stderr
+
+
 def test_a_poisson_lod_keeps_the_inputs_order(tmp_path):
     src = las_cloud(tmp_path / "in.laz")
     assert run(src, "-o", tmp_path / "lod.laz", "--rate", "10%", "-q").returncode == 0
