@@ -206,7 +206,7 @@ TEXTS = {
     True
     """,
     "lod_pyramid": f"""Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser
-    level a farthest-point prefix of it.
+    level the Poisson-disk set of its count among the finer level's samples (the command's ``--levels``).
 
     Parameters
     ----------

@@ -1,5 +1,6 @@
 // vcg_ext/geodesic_lod_pyramid.h: exact counts per level, levels nested and
-// each spread evenly, coarsest-level labels, one triangulation and placement
+// each spread evenly, each coarser level the Poisson set of its count among the
+// finer's, coarsest-level labels, one triangulation and placement
 // per level, bad level lists.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -55,8 +56,8 @@ TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
     }
     EXPECT_EQ(labelled, p.counts[k]);
   }
-  // Coarser levels are farthest-point prefixes: no point is much farther from
-  // the level than two of its samples are from each other.
+  // Coarser levels are spread evenly: no point is much farther from the level
+  // than two of its samples are from each other.
   const Domain d = Domain::FromMesh(m, p.domain);
   std::vector<int> pointOf(m.vert.size());
   for (size_t i = 0; i < d.size(); ++i) pointOf[d.points.vertIndex[i]] = int(i);
@@ -65,6 +66,25 @@ TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
     for (size_t i = 0; i < p.counts[k]; ++i) level.push_back(pointOf[r.vertIndex[i]]);
     const auto cs = CoverAndSeparation(d, level);
     EXPECT_LE(cs.first, 2.0 * cs.second) << "level " << k;
+  }
+}
+
+TEST(LodPyramid, EachCoarserLevelIsThePoissonSetOfItsCountAmongTheFiner) {
+  // As the command's and a cluster's levels: each keeps the prominent points of its own scale.
+  test::TMesh m;
+  test::HeightField(m, 45, [](float x, float y) { return test::HalfBumpy(x, y); });
+  const Pyramid::Param p = Levels({1000, 400, 100, 25});
+  const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
+  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+  for (size_t k = 1; k < p.counts.size(); ++k) {
+    Poisson::Param q;
+    q.sampleNum = p.counts[k];
+    q.seed = p.seed;
+    q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k - 1]));
+    const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
+    EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
+              std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k])))
+        << "level " << k;
   }
 }
 
