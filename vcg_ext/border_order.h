@@ -45,14 +45,17 @@ class BorderOrder {
   /// mean (at least 0): where the points scatter evenly around it, a point
   /// is not a rim, and random order decides among such points. `id`: the
   /// points' ids, which choose the share `share` of a ball's points read.
-  /// `progress` may stop it (vcg_ext::Cancelled).
+  /// `progress` may stop it (vcg_ext::Cancelled). With `only`, the values of
+  /// the points it flags (the others 0, their balls not read).
   template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<Id>& id, double R, double noise,
-                                    double share = 1, Progress progress = Progress(nullptr)) {
+                                    double share = 1, Progress progress = Progress(nullptr),
+                                    const std::vector<char>* only = nullptr) {
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
     const double far2 = R * R;
     BallShare<Scalar>::ForEachBall(pos, id, R, share, [&](int i, auto&& within, bool itself) {
+      if (only && !(*only)[size_t(i)]) return;
       ExactMoments ball(R);
       within(far2, [&](const vcg::Point3d& q) { ball.Add(q); });
       if (!itself) ball.Add(vcg::Point3d(0, 0, 0));  // the point itself

@@ -101,13 +101,30 @@ class GeodesicPoissonLod {
                                         Progress progress = Progress(nullptr)) {
     visit = ChosenOrder(visit, d.Scatters());
     if (noise < 0) noise = NoiseOf(visit, Param());
+    // Per point: whether `within` names it. A key order computes only these
+    // points' keys (a coarser level's candidates), the same as over all points.
+    std::vector<char> candidate;
+    if (!within.empty()) {
+      std::vector<char> may;
+      for (int v : within) {
+        if (v < 0) throw InputError(Field::Within, "holds a negative index");
+        if (size_t(v) >= may.size()) may.resize(size_t(v) + 1, 0);
+        may[size_t(v)] = 1;
+      }
+      candidate.resize(d.size());
+      for (size_t i = 0; i < d.size(); ++i) {
+        const size_t v = size_t(d.points.vertIndex[i]);
+        candidate[i] = v < may.size() && may[v];
+      }
+    }
+    const std::vector<char>* only = within.empty() ? nullptr : &candidate;
     std::vector<int> order =
         visit == VisitOrder::Border
             ? KeyFirstOrder(BorderOrder<Scalar>::Compute(
                                 d.points.pos, d.points.vertIndex, scale, noise,
                                 BorderOrder<Scalar>::ShareOf(
                                     BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
-                                progress),
+                                progress, only),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
             ? KeyFirstOrder(Prominence<Scalar>::Compute(
@@ -115,22 +132,13 @@ class GeodesicPoissonLod {
                                 Prominence<Scalar>::Scale::Of(
                                     BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale,
                                     Prominence<Scalar>::SmoothOn(d.Clean(), smoothClean)),
-                                noise, Prominence<Scalar>::OffSurfaceOn(d.Clean(), offSurface), progress),
+                                noise, Prominence<Scalar>::OffSurfaceOn(d.Clean(), offSurface), progress, only),
                             d.points.vertIndex, seed)
             : PriorityOrder(d.points.vertIndex, seed);
     BorderFirst(d, order);
     if (within.empty()) return order;
-    std::vector<char> may;
-    for (int v : within) {
-      if (v < 0) throw InputError(Field::Within, "holds a negative index");
-      if (size_t(v) >= may.size()) may.resize(size_t(v) + 1, 0);
-      may[size_t(v)] = 1;
-    }
-    auto excluded = [&](int i) {
-      const size_t v = size_t(d.points.vertIndex[size_t(i)]);
-      return v >= may.size() || !may[v];
-    };
-    order.erase(std::remove_if(order.begin(), order.end(), excluded), order.end());
+    order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !candidate[size_t(i)]; }),
+                order.end());
     return order;
   }
 

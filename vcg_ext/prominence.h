@@ -89,11 +89,13 @@ class Prominence {
   /// (s/R)^2 times the far one's is what curvature does not explain, a raw
   /// scan's noise, near 0 on a clean surface. Of two points standing out
   /// alike, the one nearer the surface then comes first. `progress` may stop
-  /// it (vcg_ext::Cancelled).
+  /// it (vcg_ext::Cancelled). With `only`, the values of the points it flags
+  /// (the others 0, their balls not read): a coarser level's candidates.
   template <class Id>
   static std::vector<float> Compute(const std::vector<Coord>& pos, const std::vector<vcg::Point3f>& normal,
                                     const std::vector<Id>& id, const Scale& scale, double noise,
-                                    double offSurface, Progress progress = Progress(nullptr)) {
+                                    double offSurface, Progress progress = Progress(nullptr),
+                                    const std::vector<char>* only = nullptr) {
     const double R = scale.R, s = std::min(scale.s, scale.R);
     std::vector<float> out(pos.size(), 0);
     if (pos.empty() || !(R > 0) || !std::isfinite(R)) return out;
@@ -114,7 +116,9 @@ class Prominence {
     // the mean within R first, then the points within s on a grid of side s.
     const bool all = scale.farShare >= 1 && scale.nearShare >= 1;  // Scale::Of: the first gives the second
     std::vector<double> farMean(all ? 0 : pos.size());
+    auto wanted = [only](int i) { return !only || (*only)[size_t(i)]; };
     BallShare<Scalar>::ForEachBall(pos, id, R, scale.farShare, [&](int i, auto&& ball, bool itself) {
+      if (!wanted(i)) return;
       const auto x = along(i);
       ExactLineMoments farBall(R), nearBall(R);
       // Both balls have the unit R: an offset is rounded once for both.
@@ -136,10 +140,12 @@ class Prominence {
     if (!(s > 0)) {  // each point its own smoothed position: no second pass
       ExactLineMoments itself(R);
       itself.Add(0);
-      for (size_t i = 0; i < pos.size(); ++i) value(int(i), itself, farMean[i]);
+      for (size_t i = 0; i < pos.size(); ++i)
+        if (wanted(int(i))) value(int(i), itself, farMean[i]);
       return out;
     }
     BallShare<Scalar>::ForEachBall(pos, id, s, scale.nearShare, [&](int i, auto&& ball, bool itself) {
+      if (!wanted(i)) return;
       const auto x = along(i);
       ExactLineMoments nearBall(R);
       ball(s * s, [&](const vcg::Point3d& q) { nearBall.Add(x(q)); });

@@ -141,6 +141,25 @@ TEST(GeodesicPoissonLod, VisitingOrderIsByInputIndexAndKeptInAnySubset) {
   EXPECT_EQ(Vertices(e, Poisson::VisitingOrder(e, 5, {}, kSeeded)), want);
 }
 
+TEST(GeodesicPoissonLod, AKeyOrderWithinASubsetIsTheWholeOrderRestricted) {
+  // Keys are computed for `within`'s points only (a coarser level's candidates): the same order.
+  test::TMesh cloud, mesh;
+  BumpyCloud(cloud);
+  test::GridMesh(mesh, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  for (const test::TMesh* m : {&cloud, &mesh}) {
+    const Domain d = Domain::FromMesh(*m, Domain::Param());
+    std::vector<int> within;
+    for (int v = 0; v < int(m->vert.size()); v += 3) within.push_back(v);
+    for (vcg_ext::VisitOrder visit : {vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
+      std::vector<int> want;
+      for (int v : Vertices(d, Poisson::VisitingOrder(d, 5, {}, visit, 0.15)))
+        if (v % 3 == 0) want.push_back(v);
+      EXPECT_EQ(Vertices(d, Poisson::VisitingOrder(d, 5, within, visit, 0.15)), want)
+          << (m == &cloud ? "cloud" : "mesh") << " order " << int(visit);
+    }
+  }
+}
+
 // A bumpy open grid mesh: its outline is its border.
 void BumpyGrid(test::TMesh& m, int n = 30) {
   test::GridMesh(m, n, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
