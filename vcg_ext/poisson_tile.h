@@ -69,7 +69,7 @@ class PoissonTile {
     std::vector<int64_t> coverOffset;    ///< per input row + 1: rows of `coverers`
     std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
     std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
-    std::vector<float> key;              ///< with a key order: per input row, its key (Settle's order)
+    std::vector<float> key;              ///< with a key order: per input row it may visit, its key (Settle's order; others 0)
   };
 
   /// `d` built with keepReach on the tile's rows (core and halo) in increasing
@@ -104,15 +104,19 @@ class PoissonTile {
     std::vector<int> order;
     if (p.order != VisitOrder::Random) {
       const Progress ordering = OrderShare(progress, p.order);
+      std::vector<char> visited(n);  // the points whose keys order anything
+      for (size_t i = 0; i < n; ++i) visited[i] = (flags[i] & Visit) != 0;
       std::vector<float> key =
           p.order == VisitOrder::Border
               ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
-                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering)
+                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering,
+                                             &visited)
               : Prominence<Scalar>::Compute(
                     d.points.pos, d.normal, pid,
                     Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
                                                   Prominence<Scalar>::SmoothOn(p.keyClean, p.keySmoothClean)),
-                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(p.keyClean, p.keyOffSurface), ordering);
+                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(p.keyClean, p.keyOffSurface), ordering,
+                    &visited);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
       for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];
