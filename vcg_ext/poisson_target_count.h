@@ -148,7 +148,6 @@ class PoissonTargetCount {
     size_t poissonCount = 0;     ///< samples of that set before trimming
     int iterations = 0;          ///< Poisson runs made
     bool trimmed = false;
-    bool farthestOrder = false;  ///< samples in farthest-point order (trimmed from every point)
     /// Every point lies within this distance of a sample: the exact largest one
     /// when trimmed, else the Poisson set's radius (a bound).
     double coveringRadius = 0;
@@ -258,7 +257,6 @@ class PoissonTargetCount {
     out.trimmed = f.samples.size() < from.count;
     out.coveringRadius = f.dist.empty() ? 0.0 : *std::max_element(f.dist.begin(), f.dist.end());
     out.samples = std::move(f.samples);
-    out.farthestOrder = true;
     out.voronoiOwner = std::move(f.owner);
     out.diskOwner = out.voronoiOwner;
     return out;

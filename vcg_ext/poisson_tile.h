@@ -69,7 +69,7 @@ class PoissonTile {
     std::vector<int64_t> coverOffset;    ///< per input row + 1: rows of `coverers`
     std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
     std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
-    std::vector<float> key;              ///< with a key order: per input row it may visit, its key (Settle's order; others 0)
+    std::vector<float> key;              ///< with a key order: per row it may visit, its key (else 0; Settle's order)
   };
 
   /// `d` built with keepReach on the tile's rows (core and halo) in increasing
