@@ -6,6 +6,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 
 import numpy as np
@@ -145,10 +146,16 @@ def test_a_stop_that_a_cluster_start_turns_into_its_own_error_still_stops_the_co
 
 
 
-def _stops_once_done(signum, done):
-    """`done`, then a stop before the command has returned."""
+def _stops_once_done(signum, done, stops_for=lambda *args: True):
+    """`done`, then a stop before the command has returned: once, at the first call `stops_for` accepts, on
+    the main thread (where the command's handler runs); other calls, such as a finalizer's, are `done` alone."""
+    stopped = []
+
     def stopped_after(*args, **kwargs):
         result = done(*args, **kwargs)
+        if stopped or threading.current_thread() is not threading.main_thread() or not stops_for(*args):
+            return result
+        stopped.append(signum)
         os.kill(os.getpid(), signum)
         for _ in range(1000):
             time.sleep(0.01)  # the signal lands here
@@ -192,7 +199,14 @@ def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp
     from geodesic_lod import cli
     np.save(tmp_path / "in.npy", bumpy_sphere(3000))
     closed, close = [], dask.distributed.LocalCluster.close
-    monkeypatch.setattr(dask.distributed.Client, "close", _stops_once_done(signal.SIGINT, dask.distributed.Client.close))
+    made, init = [], dask.distributed.Client.__init__  # the command's client, not an earlier test's collected now
+
+    def made_here(self, *args, **kwargs):
+        made.append(self)
+        init(self, *args, **kwargs)
+    monkeypatch.setattr(dask.distributed.Client, "__init__", made_here)
+    monkeypatch.setattr(dask.distributed.Client, "close", _stops_once_done(
+        signal.SIGINT, dask.distributed.Client.close, stops_for=lambda client: any(client is m for m in made)))
     monkeypatch.setattr(dask.distributed.LocalCluster, "close", lambda self, *a, **k: closed.append(close(self, *a, **k)))
     code = cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod"), "--rate", "10%", "--workers", "1", "-q"])
     assert code == 130 and closed
