@@ -55,7 +55,8 @@ inline QString PyramidPythonName() { return kPyramidPythonName; }
 inline QString PyramidInfo() {
   return "Adds one layer per level of a list such as 50%,25%,10% (of the vertices) or 5000,1000 (counts): the "
          "finest is a geodesic Poisson-disk set of that count, each coarser one the Poisson-disk set of its count "
-         "among the finer level's samples, so the levels nest. The finest layer's attribute <i>lod_level</i> gives the coarsest level of "
+         "among the finer level's samples, each in the visiting order at its own scale, so the levels nest. The "
+         "finest layer's attribute <i>lod_level</i> gives the coarsest level of "
          "each vertex. Returns <i>level_num</i>, <i>sample_num</i> and <i>radius</i>." +
          SeeAlso() + PaperReference();
 }

@@ -213,6 +213,18 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
   return s;
 }
 
+// The Poisson filter's and the pyramid's visiting order.
+ParamSpec VisitOrderParam() {
+  return {ParamKind::Enum, kVisitOrder, "Visiting order",
+          "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
+          "Prominent points first: those standing out of the scan's scatter at the disks' scale, on a scan's "
+          "scattered points those off the surface their neighbours fit later (docs/visit_order.json). Random: the "
+          "paper's seeded order. Rims first: the points at the rim of their surroundings, such as a roof's edges "
+          "(docs/airborne_classes.md). Automatic (the default): rims first where the points' neighbourhoods "
+          "scatter, as the automatic metric chooses, else prominent points first; the log names the order taken.",
+          kVisitOrders.IndexOf(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().order), 0, 0, kVisitOrders.Names()};
+}
+
 }  // namespace
 
 std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
@@ -234,15 +246,7 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
                "it. 0 gives the exact count.", 0});
   AddDomainParams(p, kPlacedOutputs);
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
-  p.push_back({ParamKind::Enum, kVisitOrder, "Visiting order",
-               "Which point of a neighbourhood a disk keeps; every order keeps the separation and the coverage. "
-               "Prominent points first: those standing out of the scan's scatter at the disks' scale, on a scan's "
-               "scattered points those off the surface their neighbours fit later (docs/visit_order.json). Random: the paper's seeded order. Rims first: the points at the rim of their "
-               "surroundings, such as a roof's edges (docs/airborne_classes.md). Automatic (the default): rims "
-               "first where the points' neighbourhoods scatter, as the automatic metric chooses, else prominent "
-               "points first; the log names the order taken.",
-               kVisitOrders.IndexOf(vcg_ext::GeodesicPoissonLod<Scalarm>::Param().order), 0, 0,
-               kVisitOrders.Names()});
+  p.push_back(VisitOrderParam());
   return p;
 }
 
@@ -397,6 +401,7 @@ ParamSpec LevelsParam() {
 std::vector<ParamSpec> PyramidParams(const CMeshO&) {
   std::vector<ParamSpec> p{LevelsParam()};
   AddDomainParams(p, kPyramidOutputs);
+  p.push_back(VisitOrderParam());
   return p;
 }
 
@@ -410,6 +415,7 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     ReadDomainParams(src, p.domain, p.seed, kPyramidOutputs, output);
     p.meshOutput = output.mesh;
     p.placement = output.placement;
+    p.order = kVisitOrders.Read(src, kVisitOrder);
     const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
@@ -423,8 +429,10 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     QStringList counts;
     for (size_t c : r.counts) counts << Grouped(c);
     run.summary = Describe("Geodesic LOD pyramid", run.result, p.domain.metric) +
-                  QString("; levels of %1 samples, each a subset of the finer ones; finest radius %2 (%3)")
-                      .arg(counts.join(", ")).arg(r.radius).arg(Many(size_t(r.iterations), "Poisson run", "Poisson runs"));
+                  QString("; levels of %1 samples, each a subset of the finer ones; finest radius %2 (%3); "
+                          "visiting order: %4")
+                      .arg(counts.join(", ")).arg(r.radius).arg(Many(size_t(r.iterations), "Poisson run", "Poisson runs"))
+                      .arg(kVisitOrders.NameOf(r.order));
     run.values = {{"level_num", QVariant(int(r.counts.size()))}, {"sample_num", QVariant(int(r.counts[0]))},
                   {"radius", QVariant(r.radius)}};
     return run;

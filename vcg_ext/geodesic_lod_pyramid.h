@@ -2,8 +2,8 @@
 #define VCG_EXT_GEODESIC_LOD_PYRAMID_H
 // Nested geodesic LODs in one run: the finest level is a Poisson-disk set of
 // the wanted count; every coarser level is the Poisson-disk set of its count
-// among the finer level's samples, in the visiting order at its own scale (the
-// prominent points of that scale kept), as the command's and a cluster's
+// among the finer level's samples, in the visiting order at its own scale (by
+// default the prominent points of that scale kept), as the command's and a cluster's
 // levels are; all on one geodesic domain (normals, eq. 1, the geodesics).
 // Nesting costs little: a level's reconstruction error is 0.98-1.09 times a
 // LOD's of its count alone (docs/pyramid_levels.json). Cost: a count search
@@ -33,6 +33,8 @@ class GeodesicLodPyramid {
     std::vector<size_t> counts;  ///< samples per level, strictly decreasing (finest first)
     int maxIterations = 24;      ///< Poisson runs at most for the finest level
     uint64_t seed = 0;
+    /// Every level's visiting order, at the level's scale (GeodesicPoissonLod::Param::order).
+    VisitOrder order = typename GeodesicPoissonLod<Scalar>::Param().order;
     bool meshOutput = false;     ///< triangulate every level (layers with faces only)
     Placement placement = typename GeodesicPoissonLod<Scalar>::Param().placement;  ///< each level's vertices (mesh output)
   };
@@ -44,6 +46,7 @@ class GeodesicLodPyramid {
     std::vector<std::vector<vcg::Point3<Scalar>>> levelPositions;
     double radius = 0;                   ///< radius of the finest level's Poisson set
     int iterations = 0;                  ///< Poisson runs for the finest level
+    VisitOrder order = VisitOrder::Random;  ///< the visiting order: as asked, an automatic choice made
   };
 
   static void CheckCounts(const std::vector<size_t>& c) {
@@ -70,8 +73,10 @@ class GeodesicLodPyramid {
     typename GeodesicPoissonLod<Scalar>::Param pp;
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;
+    pp.order = p.order;
     Result r;
     r.counts = p.counts;
+    r.order = ChosenOrder(p.order, d.Scatters());
     const size_t levels = p.counts.size();
     const size_t share = p.meshOutput ? 83 : 100;  // of the progress, the rest triangulates
     std::vector<std::vector<int>> added(levels);  // level k's samples not in level k + 1

@@ -96,6 +96,7 @@ nb::dict PyramidDict(const Pyramid::Result& r) {
   d["level_positions"] = levelPositions;
   d["radius"] = r.radius;
   d["iterations"] = r.iterations;
+  d["visit_order"] = r.order;
   return d;
 }
 
@@ -287,7 +288,8 @@ NB_MODULE(_core, m) {
       .def_rw("max_iterations", &Pyramid::Param::maxIterations)
       .def_rw("seed", &Pyramid::Param::seed)
       .def_rw("mesh_output", &Pyramid::Param::meshOutput)
-      .def_rw("placement", &Pyramid::Param::placement);
+      .def_rw("placement", &Pyramid::Param::placement)
+      .def_rw("order", &Pyramid::Param::order);
 
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;

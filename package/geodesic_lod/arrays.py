@@ -89,6 +89,7 @@ class LodPyramid(Lod):
     level_positions: list = field(default_factory=list)
     radius: float = 0.0
     iterations: int = 0
+    visit_order: str = ""
 
     @property
     def levels(self) -> list:
@@ -558,26 +559,27 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEF
                 adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-                placement: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
-                progress: Progress = None) -> LodPyramid:
+                placement: Optional[str] = None, visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
+                threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
     p, n, f, has_faces = input_arrays(points, normals, faces)
     counts = level_counts(levels, p.shape[0])
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
     domain = options.param(p.shape[0], has_faces)
-    param, threads = pyramid_param(counts, has_faces, mesh_output, placement, seed, threads, progress)
+    param, threads = pyramid_param(counts, has_faces, mesh_output, placement, visit_order, seed, threads, progress)
     param.domain = domain
     return result_of(LodPyramid, call_core(_core.lod_pyramid, p, n, f, param, threads, progress))
 
 
-def pyramid_param(counts, has_faces, mesh_output, placement, seed, threads, progress):
+def pyramid_param(counts, has_faces, mesh_output, placement, visit_order, seed, threads, progress):
     """lod_pyramid's sampling arguments checked, as a PyramidParam without its domain; and the threads."""
     param = _core.PyramidParam()
     param.counts = counts
     param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.placement = placement_of(placement, mesh_output, param.placement)
+    param.order = _choice(visit_order, VISIT_ORDERS, "visit_order")
     return param, threads
 
 

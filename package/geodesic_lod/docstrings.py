@@ -206,7 +206,8 @@ TEXTS = {
     True
     """,
     "lod_pyramid": f"""Nested LODs in one run: the finest level a Poisson-disk set of its count, every coarser
-    level the Poisson-disk set of its count among the finer level's samples (the command's ``--levels``).
+    level the Poisson-disk set of its count among the finer level's samples, each in the visiting order at
+    its own scale (the command's ``--levels``).
 
     Parameters
     ----------
@@ -218,6 +219,7 @@ TEXTS = {
     {METRIC}
     {MESH_OUTPUT}
     {PLACEMENT}
+    {VISIT_ORDER}
     {RUN}
 
     Returns
@@ -330,6 +332,7 @@ TEXTS = {
         As in ``lod_pyramid``. Default ``{_core.DEFAULT_LEVELS!r}``.
     {MESH_OUTPUT}
     {PLACEMENT}
+    {VISIT_ORDER}
     {RUN}
 
     {RAISES}
@@ -658,6 +661,8 @@ TEXTS = {
         The radius of the finest level's Poisson set, in the metric (the input's units, weighted).
     iterations : int
         Poisson runs made for the finest level.
+    visit_order : str
+        The visiting order every level's disks took: the one asked for, or the automatic choice.
     levels : list of (counts[j],) ndarray of int64
         Per level, finest first, its rows of the input, ``indices[:counts[j]]``: each a subset of the finer
         ones (read-only).

@@ -102,6 +102,19 @@ def test_pyramid_levels_nested_with_their_counts(cloud):
         assert set(coarse.tolist()) <= set(fine.tolist())
 
 
+@pytest.mark.parametrize("order", ["random", "prominence", "rims"])
+def test_pyramid_levels_take_the_visiting_order_asked(cloud, order):
+    """Each level is the Poisson set of its count in that order: the finest among all points, every
+    coarser one among the finer's samples."""
+    pyr = gl.lod_pyramid(cloud, levels=["20%", "5%", 60], visit_order=order, seed=2)
+    assert pyr.visit_order == order
+    within = None
+    for level in pyr.levels:
+        alone = gl.poisson_lod(cloud, count=len(level), visit_order=order, seed=2, within=within)
+        assert set(alone.indices.tolist()) == set(level.tolist())
+        within = level
+
+
 def test_normal_variation_in_input_order(cloud):
     nv = gl.normal_variation(cloud)
     assert nv.curvature.shape == (len(cloud),) and nv.normals.shape == cloud.shape

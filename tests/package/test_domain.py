@@ -38,6 +38,7 @@ def test_every_lod_of_a_domain_is_the_one_call_lod(kind):
         ("fps_lod", gl.fps_lod, dict(count=40, seed=3, **mesh)),
         ("poisson_lod", gl.poisson_lod, dict(radius=0.2, regions="disk")),
         ("lod_pyramid", gl.lod_pyramid, dict(levels=["20%", 50, 10], **mesh)),
+        ("lod_pyramid", gl.lod_pyramid, dict(levels=[90, 30], visit_order="random", seed=4, **mesh)),
         ("poisson_lod", gl.poisson_lod, dict(rate=4, tolerance=2, seed=1)),
         ("poisson_lod", gl.poisson_lod, dict(count=120, regions="voronoi", **mesh)),
     ]
@@ -73,6 +74,7 @@ def test_a_domain_gives_the_same_lod_on_any_number_of_threads():
     (lambda d: d.fps_lod(count=3001), "count"),
     (lambda d: d.fps_lod(count=5, regions="disk"), "regions"),
     (lambda d: d.lod_pyramid(levels=["10%", "20%"]), "levels"),
+    (lambda d: d.lod_pyramid(visit_order="rim"), "visit_order"),
 ])
 def test_bad_sampling_arguments_on_a_domain_are_named(call, words):
     domain = gl.Domain(bumpy_sphere(3000))

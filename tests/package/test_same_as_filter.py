@@ -60,10 +60,12 @@ def test_fps(cloud):
     assert res["covering_radius"] == lod.covering_radius
 
 
-def test_pyramid(cloud):
+@pytest.mark.parametrize("order, choice", [("automatic", None), ("random", "Random"),
+                                           ("prominence", "Prominent points first"), ("rims", "Rims first")])
+def test_pyramid(cloud, order, choice):
     ms = layer(cloud)
-    ms.generate_geodesic_lod_pyramid(levels="30%,10%,40", seed=3)
-    pyr = gl.lod_pyramid(cloud, levels=["30%", "10%", 40], seed=3)
+    ms.generate_geodesic_lod_pyramid(levels="30%,10%,40", seed=3, **({"visitorder": choice} if choice else {}))
+    pyr = gl.lod_pyramid(cloud, levels=["30%", "10%", 40], seed=3, visit_order=order)
     outputs = [ms.mesh(i) for i in range(1, ms.mesh_number())]
     assert len(outputs) == len(pyr.levels)
     for out, level in zip(outputs, pyr.levels):

@@ -7,6 +7,8 @@
 #include <random>
 #include <common/mlexception.h>
 #include <vcg/complex/algorithms/create/platonic.h>
+#include <vcg_ext/geodesic_lod_pyramid.h>
+#include <vcg_ext/mesh_lod.h>
 #include "lod_layers.h"
 
 namespace {
@@ -324,6 +326,21 @@ TEST(LodFilters, TheLogNamesWhatTheAutomaticDefaultsTook) {
   const LodRun named = RunPoissonLod(in, p, nullptr);
   EXPECT_TRUE(named.summary.contains("in the Euclidean metric")) << named.summary.toStdString();
   EXPECT_FALSE(named.summary.contains("chosen")) << named.summary.toStdString();
+}
+
+TEST(LodFilters, ThePyramidTakesTheVisitingOrderAskedAndNamesIt) {
+  Mesh in;
+  Bumpy(in, 30);
+  MapSource p(in, PyramidParams);
+  p.set("levels", "200,50");
+  EXPECT_TRUE(RunPyramid(in, p, nullptr).summary.contains("visiting order: Prominent points first"));
+  p.set("visitorder", 0);  // Random
+  const LodRun random = RunPyramid(in, p, nullptr);
+  EXPECT_TRUE(random.summary.contains("visiting order: Random")) << random.summary.toStdString();
+  vcg_ext::GeodesicLodPyramid<Scalarm>::Param q;
+  q.counts = {200, 50};
+  q.order = vcg_ext::VisitOrder::Random;
+  EXPECT_EQ(random.result.vertIndex, vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, q).vertIndex);
 }
 
 TEST(LodFilters, PoissonGivesTheAskedCountAndTheRadiusItUsed) {

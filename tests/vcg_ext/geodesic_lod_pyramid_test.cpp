@@ -1,6 +1,6 @@
 // vcg_ext/geodesic_lod_pyramid.h: exact counts per level, levels nested and
 // each spread evenly, each coarser level the Poisson set of its count among the
-// finer's, coarsest-level labels, one triangulation and placement
+// finer's in the visiting order asked, coarsest-level labels, one triangulation and placement
 // per level, bad level lists.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -86,6 +86,35 @@ TEST(LodPyramid, EachCoarserLevelIsThePoissonSetOfItsCountAmongTheFiner) {
               std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k])))
         << "level " << k;
   }
+}
+
+TEST(LodPyramid, EveryLevelTakesTheVisitingOrderAsked) {
+  // The finest level is the Poisson LOD of its count in that order, each coarser one the Poisson set of its
+  // count among the finer's in it; the order taken is reported.
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+  for (const vcg_ext::VisitOrder order :
+       {vcg_ext::VisitOrder::Random, vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
+    Pyramid::Param p = Levels({600, 150, 30});
+    p.order = order;
+    const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
+    EXPECT_EQ(r.order, order);
+    for (size_t k = 0; k < p.counts.size(); ++k) {
+      Poisson::Param q;
+      q.sampleNum = p.counts[k];
+      q.seed = p.seed;
+      q.order = order;
+      if (k > 0) q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k - 1]));
+      const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
+      EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
+                std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k])))
+          << "level " << k << ", order " << int(order);
+    }
+  }
+  Pyramid::Param automatic = Levels({600, 150});
+  EXPECT_EQ(automatic.order, vcg_ext::VisitOrder::Automatic);
+  EXPECT_NE(vcg_ext::MeshLod<Pyramid>(m, automatic).order, vcg_ext::VisitOrder::Automatic) << "the order taken";
 }
 
 TEST(LodPyramid, SameSeedSameLevels) {
