@@ -528,8 +528,11 @@ def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, p
 
 
 @documented
-def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
+def level_counts(levels: Sequence[Union[int, str]], n: int, tolerance: float = 0.0) -> list:
     n = whole_number(n, "n (the number of points)", 0)
+    t = real_number(tolerance, "tolerance", positive=False)
+    if t >= 100:
+        raise InputError(f"tolerance is a percentage below 100, got {t}")
     levels = level_items(levels)
     if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
         raise InputError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
@@ -547,6 +550,14 @@ def level_counts(levels: Sequence[Union[int, str]], n: int) -> list:
         if counts[k] >= counts[k - 1]:
             raise InputError(f"levels must get strictly coarser: level {k + 1} has {counted(counts[k], 'sample')}, "
                              f"level {k} {counts[k - 1]:,}")
+        # A count search accepts a set within the tolerance of its count (RadiusSearch): a coarser level that
+        # may come out as large as its finer one could not be a subset of fewer samples.
+        most, fewest = math.floor(counts[k] * (1 + t / 100)), math.ceil(counts[k - 1] * (1 - t / 100))
+        if t > 0 and most >= fewest:
+            problem = (f"{k} and {k + 1} ({counts[k - 1]:,} and {counts[k]:,} samples) are too close for a tolerance "
+                       f"of {t:g}%: the coarser may come out with up to {most:,} samples, the finer with as few as "
+                       f"{fewest:,}; give levels further apart or a smaller tolerance")
+            raise InputError(f"levels {problem}", "levels", problem)
     return counts
 
 

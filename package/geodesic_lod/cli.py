@@ -358,7 +358,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> tupl
     them (the same samples where the searches accept a run within the tolerance; one machine thins a
     set to the exact count where the tolerance is 0); and the last level's result."""
     from .domain import Domain
-    counts = arrays.level_counts(items, source.points.shape[0])
+    counts = arrays.level_counts(items, source.points.shape[0], args.tolerance or 0.0)
     part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
     dom = Domain(source.points, source.normals, faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
                  recompute_normals=args.recompute_normals, threads=args.threads, progress=part(0.0, 0.4))
@@ -408,8 +408,10 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod,
 
 
 def _count_in_options(e: ValueError, args) -> ValueError:
-    """The API's error on the count (a count above the points a file's mesh geodesics sample) in the
-    option the count came from."""
+    """The API's error on the count (a count above the points a file's mesh geodesics sample) or on the
+    levels (too close for the tolerance) in the options they came from."""
+    if isinstance(e, InputError) and e.subject == "levels":
+        return InputError(f"--levels {args.levels} --tolerance {args.tolerance:g}: levels {e.problem}")
     if not isinstance(e, InputError) or e.subject != "count":
         return e
     if args.count is not None:

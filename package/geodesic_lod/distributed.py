@@ -526,7 +526,7 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
     ticks = Ticks(progress)
     if size["levels"] is not None:
         items = list(arrays.level_items(size["levels"]))
-        targets = [("count", c) for c in arrays.level_counts(items, total)]
+        targets = [("count", c) for c in arrays.level_counts(items, total, size["tolerance"])]
         folders = [level_folder(item) for item in items]
     else:
         if size["radius"] is not None:

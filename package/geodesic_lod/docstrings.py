@@ -467,6 +467,10 @@ TEXTS = {
         (``'50%,10%,500'``). The pyramid filter's default is ``{_core.DEFAULT_LEVELS}``.
     n : int
         The number of points the percentages are of.
+    tolerance : float
+        The count tolerance (a percentage, as ``poisson_lod``'s and ``lod_files``' take it) the levels are
+        searched with: each level's most accepted count must stay below the fewest its finer level accepts.
+        Default 0 (exact counts).
 
     Returns
     -------

@@ -102,6 +102,15 @@ def test_pyramid_levels_nested_with_their_counts(cloud):
         assert set(coarse.tolist()) <= set(fine.tolist())
 
 
+def test_level_counts_keep_levels_apart_by_more_than_the_tolerance():
+    assert gl.level_counts(["50%", "10%"], 1000, tolerance=5) == [500, 100]
+    assert gl.level_counts([1000, 900], 2000, tolerance=5) == [1000, 900]  # up to 945, at least 950
+    with pytest.raises(gl.InputError, match=r"levels 2 and 3 \(900 and 860 samples\) are too close for a "
+                                            r"tolerance of 5%"):
+        gl.level_counts([1000, 900, 860], 2000, tolerance=5)
+    assert gl.level_counts([1000, 999], 2000) == [1000, 999]  # exact counts
+
+
 @pytest.mark.parametrize("order", ["random", "prominence", "rims"])
 def test_pyramid_levels_take_the_visiting_order_asked(cloud, order):
     """Each level is the Poisson set of its count in that order: the finest among all points, every

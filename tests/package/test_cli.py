@@ -206,6 +206,8 @@ BAD = [
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--radius", "nan"], "--radius must be a positive length"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "50%,,10%"], "comma-separated list"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "10%,50%"], "levels must get strictly coarser"),
+    (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", "1000,990", "--tolerance", "5"],
+     "--levels 1000,990 --tolerance 5: levels 1 and 2 (1,000 and 990 samples) are too close for a tolerance of 5%"),
     # Checked as the option is read, naming it: no level is named twice, no file read first
     *[(lambda d, v=levels: [ply_cloud(d / "in.ply"), "-o", "o.ply", "--levels", v], f"error: --levels{problem}\n")
       for levels, problem in (("10%,10%", " must get strictly coarser, finest first: 10%,10%"),

@@ -404,6 +404,9 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: no Dask scheduler "
                                                              "answered within"),
     (["--count", "100", "--tolerance", "0", "--workers", "1"], "tolerance 0, runs on one machine"),
+    (["--levels", "10%,9.8%", "--tolerance", "5", "--workers", "1"],  # a coarser level as large as the finer
+     "levels 1 and 2 (2,400 and 2,352 samples) are too close for a tolerance of 5%: the coarser may come out with "
+     "up to 2,469 samples, the finer with as few as 2,280; give levels further apart or a smaller tolerance"),
     (["--radius", "0.5", "--recompute-normals", "--workers", "1"], "--recompute-normals runs on one machine"),
     (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1", "-o", "/"], "holds files this tool did not write"),
 ])
