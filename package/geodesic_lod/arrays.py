@@ -233,7 +233,13 @@ def percent(value, name: str) -> float:
 
 def level_items(levels, name: str = "levels") -> list:
     """Levels as a list of counts and percentage strings, from a list or a comma-separated string such as
-    '50%,10%,500' (as the command and the pyramid filter take them)."""
+    '50%,10%,500' (as the command and the pyramid filter take them), or from a 1-D array of counts."""
+    if isinstance(levels, np.ndarray):  # such as np.arange(...) or counts computed in numpy
+        if levels.ndim != 1:
+            raise InputError(f"{name} must be one row of counts, got an array of shape {levels.shape}")
+        if levels.dtype.kind not in "iu":
+            raise InputError(f"{name} must be whole numbers of samples, got an array of {levels.dtype}")
+        return [int(v) for v in levels]
     if not isinstance(levels, str):
         return levels
     items = [t.strip() for t in levels.split(",")]

@@ -214,7 +214,8 @@ TEXTS = {
     {INPUTS}
     levels : sequence of int or str, or str
         The levels' counts, finest first, strictly decreasing: counts (5000) or percentages of the points
-        (``'10%'``), as a list or a comma-separated string. Default ``{_core.DEFAULT_LEVELS!r}``.
+        (``'10%'``), as a list, a comma-separated string or a 1-D integer array of counts. Default
+        ``{_core.DEFAULT_LEVELS!r}``.
     {FACES}
     {METRIC}
     {MESH_OUTPUT}
@@ -464,7 +465,8 @@ TEXTS = {
     levels : sequence of int and str, or str
         The levels, finest first: counts (5000) or percentages of the points (``'50%'``, above 0 to 100),
         each giving strictly fewer samples than the one before; or a comma-separated string of them
-        (``'50%,10%,500'``). The pyramid filter's default is ``{_core.DEFAULT_LEVELS}``.
+        (``'50%,10%,500'``), or a 1-D integer array of counts. The pyramid filter's default is
+        ``{_core.DEFAULT_LEVELS}``.
     n : int
         The number of points the percentages are of.
     tolerance : float

@@ -102,6 +102,15 @@ def test_pyramid_levels_nested_with_their_counts(cloud):
         assert set(coarse.tolist()) <= set(fine.tolist())
 
 
+def test_levels_may_be_an_array_of_counts(cloud):
+    assert gl.level_counts(np.array([1000, 100], dtype=np.int32), 2000) == [1000, 100]
+    assert [len(l) for l in gl.lod_pyramid(cloud, levels=np.arange(400, 99, -300)).levels] == [400, 100]
+    with pytest.raises(gl.InputError, match="levels must be whole numbers of samples"):
+        gl.level_counts(np.array([1000.0, 100.0]), 2000)
+    with pytest.raises(gl.InputError, match="one row"):
+        gl.level_counts(np.array([[1000, 100]]), 2000)
+
+
 def test_level_counts_keep_levels_apart_by_more_than_the_tolerance():
     assert gl.level_counts(["50%", "10%"], 1000, tolerance=5) == [500, 100]
     assert gl.level_counts([1000, 900], 2000, tolerance=5) == [1000, 900]  # up to 945, at least 950
