@@ -360,7 +360,8 @@ TEXTS = {
         written into ``run_N/level_.../``. Give exactly one of ``radius``, ``count``, ``rate`` and
         ``levels``.
     tolerance : float
-        The percentage a count may miss by, above 0 and below 100. Default 1.
+        The percentage a count may miss by, above 0 and below 100; levels too close for it are refused
+        (``level_counts``). Default 1.
     max_runs : int, optional
         Poisson runs of a count search at most. Default: one machine's, {_core.PoissonParam().max_iterations}.
     seed : int
