@@ -128,7 +128,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (f.ConsumeIntegralInRange<int>(0, 15) == 0) vcg::tri::Allocator<test::TMesh>::DeleteVertex(m, m.vert[i]);
 
   LOD::Domain::Param d;
-  d.metric = vcg_ext::Metric(f.ConsumeIntegralInRange<int>(0, 3));
+  d.metric = vcg_ext::Metric(f.ConsumeIntegralInRange<int>(0, 5));
   d.mode = vcg_ext::GeodesicMode(f.ConsumeIntegralInRange<int>(0, 2));
   d.normalNeighbours = f.ConsumeIntegralInRange<int>(-1, n + 2);
   d.graphNeighbours = f.ConsumeIntegralInRange<int>(-1, n + 2);
@@ -142,6 +142,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   const double tolerance = f.ConsumeBool() ? 0.0 : f.ConsumeFloatingPointInRange<double>(-0.1, 1.1);
   const auto regions = vcg_ext::Regions(f.ConsumeIntegralInRange<int>(0, 2));
+  const auto order = vcg_ext::VisitOrder(f.ConsumeIntegralInRange<int>(0, 3));
   auto common = [&](auto& p) {
     p.domain = d;
     p.seed = seed;
@@ -157,6 +158,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   common(lp);
   lp.radius = radius;
   lp.regions = regions;
+  lp.order = order;
   try {
     const auto r = vcg_ext::MeshLod<LOD>(m, lp);
     Check(r, m);
@@ -188,6 +190,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Pyramid::Param pp;
   common(pp);
   pp.counts = {sampleNum, sampleNum / 2, sampleNum / 5};
+  pp.order = order;
   try {
     const auto r = vcg_ext::MeshLod<Pyramid>(m, pp);
     Check(r, m);
