@@ -3,8 +3,9 @@
 // Nested geodesic LODs in one run: the finest level is a Poisson-disk set of
 // the wanted count; every coarser level is the Poisson-disk set of its count
 // among the finer level's samples, in the visiting order at its own scale (by
-// default the prominent points of that scale kept), as the command's and a cluster's
-// levels are; all on one geodesic domain (normals, eq. 1, the geodesics).
+// default the prominent points of that scale kept), as the command's and a
+// cluster's levels are; all on one geodesic domain (normals, eq. 1, the
+// geodesics).
 // Nesting costs little: a level's reconstruction error is 0.98-1.09 times a
 // LOD's of its count alone (docs/pyramid_levels.json). Cost: a count search
 // per level. MeshLod (mesh_lod.h) runs it on a vcglib mesh.
