@@ -213,6 +213,11 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
   return s;
 }
 
+// The Poisson filter's and the pyramid's count tolerance.
+ParamSpec ToleranceParam(const char* what) {
+  return {ParamKind::Float, kTolerance, "Sample count tolerance (%)", what, 0};
+}
+
 // The Poisson filter's and the pyramid's visiting order.
 ParamSpec VisitOrderParam() {
   return {ParamKind::Enum, kVisitOrder, "Visiting order",
@@ -241,9 +246,8 @@ std::vector<ParamSpec> PoissonLodParams(const CMeshO& m) {
   p.push_back({ParamKind::Float, kSampleRate, "Sample rate (%)",
                "Wanted number of samples as a percentage of the layer's vertices, instead of a count (0: unused).",
                0});
-  p.push_back({ParamKind::Float, kTolerance, "Sample count tolerance (%)",
-               "With a number of samples: accept an untrimmed Poisson set whose count is within this percentage of "
-               "it. 0 gives the exact count.", 0});
+  p.push_back(ToleranceParam("With a number of samples: accept an untrimmed Poisson set whose count is within this "
+                             "percentage of it. 0 gives the exact count."));
   AddDomainParams(p, kPlacedOutputs);
   p.push_back(RegionsParam(kPoissonRegions, "Disk regions: the disk that first covered each vertex. "));
   p.push_back(VisitOrderParam());
@@ -402,6 +406,9 @@ std::vector<ParamSpec> PyramidParams(const CMeshO&) {
   std::vector<ParamSpec> p{LevelsParam()};
   AddDomainParams(p, kPyramidOutputs);
   p.push_back(VisitOrderParam());
+  p.push_back(ToleranceParam("Accept at every level an untrimmed Poisson set whose count is within this percentage "
+                             "of the level's (faster on large layers); levels too close for it are refused. 0 gives "
+                             "exact counts."));
   return p;
 }
 
@@ -416,9 +423,11 @@ LodRun RunPyramid(const CMeshO& in, const ParamSource& src, vcg::CallBackPos* cb
     p.meshOutput = output.mesh;
     p.placement = output.placement;
     p.order = kVisitOrders.Read(src, kVisitOrder);
+    p.tolerance = src.number(kTolerance) / 100;
     const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, p, cb);
     LodRun run;
     run.result = r;
+    for (size_t k = 0; k < levels.size(); ++k) levels[k].count = r.counts[k];  // within the tolerance, if any
     for (size_t k = 0; k < r.levelFaces.size(); ++k) {
       levels[k].faces = r.levelFaces[k];
       levels[k].positions = r.levelPositions[k];

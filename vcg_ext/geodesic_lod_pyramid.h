@@ -10,6 +10,7 @@
 // LOD's of its count alone (docs/pyramid_levels.json). Cost: a count search
 // per level. MeshLod (mesh_lod.h) runs it on a vcglib mesh.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "geodesic_delaunay.h"
 #include "geodesic_poisson_lod.h"
 #include "input_error.h"
+#include "poisson_target_count.h"
 
 namespace vcg_ext {
 
@@ -36,11 +38,14 @@ class GeodesicLodPyramid {
     uint64_t seed = 0;
     /// Every level's visiting order, at the level's scale (GeodesicPoissonLod::Param::order).
     VisitOrder order = typename GeodesicPoissonLod<Scalar>::Param().order;
+    /// Accept at every level an untrimmed Poisson set within counts[k] * (1 +- tolerance),
+    /// below 1; 0: exact counts. Levels too close for it are refused (CheckCounts).
+    double tolerance = 0;
     bool meshOutput = false;     ///< triangulate every level (layers with faces only)
     Placement placement = typename GeodesicPoissonLod<Scalar>::Param().placement;  ///< each level's vertices (mesh output)
   };
   struct Result : LodResult<Scalar> {
-    std::vector<size_t> counts;          ///< level k is the first counts[k] samples of vertIndex
+    std::vector<size_t> counts;          ///< level k is the first counts[k] samples of vertIndex (as asked, or within the tolerance)
     std::vector<int> coarsest;           ///< per sample: the coarsest level holding it (0 = finest only)
     std::vector<std::vector<std::array<int, 3>>> levelFaces;  ///< mesh output per level, indices into vertIndex
     /// Mesh output per level: its vertices' positions (the first counts[k] samples), placed for that level.
@@ -50,18 +55,34 @@ class GeodesicLodPyramid {
     VisitOrder order = VisitOrder::Random;  ///< the visiting order: as asked, an automatic choice made
   };
 
-  static void CheckCounts(const std::vector<size_t>& c) {
+  /// Throws InputError unless the counts get strictly coarser and, with a
+  /// tolerance, the most samples it accepts at a level stay below the fewest
+  /// it accepts at the finer one (else a coarser set could not be a subset of
+  /// fewer samples).
+  static void CheckCounts(const std::vector<size_t>& c, double tolerance = 0) {
     if (c.empty()) throw InputError(Field::Levels, "must name at least one level");
-    for (size_t k = 0; k + 1 < c.size(); ++k)
+    for (size_t k = 0; k + 1 < c.size(); ++k) {
       if (c[k + 1] >= c[k])
         throw InputError(Field::Levels, "must get strictly coarser: level " + std::to_string(k + 2) + " has " +
-                                    Counted(c[k + 1]) + " samples, level " + std::to_string(k + 1) + " " +
-                                    Counted(c[k]));
+                                    Counted(c[k + 1], "sample", "samples") + ", level " +
+                                    std::to_string(k + 1) + " " + Counted(c[k]));
+      const double most = std::floor(RadiusSearch::Most(double(c[k + 1]), tolerance));
+      const double fewest = std::ceil(RadiusSearch::Fewest(double(c[k]), tolerance));
+      if (tolerance > 0 && most >= fewest)
+        throw InputError(Field::Levels, std::to_string(k + 1) + " and " + std::to_string(k + 2) + " (" +
+                                            Counted(c[k]) + " and " + Counted(c[k + 1]) +
+                                            " samples) are too close for a tolerance of " +
+                                            Shown(std::round(1e6 * 100 * tolerance) / 1e6) +
+                                            "%: the coarser may come out with up to " + Counted(size_t(most)) +
+                                            " samples, the finer with as few as " + Counted(size_t(fewest)) +
+                                            "; give levels further apart or a smaller tolerance");
+    }
   }
 
   /// Throws InputError for a parameter that no domain can satisfy.
   static void CheckParam(const Param& p, bool hasFaces) {
-    CheckCounts(p.counts);
+    PoissonTargetCount::CheckTolerance(p.tolerance);
+    CheckCounts(p.counts, p.tolerance);
     LodResult<Scalar>::CheckMeshOutput(p.meshOutput, hasFaces);
   }
 
@@ -75,8 +96,8 @@ class GeodesicLodPyramid {
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;
     pp.order = p.order;
+    pp.tolerance = p.tolerance;
     Result r;
-    r.counts = p.counts;
     r.order = ChosenOrder(p.order, d.Scatters());
     const size_t levels = p.counts.size();
     const size_t share = p.meshOutput ? 83 : 100;  // of the progress, the rest triangulates
@@ -84,11 +105,13 @@ class GeodesicLodPyramid {
     std::vector<int> finer;
     std::vector<char> coarser(d.size(), 0);
     for (size_t k = 0; k < levels; ++k) {
-      pp.sampleNum = p.counts[k];
+      // At most the finer level's samples: a search that ran out of runs outside its window may leave fewer.
+      pp.sampleNum = k == 0 ? p.counts[0] : std::min(p.counts[k], finer.size());
       pp.within.clear();
       for (int s : finer) pp.within.push_back(d.points.vertIndex[size_t(s)]);
       PoissonTargetCount::Result t = GeodesicPoissonLod<Scalar>::SampleCount(
           d, pp, progress.Sub(int(share * k / levels), int(share * (k + 1) / levels)));
+      r.counts.push_back(t.samples.size());
       if (k == 0) {
         r.radius = t.radius;
         r.iterations = t.iterations;
@@ -105,15 +128,15 @@ class GeodesicLodPyramid {
     for (size_t k = levels; k-- > 0;) order.insert(order.end(), added[k].begin(), added[k].end());
     static_cast<LodResult<Scalar>&>(r) = LodResult<Scalar>::Collect(d, order);
     r.coarsest.assign(order.size(), 0);
-    for (size_t k = 1; k < p.counts.size(); ++k)
-      for (size_t i = 0; i < p.counts[k]; ++i) r.coarsest[i] = int(k);
+    for (size_t k = 1; k < levels; ++k)
+      for (size_t i = 0; i < r.counts[k]; ++i) r.coarsest[i] = int(k);
     if (p.meshOutput)
-      for (size_t k = 0; k < p.counts.size(); ++k) {
-        const std::vector<int> level(order.begin(), order.begin() + p.counts[k]);
+      for (size_t k = 0; k < levels; ++k) {
+        const std::vector<int> level(order.begin(), order.begin() + long(r.counts[k]));
         const std::vector<int> owner = GeodesicDelaunay<Scalar>::VoronoiOwners(d, level);
         r.levelFaces.emplace_back();
-        r.levelPositions.emplace_back(r.position.begin(), r.position.begin() + p.counts[k]);
-        const int from = int(83 + 17 * k / p.counts.size()), to = int(83 + 17 * (k + 1) / p.counts.size());
+        r.levelPositions.emplace_back(r.position.begin(), r.position.begin() + long(r.counts[k]));
+        const int from = int(83 + 17 * k / levels), to = int(83 + 17 * (k + 1) / levels);
         LodResult<Scalar>::MeshOf(d, level, owner, p.placement, r.levelFaces.back(), r.levelPositions.back(),
                                   progress.Sub(from, to));
         progress(size_t(to), 100, "Triangulating the levels");

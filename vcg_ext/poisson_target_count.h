@@ -34,12 +34,16 @@ class RadiusSearch {
   RadiusSearch(size_t target, double tolerance, size_t candidates, double firstRadius, int maxRuns)
       : target_(double(target)), tolerance_(tolerance), maxRuns_(maxRuns), aboveCount_(double(candidates)),
         r_(firstRadius > 0 ? firstRadius : 1) {
-    accLo_ = tolerance > 0 ? target_ * (1 - tolerance) : target_;
-    accHi_ = tolerance > 0 ? target_ * (1 + tolerance) : std::max(target_ * (1 + kThinning), target_ + 2);
+    accLo_ = tolerance > 0 ? Fewest(target_, tolerance) : target_;
+    accHi_ = tolerance > 0 ? Most(target_, tolerance) : std::max(target_ * (1 + kThinning), target_ + 2);
     // An exact count aims at the middle of its window, so a run a little off still lands in it.
     aim_ = tolerance > 0 ? target_ : std::min(0.5 * (target_ + accHi_), double(candidates));
     done_ = maxRuns < 1;
   }
+
+  /// The fewest and the most samples a tolerance above 0 accepts for a target.
+  static double Fewest(double target, double tolerance) { return target * (1 - tolerance); }
+  static double Most(double target, double tolerance) { return target * (1 + tolerance); }
 
   /// Where disks would about tile the diagonal plane of the box holding the
   /// middle of the points (its diagonal `coreDiagonal`): the first radius.

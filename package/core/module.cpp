@@ -289,7 +289,10 @@ NB_MODULE(_core, m) {
       .def_rw("seed", &Pyramid::Param::seed)
       .def_rw("mesh_output", &Pyramid::Param::meshOutput)
       .def_rw("placement", &Pyramid::Param::placement)
-      .def_rw("order", &Pyramid::Param::order);
+      .def_rw("order", &Pyramid::Param::order)
+      .def_rw("tolerance", &Pyramid::Param::tolerance);
+  m.def("check_level_counts", &Pyramid::CheckCounts, "counts"_a, "tolerance"_a,
+        "Raises the pyramid's error for counts that do not get coarser, or too close for the tolerance (a fraction).");
 
   m.attr("MESHLAB_VERSION") = GEODESIC_LOD_MESHLAB_VERSION;
   m.attr("DEFAULT_LEVELS") = vcg_ext::kDefaultPyramidLevels;

@@ -552,18 +552,7 @@ def level_counts(levels: Sequence[Union[int, str]], n: int, tolerance: float = 0
             counts.append(int(c))
         else:
             counts.append(whole_number(item, "levels", 1, n, " (the number of points)"))
-    for k in range(1, len(counts)):
-        if counts[k] >= counts[k - 1]:
-            raise InputError(f"levels must get strictly coarser: level {k + 1} has {counted(counts[k], 'sample')}, "
-                             f"level {k} {counts[k - 1]:,}")
-        # A count search accepts a set within the tolerance of its count (RadiusSearch): a coarser level that
-        # may come out as large as its finer one could not be a subset of fewer samples.
-        most, fewest = math.floor(counts[k] * (1 + t / 100)), math.ceil(counts[k - 1] * (1 - t / 100))
-        if t > 0 and most >= fewest:
-            problem = (f"{k} and {k + 1} ({counts[k - 1]:,} and {counts[k]:,} samples) are too close for a tolerance "
-                       f"of {t:g}%: the coarser may come out with up to {most:,} samples, the finer with as few as "
-                       f"{fewest:,}; give levels further apart or a smaller tolerance")
-            raise InputError(f"levels {problem}", "levels", problem)
+    call_core(_core.check_level_counts, counts, t / 100)  # coarser each, and apart by more than the tolerance
     return counts
 
 
@@ -576,20 +565,21 @@ def lod_pyramid(points, normals=None, *, levels: Sequence[Union[int, str]] = DEF
                 adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
                 normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
                 recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals, mesh_output: bool = False,
-                placement: Optional[str] = None, visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
-                threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
+                placement: Optional[str] = None, visit_order: str = DEFAULT_VISIT_ORDER, tolerance: float = 0.0,
+                seed: int = 0, threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
     p, n, f, has_faces = input_arrays(points, normals, faces)
-    counts = level_counts(levels, p.shape[0])
+    counts = level_counts(levels, p.shape[0], tolerance)
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
     domain = options.param(p.shape[0], has_faces)
-    param, threads = pyramid_param(counts, has_faces, mesh_output, placement, visit_order, seed, threads, progress)
+    param, threads = pyramid_param(counts, has_faces, mesh_output, placement, visit_order, tolerance, seed, threads,
+                                   progress)
     param.domain = domain
     return result_of(LodPyramid, call_core(_core.lod_pyramid, p, n, f, param, threads, progress))
 
 
-def pyramid_param(counts, has_faces, mesh_output, placement, visit_order, seed, threads, progress):
+def pyramid_param(counts, has_faces, mesh_output, placement, visit_order, tolerance, seed, threads, progress):
     """lod_pyramid's sampling arguments checked, as a PyramidParam without its domain; and the threads."""
     param = _core.PyramidParam()
     param.counts = counts
@@ -597,6 +587,7 @@ def pyramid_param(counts, has_faces, mesh_output, placement, visit_order, seed, 
     param.mesh_output = bool(mesh_output)
     param.placement = placement_of(placement, mesh_output, param.placement)
     param.order = _choice(visit_order, VISIT_ORDERS, "visit_order")
+    param.tolerance = real_number(tolerance, "tolerance", positive=False) / 100  # level_counts checked its range
     return param, threads
 
 

@@ -354,23 +354,14 @@ def _choices_line(args, taken) -> list:
 
 
 def _nested_levels(args, items, source: point_files.PointFile, progress) -> tuple:
-    """Each level the Poisson set of its count among the finer level's samples, as a cluster run makes
-    them (the same samples where the searches accept a run within the tolerance; one machine thins a
-    set to the exact count where the tolerance is 0); and the last level's result."""
-    from .domain import Domain
-    counts = arrays.level_counts(items, source.points.shape[0], args.tolerance or 0.0)
-    part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
-    dom = Domain(source.points, source.normals, faces=source.faces, metric=args.metric, adaptivity=args.adaptivity,
-                 recompute_normals=args.recompute_normals, threads=args.threads, progress=part(0.0, 0.4))
-    levels, finer, lod = [], None, None
-    for k, count in enumerate(counts):
-        lod = dom.poisson_lod(count=count, tolerance=args.tolerance or 0.0, seed=args.seed, within=finer,
-                              visit_order=args.visit_order,
-                              threads=args.threads, progress=part(0.4 + 0.6 * k / len(counts),
-                                                                 0.4 + 0.6 * (k + 1) / len(counts)))
-        finer = np.sort(lod.indices)
-        levels.append(finer)
-    return levels, lod
+    """The pyramid's levels: each the Poisson set of its count among the finer level's samples, as a
+    cluster run makes them (the same samples where the searches accept a run within the tolerance; one
+    machine thins a set to the exact count where the tolerance is 0); and the pyramid."""
+    pyr = arrays.lod_pyramid(source.points, source.normals, levels=items, faces=source.faces, metric=args.metric,
+                             adaptivity=args.adaptivity, recompute_normals=args.recompute_normals,
+                             visit_order=args.visit_order, tolerance=args.tolerance or 0.0, seed=args.seed,
+                             threads=args.threads, progress=progress)
+    return [np.sort(level) for level in pyr.levels], pyr
 
 
 def _count_of(request: dict, n: int) -> int:
@@ -408,12 +399,13 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod,
 
 
 def _count_in_options(e: ValueError, args) -> ValueError:
-    """The API's error on the count (a count above the points a file's mesh geodesics sample) or on the
-    levels (too close for the tolerance) in the options they came from."""
-    if isinstance(e, InputError) and e.subject == "levels":
-        return InputError(f"--levels {args.levels} --tolerance {args.tolerance:g}: levels {e.problem}")
-    if not isinstance(e, InputError) or e.subject != "count":
+    """The API's error on the count (a count above the points a file's mesh geodesics sample, also the
+    pyramid's finest) or on the levels (too close for the tolerance) in the options they came from."""
+    if not isinstance(e, InputError) or e.subject not in ("count", "levels"):
         return e
+    if e.subject == "levels" and not e.problem.startswith("must be at most"):
+        given = f" --tolerance {args.tolerance:g}" if args.tolerance else ""
+        return InputError(f"--levels {args.levels}{given}: levels {e.problem}")
     if args.count is not None:
         return InputError(f"--count {e.problem}")
     given = f"--rate {args.rate}: its" if args.rate is not None else f"--levels {args.levels}: the finest level's"

@@ -144,6 +144,11 @@ VISIT_ORDER = f"""visit_order : {{'automatic', 'random', 'prominence', 'rims'}}
         'rims' where the points scatter (as the automatic metric chooses), else 'prominence'. The same on
         a cluster (``lod_files``, ``copc_file``)."""
 
+PYRAMID_TOLERANCE = """tolerance : float
+        At every level, a Poisson set within this percentage of the level's count is kept untrimmed (faster
+        on large clouds; the command's ``--levels`` with ``--tolerance``); levels too close for it are
+        refused (``level_counts``). Default 0 (exact counts)."""
+
 TEXTS = {
     "poisson_lod": f"""Geodesic Poisson-disk LOD: samples pairwise farther apart than a radius in the metric, every
     point within it of a sample.
@@ -221,6 +226,7 @@ TEXTS = {
     {MESH_OUTPUT}
     {PLACEMENT}
     {VISIT_ORDER}
+    {PYRAMID_TOLERANCE}
     {RUN}
 
     Returns
@@ -334,6 +340,7 @@ TEXTS = {
     {MESH_OUTPUT}
     {PLACEMENT}
     {VISIT_ORDER}
+    {PYRAMID_TOLERANCE}
     {RUN}
 
     {RAISES}

@@ -69,8 +69,8 @@ class Domain:
     @functools.partial(documented, name="Domain.lod_pyramid")
     def lod_pyramid(self, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,
                     mesh_output: bool = False, placement: Optional[str] = None,
-                    visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
+                    visit_order: str = DEFAULT_VISIT_ORDER, tolerance: float = 0.0, seed: int = 0,
                     threads: Optional[int] = None, progress: Progress = None) -> LodPyramid:
-        param, threads = pyramid_param(level_counts(levels, self.point_count), self._built.has_faces,
-                                        mesh_output, placement, visit_order, seed, threads, progress)
+        param, threads = pyramid_param(level_counts(levels, self.point_count, tolerance), self._built.has_faces,
+                                        mesh_output, placement, visit_order, tolerance, seed, threads, progress)
         return result_of(LodPyramid, call_core(_core.pyramid_on, self._built, param, threads, progress))

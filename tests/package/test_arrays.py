@@ -133,6 +133,20 @@ def test_pyramid_levels_take_the_visiting_order_asked(cloud, order):
         within = level
 
 
+def test_pyramid_levels_within_a_tolerance(cloud):
+    """Each level an untrimmed Poisson set within the tolerance of its count, among the finer's samples."""
+    pyr = gl.lod_pyramid(cloud, levels=[800, 200, 60], tolerance=10, seed=1)
+    within = None
+    for asked, level in zip([800, 200, 60], pyr.levels):
+        assert 0.9 * asked <= len(level) <= 1.1 * asked
+        alone = gl.poisson_lod(cloud, count=asked, tolerance=10, seed=1, within=within)
+        assert set(alone.indices.tolist()) == set(level.tolist())
+        within = level
+    assert pyr.counts == [len(level) for level in pyr.levels]
+    with pytest.raises(gl.InputError, match="tolerance"):
+        gl.lod_pyramid(cloud, levels=[800, 200], tolerance=100)
+
+
 def test_normal_variation_in_input_order(cloud):
     nv = gl.normal_variation(cloud)
     assert nv.curvature.shape == (len(cloud),) and nv.normals.shape == cloud.shape

@@ -88,17 +88,18 @@ def test_levels_give_one_nested_file_each(tmp_path):
     assert "1,500 of 3,000 points" in r.stderr  # the summary, without --quiet
 
 
-@pytest.mark.parametrize("order", [None, "random", "rims"])
-def test_levels_are_the_pyramid_s(tmp_path, order):
+@pytest.mark.parametrize("order, tolerance", [(None, None), ("random", None), ("rims", None), (None, "5")])
+def test_levels_are_the_pyramid_s(tmp_path, order, tolerance):
     # One definition of nested levels in every front end: each the Poisson set of its count among the finer's,
-    # in the visiting order asked.
+    # in the visiting order asked, within the tolerance given.
     src = ply_cloud(tmp_path / "in.ply")
     r = run(src, "-o", tmp_path / "lod.ply", "--levels", "40%,10%,2%", "-q",
-            *(["--visit-order", order] if order else []))
+            *(["--visit-order", order] if order else []), *(["--tolerance", tolerance] if tolerance else []))
     assert r.returncode == 0, r.stderr
     points = pf.read(src)
     pyr = gl.lod_pyramid(points.points, points.normals, levels=["40%", "10%", "2%"],
-                         **({"visit_order": order} if order else {}))
+                         **({"visit_order": order} if order else {}),
+                         **({"tolerance": float(tolerance)} if tolerance else {}))
     for label, level in zip(("40pct", "10pct", "2pct"), pyr.levels):
         got = plyfile.PlyData.read(str(tmp_path / f"lod_{label}.ply"))["vertex"].data
         np.testing.assert_array_equal(np.sort(got["label"]), np.sort(level) * 3)  # the label column is 3 x the row

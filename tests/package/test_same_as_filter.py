@@ -72,6 +72,16 @@ def test_pyramid(cloud, order, choice):
         np.testing.assert_array_equal(rows_of(cloud, out.vertex_matrix()), level)
 
 
+def test_pyramid_within_a_tolerance(cloud):
+    ms = layer(cloud)
+    ms.generate_geodesic_lod_pyramid(levels="30%,10%,40", tolerance=8.0)
+    pyr = gl.lod_pyramid(cloud, levels=["30%", "10%", 40], tolerance=8)
+    outputs = [ms.mesh(i) for i in range(1, ms.mesh_number())]
+    assert [o.vertex_number() for o in outputs] == pyr.counts
+    for out, level in zip(outputs, pyr.levels):
+        np.testing.assert_array_equal(rows_of(cloud, out.vertex_matrix()), level)
+
+
 def test_mesh_geodesics_and_triangles():
     pts, faces = grid_mesh(35)
     ms = layer(pts, faces=faces)

@@ -343,6 +343,32 @@ TEST(LodFilters, ThePyramidTakesTheVisitingOrderAskedAndNamesIt) {
   EXPECT_EQ(random.result.vertIndex, vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, q).vertIndex);
 }
 
+TEST(LodFilters, ThePyramidTakesAToleranceAndRefusesLevelsTooCloseForIt) {
+  Mesh in;
+  Bumpy(in, 40);
+  MapSource p(in, PyramidParams);
+  EXPECT_EQ(p.number("tolerance"), 0);  // exact counts by default
+  p.set("levels", "400,100");
+  p.set("tolerance", 10.0);
+  const LodRun run = RunPyramid(in, p, nullptr);
+  vcg_ext::GeodesicLodPyramid<Scalarm>::Param q;
+  q.counts = {400, 100};
+  q.tolerance = 0.1;
+  const auto alone = vcg_ext::MeshLod<vcg_ext::GeodesicLodPyramid<Scalarm>>(in, q);
+  EXPECT_EQ(run.result.vertIndex, alone.vertIndex);
+  std::vector<Mesh> out(2);
+  FillAll(in, run, out);
+  EXPECT_EQ(size_t(out[1].vn), alone.counts[1]);
+  EXPECT_NEAR(out[1].vn, 100, 10);
+  p.set("levels", "400,390");
+  try {
+    RunPyramid(in, p, nullptr);
+    ADD_FAILURE() << "no error";
+  } catch (const MLException& e) {
+    EXPECT_NE(std::string(e.what()).find("are too close for a tolerance of 10%"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LodFilters, PoissonGivesTheAskedCountAndTheRadiusItUsed) {
   Mesh in;
   Bumpy(in, 30);

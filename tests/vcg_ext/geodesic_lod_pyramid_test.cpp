@@ -172,6 +172,51 @@ TEST(LodPyramid, EachMeshLevelIsPlacedForItsOwnSpacing) {
       ASSERT_EQ(kept.levelPositions[k][i], m.vert[size_t(kept.vertIndex[i])].cP()) << "level " << k;
 }
 
+TEST(LodPyramid, WithAToleranceEachLevelIsItsPoissonSetWithinTheTolerance) {
+  // Untrimmed sets within each level's window, nested, as the command's and a cluster's levels with a tolerance.
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+  Pyramid::Param p = Levels({600, 150, 30});
+  p.tolerance = 0.1;
+  const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
+  ASSERT_EQ(r.counts.size(), 3u);
+  ASSERT_EQ(r.vertIndex.size(), r.counts[0]);
+  for (size_t k = 0; k < p.counts.size(); ++k) {
+    EXPECT_GE(double(r.counts[k]), 0.9 * double(p.counts[k])) << "level " << k;
+    EXPECT_LE(double(r.counts[k]), 1.1 * double(p.counts[k])) << "level " << k;
+    for (size_t i = 0; i < r.coarsest.size(); ++i) EXPECT_EQ(r.coarsest[i] >= int(k), i < r.counts[k]);
+    Poisson::Param q;
+    q.sampleNum = p.counts[k];
+    q.tolerance = p.tolerance;
+    q.seed = p.seed;
+    if (k > 0) q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k - 1]));
+    const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
+    EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
+              std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k])))
+        << "level " << k;
+  }
+}
+
+TEST(LodPyramid, RefusesLevelsTooCloseForTheTolerance) {
+  // A coarser level that the tolerance lets come out as large as its finer one could not nest in fewer samples.
+  test::TMesh m;
+  test::Plane(m, 40);
+  Pyramid::Param p = Levels({1000, 990});
+  p.tolerance = 0.05;
+  try {
+    vcg_ext::MeshLod<Pyramid>(m, p);
+    ADD_FAILURE() << "no error";
+  } catch (const vcg_ext::InputError& e) {
+    EXPECT_EQ(e.field, vcg_ext::Field::Levels);
+    EXPECT_EQ(std::string(e.what()), "1 and 2 (1,000 and 990 samples) are too close for a tolerance of 5%: the "
+                                     "coarser may come out with up to 1,039 samples, the finer with as few as 950; "
+                                     "give levels further apart or a smaller tolerance");
+  }
+  p.counts = {1000, 900};  // up to 945, at least 950
+  EXPECT_EQ(vcg_ext::MeshLod<Pyramid>(m, p).counts.size(), 2u);
+}
+
 TEST(LodPyramid, RefusesLevelsThatDoNotGetCoarser) {
   test::TMesh m;
   test::Plane(m, 10);
