@@ -37,6 +37,25 @@ std::pair<double, double> CoverAndSeparation(const Domain& d, const std::vector<
   }
   return {*std::max_element(nearest.begin(), nearest.end()), separation};
 }
+
+// Each level of r is the Poisson set of p's count for it (p's order and tolerance) among the finer
+// level's samples, the finest among all points.
+void ExpectEachLevelIsItsPoissonSet(const test::TMesh& m, const Pyramid::Param& p, const Pyramid::Result& r) {
+  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
+  ASSERT_EQ(r.counts.size(), p.counts.size());
+  for (size_t k = 0; k < p.counts.size(); ++k) {
+    Poisson::Param q;
+    q.sampleNum = p.counts[k];
+    q.seed = p.seed;
+    q.order = p.order;
+    q.tolerance = p.tolerance;
+    if (k > 0) q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k - 1]));
+    const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
+    EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
+              std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k])))
+        << "level " << k << ", order " << int(p.order);
+  }
+}
 }  // namespace
 
 TEST(LodPyramid, LevelsAreNestedExactAndEvenlySpread) {
@@ -74,18 +93,7 @@ TEST(LodPyramid, EachCoarserLevelIsThePoissonSetOfItsCountAmongTheFiner) {
   test::TMesh m;
   test::HeightField(m, 45, [](float x, float y) { return test::HalfBumpy(x, y); });
   const Pyramid::Param p = Levels({1000, 400, 100, 25});
-  const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
-  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
-  for (size_t k = 1; k < p.counts.size(); ++k) {
-    Poisson::Param q;
-    q.sampleNum = p.counts[k];
-    q.seed = p.seed;
-    q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k - 1]));
-    const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
-    EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
-              std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k])))
-        << "level " << k;
-  }
+  ExpectEachLevelIsItsPoissonSet(m, p, vcg_ext::MeshLod<Pyramid>(m, p));
 }
 
 TEST(LodPyramid, EveryLevelTakesTheVisitingOrderAsked) {
@@ -93,24 +101,13 @@ TEST(LodPyramid, EveryLevelTakesTheVisitingOrderAsked) {
   // count among the finer's in it; the order taken is reported.
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
-  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
   for (const vcg_ext::VisitOrder order :
        {vcg_ext::VisitOrder::Random, vcg_ext::VisitOrder::Prominence, vcg_ext::VisitOrder::Border}) {
     Pyramid::Param p = Levels({600, 150, 30});
     p.order = order;
     const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
     EXPECT_EQ(r.order, order);
-    for (size_t k = 0; k < p.counts.size(); ++k) {
-      Poisson::Param q;
-      q.sampleNum = p.counts[k];
-      q.seed = p.seed;
-      q.order = order;
-      if (k > 0) q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k - 1]));
-      const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
-      EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
-                std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(p.counts[k])))
-          << "level " << k << ", order " << int(order);
-    }
+    ExpectEachLevelIsItsPoissonSet(m, p, r);
   }
   Pyramid::Param automatic = Levels({600, 150});
   EXPECT_EQ(automatic.order, vcg_ext::VisitOrder::Automatic);
@@ -176,7 +173,6 @@ TEST(LodPyramid, WithAToleranceEachLevelIsItsPoissonSetWithinTheTolerance) {
   // Untrimmed sets within each level's window, nested, as the command's and a cluster's levels with a tolerance.
   test::TMesh m;
   test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
-  using Poisson = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
   Pyramid::Param p = Levels({600, 150, 30});
   p.tolerance = 0.1;
   const auto r = vcg_ext::MeshLod<Pyramid>(m, p);
@@ -186,16 +182,8 @@ TEST(LodPyramid, WithAToleranceEachLevelIsItsPoissonSetWithinTheTolerance) {
     EXPECT_GE(double(r.counts[k]), 0.9 * double(p.counts[k])) << "level " << k;
     EXPECT_LE(double(r.counts[k]), 1.1 * double(p.counts[k])) << "level " << k;
     for (size_t i = 0; i < r.coarsest.size(); ++i) EXPECT_EQ(r.coarsest[i] >= int(k), i < r.counts[k]);
-    Poisson::Param q;
-    q.sampleNum = p.counts[k];
-    q.tolerance = p.tolerance;
-    q.seed = p.seed;
-    if (k > 0) q.within.assign(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k - 1]));
-    const auto alone = vcg_ext::MeshLod<Poisson>(m, q);
-    EXPECT_EQ(std::set<int>(alone.vertIndex.begin(), alone.vertIndex.end()),
-              std::set<int>(r.vertIndex.begin(), r.vertIndex.begin() + long(r.counts[k])))
-        << "level " << k;
   }
+  ExpectEachLevelIsItsPoissonSet(m, p, r);
 }
 
 TEST(LodPyramid, RefusesLevelsTooCloseForTheTolerance) {
