@@ -105,8 +105,9 @@ class GeodesicLodPyramid {
     std::vector<int> finer;
     std::vector<char> coarser(d.size(), 0);
     for (size_t k = 0; k < levels; ++k) {
-      // At most the finer level's samples: a search that ran out of runs outside its window may leave fewer.
-      pp.sampleNum = k == 0 ? p.counts[0] : std::min(p.counts[k], finer.size());
+      // Fewer than the finer level's samples: a search ends within its tolerance or thinned to its count,
+      // and CheckCounts keeps the windows apart.
+      pp.sampleNum = p.counts[k];
       pp.within.clear();
       for (int s : finer) pp.within.push_back(d.points.vertIndex[size_t(s)]);
       PoissonTargetCount::Result t = GeodesicPoissonLod<Scalar>::SampleCount(
