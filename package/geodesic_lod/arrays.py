@@ -465,6 +465,14 @@ def diagonal_of(p: np.ndarray) -> float:
     return float(np.linalg.norm(p.max(axis=0).astype(np.float64) - p.min(axis=0).astype(np.float64)))
 
 
+def count_tolerance(tolerance) -> float:
+    """A count's tolerance as one machine takes it: a percentage from 0 (an exact count) to below 100."""
+    t = real_number(tolerance, "tolerance", positive=False)
+    if t >= 100:
+        raise InputError(f"tolerance is a percentage below 100, got {t}")
+    return t
+
+
 def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_output, regions, seed, within, threads,
                    progress, diagonal: Callable[[], float], visit_order: str = DEFAULT_VISIT_ORDER):
     """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
@@ -491,10 +499,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
         if param.sample_num > pool:
             raise InputError(f"rate asks for {counted(param.sample_num, 'sample')}, more than the "
                              f"{counted(pool, 'point')} in within")
-    t = real_number(tolerance, "tolerance", positive=False)
-    if t >= 100:
-        raise InputError(f"tolerance is a percentage below 100, got {t}")
-    param.tolerance = t / 100
+    param.tolerance = count_tolerance(tolerance) / 100
     param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     param.regions = _choice(regions, REGIONS, "regions")
@@ -536,9 +541,7 @@ def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, p
 @documented
 def level_counts(levels: Sequence[Union[int, str]], n: int, tolerance: float = 0.0) -> list:
     n = whole_number(n, "n (the number of points)", 0)
-    t = real_number(tolerance, "tolerance", positive=False)
-    if t >= 100:
-        raise InputError(f"tolerance is a percentage below 100, got {t}")
+    t = count_tolerance(tolerance)
     levels = level_items(levels)
     if isinstance(levels, bytes) or not isinstance(levels, Sequence) or len(levels) == 0:
         raise InputError(f"levels must be a non-empty list of counts or percentages such as ['50%', '10%'], "
@@ -587,7 +590,7 @@ def pyramid_param(counts, has_faces, mesh_output, placement, visit_order, tolera
     param.mesh_output = bool(mesh_output)
     param.placement = placement_of(placement, mesh_output, param.placement)
     param.order = _choice(visit_order, VISIT_ORDERS, "visit_order")
-    param.tolerance = real_number(tolerance, "tolerance", positive=False) / 100  # level_counts checked its range
+    param.tolerance = count_tolerance(tolerance) / 100
     return param, threads
 
 
