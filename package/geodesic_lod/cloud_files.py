@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import pathlib
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 
@@ -31,8 +31,13 @@ class Source:
     lo, hi : (3,) ndarray of float64
         Its points' bounds, in the input's units (a LAS file's header bounds).
     signature : tuple
-        What must match across files to write them together (a LAS file's point format, scales, offsets,
-        CRS; other formats' fields).
+        What must match across files to write them together (a LAS file's point format, extra dimensions,
+        scales and CRS; other formats' fields).
+    offsets : tuple of 3 floats or None
+        The offsets its X, Y, Z integers are written with: the first file's (LAS; None for other formats).
+    shift : tuple of 3 ints
+        Steps of the scale added to its X, Y, Z integers to write them with the first file's offsets (a
+        survey's tiles each offset at its own corner).
     """
     path: str
     kind: str
@@ -41,12 +46,18 @@ class Source:
     lo: np.ndarray
     hi: np.ndarray
     signature: tuple = field(default_factory=tuple)
+    offsets: Optional[tuple] = None
+    shift: tuple = (0, 0, 0)
+
+    def scaling(self) -> Optional[tuple]:
+        """(scales, offsets) its rebased integers are coordinates with (LAS; None for other formats)."""
+        return None if self.offsets is None else (self.signature[3], self.offsets)
 
 
 def _las_signature(source: las_files.LasSource) -> tuple:
     h = source.header
     return ("las", h.point_format.id, tuple(d.name for d in h.point_format.extra_dimensions),
-            tuple(np.round(h.scales, 15)), tuple(h.offsets), source.crs())
+            tuple(float(v) for v in np.round(h.scales, 15)), source.crs())
 
 
 def survey(path: str) -> dict:
@@ -59,7 +70,8 @@ def survey(path: str) -> dict:
         s = las_files.open_source(path)
         h = s.header
         return {"kind": kind, "count": int(h.point_count), "lo": np.array(h.mins, float),
-                "hi": np.array(h.maxs, float), "signature": _las_signature(s)}
+                "hi": np.array(h.maxs, float), "signature": _las_signature(s),
+                "offsets": tuple(float(v) for v in h.offsets)}
     src = point_files.read(path)
     fields = src.rows.dtype.descr if src.rows.dtype.names else (str(src.rows.dtype), src.rows.shape[1:])
     empty = len(src.points) == 0  # no bounds: sources() skips it
@@ -74,19 +86,63 @@ def check_count(total: int) -> None:
         raise InputError(f"the cloud {problem}")
 
 
-def _writable_together(path: str, signature: tuple, first: Source) -> bool:
-    """Whether a file of this signature can be written with the first file's header and records: the same
-    signature, or for LAS files the same one but for the CRS's bytes, the CRS itself the same (one
-    survey's tiles re-saved by other software: WKT 1 or 2, GeoTIFF keys counted otherwise)."""
-    if signature == first.signature:
-        return True
-    if signature[0] != "las" or signature[:-1] != first.signature[:-1]:
-        return False
+def _shown(values) -> str:
+    return f"({', '.join(f'{v:g}' if isinstance(v, float) else str(v) for v in values)})" \
+        if isinstance(values, tuple) else str(values)
+
+
+def _crs(path: str):
+    """A LAS file's CRS as pyproj reads it, or None (none, or records pyproj cannot read)."""
     try:
-        a, b = (las_files.open_source(p).header.parse_crs() for p in (path, first.path))
-    except Exception:  # a record pyproj cannot read (laspy's or pyproj's error): only equal bytes match
-        return False
-    return a is not None and b is not None and a == b
+        return las_files.open_source(path).header.parse_crs()
+    except Exception:  # laspy's or pyproj's error: only equal bytes match
+        return None
+
+
+def _difference(path: str, signature: tuple, first: Source) -> Optional[str]:
+    """What keeps a file of this signature from being written with the first file's header and records,
+    or None. A LAS file's CRS may be stored otherwise if it is the same (one survey's tiles re-saved by
+    other software: WKT 1 or 2, GeoTIFF keys counted otherwise); its offsets are settled by ``_shift``."""
+    if signature == first.signature:
+        return None
+    if signature[0] != "las":
+        return f"its fields differ from {first.path}'s"
+    for name, mine, theirs in zip(("point format", "extra dimensions", "scale factors"), signature[1:4],
+                                  first.signature[1:4]):
+        if mine != theirs:
+            verb = "differs" if name == "point format" else "differ"
+            return f"its {name} {_shown(mine)} {verb} from {first.path}'s {_shown(theirs)}"
+    a, b = _crs(path), _crs(first.path)
+    if a is not None and b is not None and a == b:
+        return None
+    named = f" ({a.name})" if a is not None else "", f" ({b.name})" if b is not None else ""
+    return f"its coordinate reference system{named[0]} differs from {first.path}'s{named[1]}"
+
+
+def _shift(path: str, offsets: tuple, first: Source) -> tuple:
+    """Whole steps of the common scale from the first file's offsets to this file's, per axis."""
+    scales = np.asarray(first.signature[3])
+    steps = (np.asarray(offsets) - np.asarray(first.offsets)) / scales
+    whole = np.round(steps)
+    if np.any(np.abs(steps - whole) > 1e-4):  # within a ten-thousandth of a step: the same grid, as doubles hold it
+        raise point_files.PointFileError(path, f"its offsets {_shown(offsets)} are not a whole number of steps of "
+                                               f"the scale from {first.path}'s {_shown(first.offsets)}: its "
+                                               "coordinates cannot be written with that file's header")
+    return tuple(int(v) for v in whole)
+
+
+def rebase(records: np.ndarray, s: Source, srcs: Sequence[Source]) -> None:
+    """Adds a LAS file's shift to its records' X, Y, Z (in place): the integers of the first file's offsets.
+    Refuses points that lie beyond those integers' range."""
+    for axis, d in zip("XYZ", s.shift):
+        if not d or not len(records):
+            continue
+        v = records[axis].astype(np.int64) + d
+        if v.min() < -2 ** 31 or v.max() >= 2 ** 31:
+            raise point_files.PointFileError(
+                s.path, f"its points lie too far from {srcs[0].path}'s offsets to be written with its header at a "
+                        f"scale of {s.signature[3]['XYZ'.index(axis)]:g}: give files offset alike")
+        records[axis] = v
 
 
 def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
@@ -95,11 +151,13 @@ def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
     for path, s in zip(paths, surveys):
         if s["count"] == 0:
             continue
-        if out and not _writable_together(path, s["signature"], out[0]):
-            what = "point format, extra dimensions, scale, offset or CRS" if s["kind"] == "las" else "fields"
-            raise point_files.PointFileError(path, f"its {what} differ from {out[0].path}'s: the files cannot "
-                                                   "be sampled as one cloud")
-        out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"]))
+        problem = _difference(path, s["signature"], out[0]) if out else None
+        if problem:
+            raise point_files.PointFileError(path, f"{problem}: the files cannot be sampled as one cloud")
+        offsets = s.get("offsets")
+        shift = _shift(path, offsets, out[0]) if out and offsets is not None else (0, 0, 0)
+        out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"],
+                          out[0].offsets if out else offsets, shift))
         first += s["count"]
     if not out:
         raise point_files.PointFileError(paths[0] if paths else "(no input)", arrays.too_few_points(0))
@@ -130,9 +188,11 @@ def read_region(srcs: Sequence[Source], lo: np.ndarray, hi: np.ndarray) -> tuple
 def chunks(s: Source):
     """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
     if s.kind == "las":
-        header = las_files.open_source(s.path).header
         for start, chunk in las_files.chunks(s.path):
-            yield start, las_files.xyz(chunk, header), None
+            ints = las_files.integers(chunk.array)
+            if any(s.shift):  # as rebase gives them, without writing to the records
+                ints = ints.astype(np.int64) + np.asarray(s.shift)
+            yield start, las_files.scaled(ints, *s.scaling()), None
     else:
         src = point_files.read(s.path)
         yield 0, src.points, src.normals

@@ -116,17 +116,17 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     """A Dask task: decodes one piece (on `threads` threads, ``las_files.decoders``), writes its records as
     they come (a sample's record is then found by its id alone) and each cell's share of its points, block
     by block, each block in id order (``blocks``: where each block starts, and the end): their rows in the
-    piece and their coordinates, a LAS file's as its integers (``Scaling`` gives the same floats as
-    decoding). Returns the id of its first record, the piece's scaling (None: coordinates kept as floats),
+    piece and their coordinates, a LAS file's as its integers in the first file's offsets, as they are
+    written (``Scaling`` gives the same floats as ``cloud_files.chunks``). Returns the id of its first record, the piece's scaling (None: coordinates kept as floats),
     whether its points carry normals, per cell holding points (count, lowest corner, highest corner, points
     per block), and the bytes written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
-        header = las_files.open_source(s.path).header
         parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop, threads=threads)]
         records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
-        scaling = Scaling(tuple(float(v) for v in header.scales), tuple(float(v) for v in header.offsets))
+        cloud_files.rebase(records, s, srcs)  # the integers of the first file's offsets, as they are written
+        scaling = Scaling(*s.scaling())
         kept = las_files.integers(records)
         xyz, normals = scaling.apply(kept), None
     else:
@@ -165,13 +165,14 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
 
 @dataclass(frozen=True)
 class Scaling:
-    """A LAS file's coordinates from its integers: X * scale + offset per axis (``las_files.scaled``, as
+    """LAS coordinates from their integers: X * scale + offset per axis (``las_files.scaled``, as
     ``las_files.xyz`` computes them).
 
     Attributes
     ----------
     scales, offsets : tuple of 3 floats
-        The file header's, per axis.
+        The first file's, per axis: every file's integers are rebased to its offsets
+        (``cloud_files.Source.shift``).
     """
     scales: tuple
     offsets: tuple

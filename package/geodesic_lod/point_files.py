@@ -68,6 +68,8 @@ RASTERS = {".tif", ".tiff", ".asc", ".hgt", ".dem", ".img", ".bil", ".flt", ".vr
 
 def format_of(path, role: str = "input") -> str:
     ext = pathlib.Path(path).suffix.lower()
+    if ext not in FORMATS and role == "input" and not os.path.lexists(path):  # a folder's name mistyped, say
+        raise PointFileError(path, "no such file or folder")
     if ext not in FORMATS:
         raster = (" (a raster of heights: its nodes as x, y, z rows in .npy)"
                   if ext in RASTERS and role == "input" else "")

@@ -182,6 +182,9 @@ def nan_npy(d):
 
 BAD = [
     (lambda d: ["absent.laz", "-o", "o.laz", "--rate", "10%"], "absent.laz: no such file"),
+    (lambda d: ["absent_folder", "-o", "o.laz", "--rate", "10%"], "absent_folder: no such file or folder\n"),
+    (lambda d: ["absent_folder", "-o", "lod", "--rate", "10%", "--workers", "1"],
+     "absent_folder: no such file or folder\n"),
     (lambda d: [ply_cloud(d / "in.ply").rename(d / "in.xyz"), "-o", "o.ply", "--rate", "10%"],
      "unknown input format '.xyz'"),
     (lambda d: [ply_cloud(d / "in.ply"), "-o", "o.txt", "--rate", "10%"], "unknown output format '.txt'"),

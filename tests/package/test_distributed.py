@@ -283,12 +283,67 @@ def test_the_command_on_a_local_cluster(cloud, tmp_path):
     assert f"level_2pct: {len(coarse):,} of 24,000 points" in r.stderr
 
 
+def write_with_offsets(folder, p, scale, offsets):
+    """p split into one LAZ file per offset, each quantized at its own offsets (a survey's tiles, each
+    offset at its own corner); each record's gps_time is its row in p."""
+    folder.mkdir(exist_ok=True)
+    for k, rows in enumerate(np.array_split(np.arange(len(p)), len(offsets))):
+        header = laspy.LasHeader(point_format=6, version="1.4")
+        header.scales, header.offsets = [scale] * 3, list(offsets[k])
+        las = laspy.LasData(header)
+        las.x, las.y, las.z = p[rows, 0], p[rows, 1], p[rows, 2]
+        las.gps_time, las.intensity = rows.astype(float), rows % 4096
+        las.write(str(folder / f"part{k}.laz"))
+    return [laspy.read(str(folder / f"part{k}.laz")) for k in range(len(offsets))]
+
+
+def tiles_read(out):
+    """The output's points, in id order (gps_time)."""
+    index, _ = output_records(out)
+    tiles = [laspy.read(str(out / t["file"])) for t in index["tiles"]]
+    xyz, ids = np.concatenate([t.xyz for t in tiles]), np.concatenate([t.gps_time for t in tiles]).astype(np.int64)
+    order = np.argsort(ids)
+    return index, xyz[order], ids[order]
+
+
+def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_path):
+    """Offsets a whole number of steps of the common scale apart: the records are written with the first
+    file's header, their coordinates those of the input, and the LOD that of the points together."""
+    p = bumpy_sphere(6000) * 10
+    step = 2.0 ** -10  # coordinates exact in binary: the same cloud however each file is offset
+    parts = write_with_offsets(tmp_path / "a", p, step, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
+    points = np.concatenate([f.xyz for f in parts])
+    dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
+                   threads=1)
+    index, xyz, ids = tiles_read(tmp_path / "lod")
+    assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
+    assert np.array_equal(xyz, points[ids])
+    assert index["bounds"] == [xyz.min(axis=0).tolist(), xyz.max(axis=0).tolist()]
+
+    parts = write_with_offsets(tmp_path / "b", p, 0.01, [(0.0, 0.0, 0.0), (1000.37, -2000.11, 3.05)])
+    points = np.concatenate([f.xyz for f in parts])
+    dist.lod_files([str(tmp_path / "b")], tmp_path / "lod_b", radius=RADIUS, client=client, threads=1)
+    _, xyz, ids = tiles_read(tmp_path / "lod_b")
+    assert len(ids) > 100 and np.abs(xyz - points[ids]).max() < 1e-6  # decimal offsets: to within a rounding
+
+
 def test_files_that_cannot_go_together_are_named(client, tmp_path):
     p = bumpy_sphere(3000)
     a = write_parts(tmp_path / "a", p, parts=2)
     write_parts(tmp_path / "b", p, scales=(1e-3,) * 3, parts=1)
     os.replace(tmp_path / "b" / "part0.laz", a / "part9.laz")
-    with pytest.raises(pf.PointFileError, match="part9.laz: its point format, extra dimensions, scale"):
+    with pytest.raises(pf.PointFileError, match=r"part9.laz: its scale factors \(0.001, 0.001, 0.001\) differ "
+                                                r"from .*part0.laz's \(0.0001, 0.0001, 0.0001\)"):
+        dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
+    write_with_offsets(tmp_path / "c", p, 1e-4, [(0.00005, 0.0, 0.0)])
+    os.replace(tmp_path / "c" / "part0.laz", a / "part9.laz")
+    with pytest.raises(pf.PointFileError, match=r"part9.laz: its offsets \(5e-05, 0, 0\) are not a whole number "
+                                                r"of steps of the scale from .*part0.laz's \(0, 0, 0\)"):
+        dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
+    write_with_offsets(tmp_path / "d", p + [3e5, 0, 0], 1e-4, [(3e5, 0.0, 0.0)])  # X beyond 2^31 at part0's
+    os.replace(tmp_path / "d" / "part0.laz", a / "part9.laz")
+    with pytest.raises(pf.PointFileError, match=r"part9.laz: its points lie too far from .*part0.laz's offsets "
+                                                r"to be written with its header at a scale of 0.0001: give files offset alike"):
         dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
     (a / "part9.laz").write_bytes(b"LASF truncated")
     with pytest.raises(pf.PointFileError, match="part9.laz: cannot be read as LAS"):
