@@ -20,6 +20,7 @@ inline QString Worded(const vcg_ext::InputError& e) {
     case Field::SampleNum: return QString(kSampleNum) + " " + problem;
     case Field::Tolerance: return QString(kTolerance) + " " + problem;
     case Field::Levels: return QString(kLevels) + " " + problem;
+    case Field::FinestLevel: return QString(kLevels) + " (the finest) " + problem;
     case Field::NormalNeighbours: return QString(kNormalNeighbors) + " " + problem;
     case Field::GraphNeighbours: return QString(kGraphNeighbors) + " " + problem;
     case Field::CurvatureExponent: return QString(kCurvatureExponent) + " " + problem;

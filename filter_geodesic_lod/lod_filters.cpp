@@ -532,7 +532,7 @@ LodRun RunHeightField(const CMeshO& in, const ParamSource& src, vcg::CallBackPos
         return vcg_ext::HeightFieldLod::Compute(xyz.data(), vertOf.size(), p, vcg_ext::Progress(cb));
       } catch (const vcg_ext::InputError& e) {  // the count is the finest level's
         if (e.field != vcg_ext::Field::SampleNum) throw;
-        throw vcg_ext::InputError(vcg_ext::Field::Levels, std::string("(the finest) ") + e.what());
+        throw vcg_ext::InputError(vcg_ext::Field::FinestLevel, e.what());
       }
     }();
     LodRun run;

@@ -91,7 +91,7 @@ class GeodesicLodPyramid {
   /// asks to stop.
   static Result Compute(const Domain& d, const Param& p, Progress progress = Progress(nullptr)) {
     CheckParam(p, d.hasFaces);
-    d.CheckCount(p.counts[0], Field::Levels);
+    d.CheckCount(p.counts[0], Field::FinestLevel);
     typename GeodesicPoissonLod<Scalar>::Param pp;
     pp.maxIterations = p.maxIterations;
     pp.seed = p.seed;

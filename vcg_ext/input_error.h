@@ -21,6 +21,7 @@ enum class Field {
   SampleNum,
   Tolerance,          ///< the count tolerance, in percent
   Levels,             ///< a pyramid's counts
+  FinestLevel,        ///< a pyramid's finest count, against the points it may take
   NormalNeighbours,
   GraphNeighbours,
   CurvatureExponent,
@@ -110,6 +111,7 @@ inline const char* FieldId(Field f) {
     case Field::SampleNum: return "SampleNum";
     case Field::Tolerance: return "Tolerance";
     case Field::Levels: return "Levels";
+    case Field::FinestLevel: return "FinestLevel";
     case Field::NormalNeighbours: return "NormalNeighbours";
     case Field::GraphNeighbours: return "GraphNeighbours";
     case Field::CurvatureExponent: return "CurvatureExponent";

@@ -393,9 +393,12 @@ def run_options(seed, threads, progress, mesh_output, has_faces):
     return seed, threads
 
 
+FINEST_COUNT = "the finest level's count"  # a pyramid's, against the points it may take
+
 # vcg_ext's input errors by field, in this package's words (the subject of the problem).
 _FIELD_WORDS = {"Points": "points", "Coordinates": "points", "Radius": "radius", "SampleNum": "count",
-                "Tolerance": "tolerance", "Levels": "levels", "NormalNeighbours": "normal_neighbors",
+                "Tolerance": "tolerance", "Levels": "levels",
+                "FinestLevel": FINEST_COUNT, "NormalNeighbours": "normal_neighbors",
                 "GraphNeighbours": "graph_neighbors", "CurvatureExponent": "curvature_exponent",
                 "Adaptivity": "adaptivity", "GeodesicMode": "geodesics", "MeshOutput": "mesh_output",
                 "Within": "within", "Separation": "separation"}

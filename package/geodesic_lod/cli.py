@@ -399,17 +399,19 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod,
 
 
 def _count_in_options(e: ValueError, args) -> ValueError:
-    """The API's error on the count (a count above the points a file's mesh geodesics sample, also the
-    pyramid's finest) or on the levels (too close for the tolerance) in the options they came from."""
-    if not isinstance(e, InputError) or e.subject not in ("count", "levels"):
+    """The API's error on the count (a count above the points a file's mesh geodesics sample), on the
+    pyramid's finest count (the same) or on the levels (too close for the tolerance) in the options they
+    came from."""
+    if not isinstance(e, InputError) or e.subject not in ("count", "levels", arrays.FINEST_COUNT):
         return e
-    if e.subject == "levels" and not e.problem.startswith("must be at most"):
+    if e.subject == "levels":
         given = f" --tolerance {args.tolerance:g}" if args.tolerance else ""
         return InputError(f"--levels {args.levels}{given}: levels {e.problem}")
+    if e.subject == arrays.FINEST_COUNT:
+        return InputError(f"--levels {args.levels}: {arrays.FINEST_COUNT} {e.problem}")
     if args.count is not None:
         return InputError(f"--count {e.problem}")
-    given = f"--rate {args.rate}: its" if args.rate is not None else f"--levels {args.levels}: the finest level's"
-    return InputError(f"{given} count {e.problem}")
+    return InputError(f"--rate {args.rate}: its count {e.problem}")
 
 
 def _copc(args, progress) -> list:

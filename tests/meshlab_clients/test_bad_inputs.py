@@ -138,7 +138,7 @@ CASES = [
      "samplenum must be at most the 144 points in triangles (2 vertices in none are not sampled"),
     ("unreferenced vertices, mesh mode, every vertex in a pyramid", unreferenced, PYRAMID,
      {"levels": "146,10", "geodesicmode": MESH_MODE},
-     "levels must be at most the 144 points in triangles (2 vertices in none are not sampled"),
+     "levels (the finest) must be at most the 144 points in triangles (2 vertices in none are not sampled"),
     ("unreferenced vertices, point graph", unreferenced, FPS, {"samplenum": 146, "geodesicmode": GRAPH},
      one_per_part(146)),
     ("disconnected parts, radius beyond the model", two_parts, POISSON, {"radius": pymeshlab.PureValue(100)},

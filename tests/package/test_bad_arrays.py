@@ -89,7 +89,8 @@ CASES = {
     "count above the points in faces": (gl.fps_lod, (STRAY_P,), dict(faces=MESH_F, count=103), gl.InputError,
                                         "count must be at most the 100 points in triangles (5 vertices in none"),
     "levels above the points in faces": (gl.lod_pyramid, (STRAY_P,), dict(faces=MESH_F, levels=[103, 10]),
-                                         gl.InputError, "levels must be at most the 100 points in triangles"),
+                                         gl.InputError, "the finest level's count must be at most the 100 points in "
+                                                                        "triangles"),
     "levels above n": (gl.lod_pyramid, (P,), dict(levels=[501]), gl.InputError, "levels"),
     "within negative": (gl.poisson_lod, (P,), dict(radius=0.1, within=[-1, 3]), gl.InputError, "within"),
     "within above n": (gl.poisson_lod, (P,), dict(radius=0.1, within=[3, 500]), gl.InputError, "within"),

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <set>
+#include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
 #include "test_mesh.h"
@@ -13,9 +14,12 @@ namespace input_checks_test {
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
 
-std::string ErrorOf(const test::TMesh& m, LOD::Param p) {
+using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh::ScalarType>;
+
+template <class Algorithm = LOD>
+std::string ErrorOf(const test::TMesh& m, typename Algorithm::Param p) {
   try {
-    vcg_ext::MeshLod<LOD>(m, p);
+    vcg_ext::MeshLod<Algorithm>(m, p);
   } catch (const vcg_ext::InputError& e) {
     return std::string(vcg_ext::FieldId(e.field)) + ": " + e.what();
   }
@@ -66,6 +70,11 @@ TEST(InputChecks, CountsAndNeighboursNameTheVerticesMeshGeodesicsLeaveOut) {
                            "sampled with mesh geodesics), got 40");
   p.sampleNum = 36;
   EXPECT_EQ(ErrorOf(m, p), "");
+  Pyramid::Param pyramid;  // the pyramid's finest level is its own field
+  pyramid.domain = p.domain;
+  pyramid.counts = {40, 10};
+  EXPECT_EQ(ErrorOf<Pyramid>(m, pyramid), "FinestLevel: must be at most the 36 points in triangles (30 vertices in none are "
+                                 "not sampled with mesh geodesics), got 40");
   p.domain.normalNeighbours = 36;
   EXPECT_EQ(ErrorOf(m, p), "Points: holds 36 points in triangles (30 vertices in none are not sampled with mesh "
                            "geodesics): at least 37 are needed, the neighbours each normal is fitted to");
