@@ -117,9 +117,9 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     they come (a sample's record is then found by its id alone) and each cell's share of its points, block
     by block, each block in id order (``blocks``: where each block starts, and the end): their rows in the
     piece and their coordinates, a LAS file's as its integers in the first file's offsets, as they are
-    written (``Scaling`` gives the same floats as ``cloud_files.chunks``). Returns the id of its first record, the piece's scaling (None: coordinates kept as floats),
-    whether its points carry normals, per cell holding points (count, lowest corner, highest corner, points
-    per block), and the bytes written."""
+    written (``Scaling`` gives the same floats as ``cloud_files.chunks``). Returns the id of its first
+    record, the piece's scaling (None: coordinates kept as floats), whether its points carry normals, per
+    cell holding points (count, lowest corner, highest corner, points per block), and the bytes written."""
     f, first, stop = piece
     s = srcs[f]
     if s.kind == "las":
