@@ -115,7 +115,8 @@ def _difference(path: str, signature: tuple, first: Source) -> Optional[str]:
     a, b = _crs(path), _crs(first.path)
     if a is not None and b is not None and a == b:
         return None
-    named = f" ({a.name})" if a is not None else "", f" ({b.name})" if b is not None else ""
+    named = [" (none)" if not records else f" ({crs.name})" if crs is not None else ""
+             for records, crs in ((signature[-1], a), (first.signature[-1], b))]
     return f"its coordinate reference system{named[0]} differs from {first.path}'s{named[1]}"
 
 

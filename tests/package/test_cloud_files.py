@@ -138,6 +138,13 @@ def test_one_crs_written_two_ways_is_one_cloud_and_two_crss_are_not(tmp_path):
     paths = [with_wkt(a, tmp_path / "wkt1.laz", utm32.to_wkt("WKT1_GDAL")),
              with_wkt(a, tmp_path / "wkt2.laz", utm32.to_wkt())]
     assert [s.path for s in one_cloud(paths)] == paths
+    las = laspy.read(paths[0])
+    las.header.vlrs = [v for v in las.header.vlrs if v.user_id != "LASF_Projection"]
+    las.header.global_encoding.wkt = False
+    las.write(str(tmp_path / "none.laz"))
+    with pytest.raises(pf.PointFileError, match=r"none.laz: its coordinate reference system \(none\) differs from "
+                                                r".*wkt1.laz's \(ETRS89 / UTM zone 32N\)"):
+        one_cloud(paths + [str(tmp_path / "none.laz")])
     other = with_wkt(a, tmp_path / "utm33.laz", CRS.from_epsg(25833).to_wkt())
     with pytest.raises(pf.PointFileError, match=r"utm33.laz: its coordinate reference system \(ETRS89 / UTM zone 33N\) differs from "
                                                 r".*wkt1.laz's \(ETRS89 / UTM zone 32N\)"):
