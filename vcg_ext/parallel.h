@@ -74,7 +74,7 @@ class ThreadTeam {
     if (team.pid_ != getpid()) team.AfterFork();
     return team;
   }
-  ThreadTeam() = default;
+  ThreadTeam() { MakeExceptionData(); }
   ThreadTeam(const ThreadTeam&) = delete;
   ThreadTeam& operator=(const ThreadTeam&) = delete;
   ~ThreadTeam() {
@@ -176,6 +176,15 @@ class ThreadTeam {
 #endif
 
  private:
+  // The C++ runtime's thread-local data for exceptions, made on the calling
+  // thread now: where the host loaded the runtime after the thread started
+  // (Python, pymeshlab) glibc makes it at the thread's first throw, often the
+  // std::bad_alloc of memory used up, and aborts the process where it cannot.
+  static void MakeExceptionData() {
+    volatile int uncaught = std::uncaught_exceptions();
+    (void)uncaught;
+  }
+
   // The workers for `threads` in all (the caller is one); fewer if the system refuses a thread.
   // A new worker has made its thread-local data when Grow returns: glibc
   // allocates a loaded plugin's thread-local block at a thread's first use of
@@ -241,6 +250,7 @@ class ThreadTeam {
 
   void Work(int w) {
     detail::Place() = {0, 1, false};  // the thread-local block, made now (Grow)
+    MakeExceptionData();
     {
       std::lock_guard<std::mutex> lock(m_);
       started_.fetch_add(1, std::memory_order_release);
