@@ -176,8 +176,8 @@ class ThreadTeam {
 #endif
 
  private:
-  // The C++ runtime's thread-local data for exceptions, made on the calling
-  // thread now: where the host loaded the runtime after the thread started
+  // The C++ runtime's thread-local data for exceptions, made now on the thread
+  // that calls this: where the host loaded the runtime after the thread started
   // (Python, pymeshlab) glibc makes it at the thread's first throw, often the
   // std::bad_alloc of memory used up, and aborts the process where it cannot.
   static void MakeExceptionData() {
