@@ -351,8 +351,13 @@ def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
             path = pathlib.Path(path)
             tmp = _partial(path)
             done.append((tmp, path))
-            with open(tmp, "r+b") as f:
-                write(f)
+            try:
+                with open(tmp, "r+b") as f:
+                    write(f)
+            except OSError as e:  # a full disk: the writer's error names no file, the user's name for it
+                if e.filename is None:
+                    e.filename = str(path)
+                raise
         with stop_signals.held():  # a stop between two renames waits for the last: every name or none
             for k, (tmp, path) in enumerate(done):
                 try:

@@ -159,4 +159,6 @@ def test_a_write_that_fails_is_one_line_and_leaves_nothing(tmp_path, source, out
                        preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)))
     assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
     assert "File too large" in r.stderr and "Traceback" not in r.stderr, r.stderr
+    written = output.replace(".laz", "_50pct.laz") if "--levels" in size else output  # the file that failed
+    assert f"{tmp_path / written}: File too large" in r.stderr, r.stderr
     assert contents(tmp_path) == before
