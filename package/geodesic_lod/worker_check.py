@@ -11,6 +11,7 @@ one, stopped too: Dask's KilledWorker counts only tasks lost while they run). A 
 """
 from __future__ import annotations
 
+import logging
 import time
 from collections import Counter
 from contextlib import contextmanager
@@ -177,6 +178,20 @@ def completed(client, futures):
                 break
             except queue.Empty:
                 watch.look()
+
+
+class _AbandonedWaits(logging.Filter):
+    """Drops asyncio's log of a wait inside ``Client.gather`` that a stop abandoned: Dask ends it with its
+    own AllExit once the job's tasks are cancelled (``settle``), and asyncio reports the exception no one
+    retrieved ("Task exception was never retrieved", a traceback) when the task is collected. The stop
+    is the caller's to report."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        error = record.exc_info[1] if record.exc_info else None
+        return type(error).__name__ != "AllExit" or type(error).__module__ != "distributed.client"
+
+
+logging.getLogger("asyncio").addFilter(_AbandonedWaits())  # for every wait of a job: completed's too
 
 
 def gather(client, futures) -> list:

@@ -6,6 +6,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 
 import pytest
 
@@ -47,3 +48,40 @@ def test_ctrl_c_in_a_terminal_stops_a_cluster_run_with_one_line(tmp_path, output
     assert "geodesic-lod: stopped" in err
     assert "Traceback" not in err and "never retrieved" not in err, err
     assert names(out) == ["notes.txt"], (err, sorted(str(p.relative_to(out)) for p in out.rglob("*")))
+
+
+@pytest.fixture(scope="module")
+def three_parts(tmp_path_factory):
+    return write_parts(tmp_path_factory.mktemp("in"), bumpy_sphere(600_000), parts=3)
+
+
+@pytest.mark.parametrize("after", [0.1, 0.3, 0.5])
+def test_a_stop_of_the_command_alone_while_tiles_run_is_one_line(three_parts, tmp_path, after):
+    """SIGINT to the command only (its workers run on, as with `kill -INT`), a moment after a tile is done:
+    the job's waits on the others are abandoned and their tasks cancelled; Dask's way of ending those
+    waits is no news for the user (no "Task exception was never retrieved")."""
+    proc = subprocess.Popen([sys.executable, "-m", "geodesic_lod", str(three_parts), "-o", str(tmp_path / "out"),
+                             "--rate", "10%", "--workers", "2", "--tile-points", "200000"],
+                            stderr=subprocess.PIPE, text=True)
+    seen, started = [], threading.Event()
+
+    def read():
+        while ch := proc.stderr.read(1):
+            seen.append(ch)
+            if "tiles: 1 of" in "".join(seen[-60:]):
+                started.set()
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    try:
+        assert started.wait(120), "".join(seen)
+        time.sleep(after)
+        proc.send_signal(signal.SIGINT)
+        status = proc.wait(60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    reader.join(30)
+    err = "".join(seen)
+    assert status == 130 and err.endswith("geodesic-lod: stopped\n"), err
+    assert "Traceback" not in err and "never retrieved" not in err, err
+    assert not (tmp_path / "out").exists(), err
