@@ -209,6 +209,8 @@ QString Describe(const QString& what, const vcg_ext::LodResult<Scalarm>& r, vcg_
            .arg(Many(r.components, "connected part", "connected parts"));
   if (r.leftOut)
     s += QString("; %1 in no triangle left out (use the point graph to keep them)").arg(Many(r.leftOut, "vertex", "vertices"));
+  if (r.repeated)
+    s += QString("; %1 at an earlier vertex's position, one point with it").arg(Many(r.repeated, "vertex", "vertices"));
   if (!r.faces.empty()) s += QString("; %1").arg(Many(r.faces.size(), "triangle", "triangles"));
   return s;
 }

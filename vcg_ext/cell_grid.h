@@ -200,9 +200,30 @@ class CellGrid {
   /// i-th point's index (a cluster reads the same points of its tiles).
   static size_t SubsampleSize(size_t n) { return std::min<size_t>(n, 1 << 16); }
   static size_t SubsampleIndex(size_t i, size_t n) { return i * n / SubsampleSize(n); }
-  /// SurfaceCellSide of n points from their subsample `sub` (SubsampleIndex's points, in order).
-  static double SurfaceCellSideOf(const std::vector<Coord>& sub, size_t n, int perCell) {
-    const size_t m = sub.size(), j = std::min<size_t>(8, m - 1);
+  /// The points of `sub` at positions no point before them holds, in order:
+  /// what the measures of a subsample read, so that a cloud's repeated points
+  /// (each copy at distance 0) do not fill the neighbourhoods. O(m log m).
+  static std::vector<Coord> Distinct(const std::vector<Coord>& sub) {
+    std::vector<int> order(sub.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return sub[size_t(a)] < sub[size_t(b)] || (sub[size_t(a)] == sub[size_t(b)] && a < b); });
+    std::vector<char> repeat(sub.size(), 0);
+    for (size_t k = 1; k < order.size(); ++k)
+      repeat[size_t(order[k])] = sub[size_t(order[k])] == sub[size_t(order[k - 1])];
+    std::vector<Coord> out;
+    out.reserve(sub.size());
+    for (size_t i = 0; i < sub.size(); ++i)
+      if (!repeat[i]) out.push_back(sub[i]);
+    return out;
+  }
+  /// SurfaceCellSide of n points from their subsample `sub` (SubsampleIndex's
+  /// points, in order): of its Distinct points, as a share of the n, so that
+  /// repeats count as points spread over the surface.
+  static double SurfaceCellSideOf(const std::vector<Coord>& given, size_t n, int perCell) {
+    const std::vector<Coord> sub = Distinct(given);
+    const size_t m = sub.size();
+    if (m < 2) return 0;
+    const size_t j = std::min<size_t>(8, m - 1);
     vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(sub.data(), int(m)));
     typename vcg::KdTree<Scalar>::PriorityQueue q;
     std::vector<double> d2;

@@ -38,8 +38,9 @@ class CleanSurface {
   /// nearest (`sub`: CellGrid::SubsampleIndex's points, in order). A
   /// neighbourhood flat to rounding counts as clean (infinity); one on a line
   /// or at one position is left out. Infinity for fewer than kFar points.
-  static double OfSubsample(const std::vector<Coord>& sub) {
+  static double OfSubsample(const std::vector<Coord>& given) {
     const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<Coord> sub = CellGrid<Scalar>::Distinct(given);  // repeats read once
     const size_t m = sub.size();
     if (m < size_t(kFar)) return inf;
     vcg::KdTree<Scalar> tree(vcg::ConstDataWrapper<Coord>(sub.data(), int(m)));

@@ -2,13 +2,16 @@
 #define VCG_EXT_GEODESIC_DOMAIN_H
 // Everything the samplers need from a layer, built once: normals (n_i),
 // curvature (eq. 1) and the geodesics of the weighted metric (eq. 2-3), on
-// the point graph or by fast marching over the mesh's triangles.
+// the point graph or by fast marching over the mesh's triangles. A cloud's
+// points repeated at one position are one point (Build).
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 #include "bounded_dijkstra.h"
 #include "euclidean_ball.h"
@@ -72,6 +75,8 @@ class GeodesicDomain {
   /// The points' ScatterShare: where it Scatters, automatic choices take the
   /// surface-density metric and the rims first.
   double scatterShare = 0;
+  /// CellSide() as Build measured it (< 0: not measured there; a tile's order takes the cloud's).
+  double cellSide = -1;
   /// The points' CleanSurface exponent (infinity on a mesh's vertices): where
   /// they are Clean, the prominence order does not smooth them.
   double cleanExponent = std::numeric_limits<double>::infinity();
@@ -88,6 +93,12 @@ class GeodesicDomain {
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
+  /// A cloud's points at the position of a point before them (by vertIndex):
+  /// (its vertex, the vertex of that first point). Not points of the domain,
+  /// they share the first one's normal, curvature and region and are never
+  /// samples: at distance 0 every disk and every farthest point takes them
+  /// with it, and as points they would fill each other's kNN rows.
+  std::vector<std::pair<int, int>> repeats;
   bool hasFaces = false;            ///< the input had faces (usable or not): a triangle-mesh output needs them
   /// The input's vertices, live or not (regions are reported for all of
   /// them): PointSet::vertexCount, at least one past the largest vertIndex.
@@ -150,6 +161,8 @@ class GeodesicDomain {
                                        ? BallShare<Scalar>::SubsampleById(ps.pos, ps.vertIndex)
                                        : std::vector<Coord>();
     d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::OfSubsample(sub);
+    // Of the points as given, repeats included, as a cluster measures it over its tiles.
+    if (!sub.empty()) d.cellSide = CellGrid<Scalar>::SurfaceCellSideOf(sub, ps.size(), 1);
     d.metric = ChosenMetric(p.metric, d.Scatters());
     if (!d.hasFaces) d.cleanExponent = measureClean ? CleanSurface<Scalar>::OfSubsample(sub) : p.cleanExponent;
     d.triangles = std::move(tris.tri);
@@ -165,11 +178,26 @@ class GeodesicDomain {
       // One grid and one kNN table serve the normals, eq. 1 and the graph.
       KnnTable<Scalar> knn;
       const int k = graph ? std::max(p.normalNeighbours, p.graphNeighbours) : p.normalNeighbours;
-      {
+      auto nearest = [&] {
         CellGrid<Scalar> grid(d.points.pos, KnnTable<Scalar>::CellSide(d.points.pos, k));
         SpatialOrder(grid.TakeOrder(), d.points, d.triangles);
         // Ties by input index: a tile of a larger cloud gets the rows the whole cloud would.
         knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35), &d.points.vertIndex);
+      };
+      nearest();
+      // A cloud's repeated positions show in the table (a copy is among the
+      // nearest two); then the copies go and the table is made again. A
+      // mesh's copies (seams) are kept: its triangles name them.
+      if (d.triangles.empty() && AnyRepeat(d.points.pos, knn)) {
+        const size_t given = d.size();
+        d.repeats = DropRepeats(d.points);
+        if (d.size() <= size_t(k))
+          throw InputError(Field::Points, "holds " + Counted(d.size()) + " distinct positions among its " +
+                                              Counted(given) + " points: at least " + std::to_string(k + 1) +
+                                              " are needed (" + (graph ? "the neighbours each normal and the "
+                                                                         "geodesics are built from)"
+                                                                       : "the neighbours each normal is fitted to)"));
+        nearest();
       }
       if (p.keepReach) {
         d.reach.resize(d.size());
@@ -228,9 +256,18 @@ class GeodesicDomain {
   /// triangles where mesh geodesics left vertices out; the samplers word the
   /// other counts.
   void CheckCount(size_t sampleNum, Field field = Field::SampleNum) const {
-    if (leftOut > 0 && sampleNum > size())
+    if (sampleNum <= size()) return;
+    if (leftOut > 0)
       throw InputError(field, "must be at most the " + InTriangles(size(), leftOut) + ", got " +
                                   std::to_string(sampleNum));
+    if (!repeats.empty()) throw InputError(field, BeyondDistinct(size(), repeats.size(), sampleNum));
+  }
+  /// "must be at most the 30 distinct positions of the 50 points (20 repeat
+  /// one and are not sampled), got 40": a cluster's words too.
+  static std::string BeyondDistinct(size_t distinct, size_t repeated, size_t sampleNum) {
+    return "must be at most the " + Counted(distinct) + " distinct positions of the " + Counted(distinct + repeated) +
+           " points (" + Counted(repeated) + (repeated == 1 ? " repeats" : " repeat") +
+           " one and are not sampled), got " + std::to_string(sampleNum);
   }
   /// "30 points in triangles (30 vertices in none are not sampled with mesh geodesics)"
   static std::string InTriangles(size_t kept, size_t leftOut) {
@@ -238,6 +275,11 @@ class GeodesicDomain {
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
+  /// BallShare::CellSide of the points as given (before repeats were
+  /// dropped): the spacing key orders scale their balls by.
+  double CellSide() const {
+    return cellSide >= 0 ? cellSide : BallShare<Scalar>::CellSide(points.pos, points.vertIndex);
+  }
   bool Clean() const { return CleanSurface<Scalar>::Clean(cleanExponent); }
 
   /// The edge lengths g_ij of this domain's metric (eq. 2-3), from its
@@ -253,19 +295,29 @@ class GeodesicDomain {
     return len;
   }
 
+  /// The positions of the points as given: the points', then each repeat's.
+  std::vector<Coord> GivenPositions() const {
+    std::vector<Coord> pos = points.pos;
+    const std::vector<int> point = PointOfVertex(vertexCount);
+    for (const auto& r : repeats) pos.push_back(points.pos[size_t(point[size_t(r.second)])]);
+    return pos;
+  }
+
   /// The bytes its arrays hold: what keeping a domain for several LODs costs.
   size_t MemoryBytes() const {
     const auto& g = meshGeodesics ? fmMesh.edges : graph;
     return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) + Bytes(density) +
            Bytes(g.offset) + g.adj.MemoryBytes() + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
-           Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach);
+           Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach) + Bytes(repeats);
   }
 
   /// The point number of each mesh vertex (index in m.vert, below
-  /// `vertexCount`), -1 for vertices the domain left out. O(vertexCount).
+  /// `vertexCount`): a repeat's is its position's point; -1 for vertices the
+  /// domain left out. O(vertexCount).
   std::vector<int> PointOfVertex(size_t vertexCount) const {
     std::vector<int> p(vertexCount, -1);
     for (size_t i = 0; i < points.size(); ++i) p[points.vertIndex[i]] = int(i);
+    for (const auto& r : repeats) p[size_t(r.first)] = p[size_t(r.second)];
     return p;
   }
 
@@ -306,6 +358,50 @@ class GeodesicDomain {
     for (size_t i = 0; i < order.size(); ++i) newIndex[order[i]] = int(i);
     for (auto& t : tri)
       for (int& c : t) c = newIndex[c];
+  }
+  // Whether a point's table row has another point at its position: the
+  // nearest two of a point with a copy are at distance 0 (with k = 1, only
+  // the row's one column is looked at). O(n).
+  static bool AnyRepeat(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn) {
+    const int cols = std::min(knn.k, 2);
+    std::atomic<bool> found{false};
+    ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
+      bool any = false;
+      for (size_t i = b; i < e; ++i)
+        for (int c = 0; c < cols; ++c) {
+          const size_t j = size_t(knn.At(i, c));
+          any |= j != i && pos[j] == pos[i];
+        }
+      if (any) found.store(true, std::memory_order_relaxed);
+    });
+    return found.load();
+  }
+  // Keeps the first point (by vertIndex) at each position, ordered by
+  // vertIndex; returns the others as `repeats` holds them. O(n log n).
+  static std::vector<std::pair<int, int>> DropRepeats(PointSet<Scalar>& ps) {
+    const std::vector<std::pair<int, int>> pairs = CoincidentPairs(ps.pos);  // chains of equal positions
+    std::vector<int> first(ps.size(), -1);  // per copy: the point kept at its position
+    for (size_t b = 0, e; b < pairs.size(); b = e) {
+      for (e = b + 1; e < pairs.size() && pairs[e].first == pairs[e - 1].second;) ++e;
+      int keep = pairs[b].first;
+      for (size_t c = b; c < e; ++c)
+        if (ps.vertIndex[size_t(pairs[c].second)] < ps.vertIndex[size_t(keep)]) keep = pairs[c].second;
+      if (keep != pairs[b].first) first[size_t(pairs[b].first)] = keep;
+      for (size_t c = b; c < e; ++c)
+        if (pairs[c].second != keep) first[size_t(pairs[c].second)] = keep;
+    }
+    std::vector<std::pair<int, int>> repeats;
+    std::vector<int> keep;  // the rest, by vertIndex: as if the copies had never been given
+    for (size_t i = 0; i < ps.size(); ++i) {
+      if (first[i] >= 0) repeats.emplace_back(ps.vertIndex[i], ps.vertIndex[size_t(first[i])]);
+      else keep.push_back(int(i));
+    }
+    std::sort(keep.begin(), keep.end(), [&](int a, int b) { return ps.vertIndex[size_t(a)] < ps.vertIndex[size_t(b)]; });
+    Permute(keep, ps.pos);
+    Permute(keep, ps.normal);
+    Permute(keep, ps.vertIndex);
+    std::sort(repeats.begin(), repeats.end());
+    return repeats;
   }
   template <class Array>
   static size_t Bytes(const Array& v) { return v.capacity() * sizeof(typename Array::value_type); }

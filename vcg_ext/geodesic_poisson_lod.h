@@ -123,14 +123,14 @@ class GeodesicPoissonLod {
             ? KeyFirstOrder(BorderOrder<Scalar>::Compute(
                                 d.points.pos, d.points.vertIndex, scale, noise,
                                 BorderOrder<Scalar>::ShareOf(
-                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale),
+                                    d.CellSide(), scale),
                                 progress, only),
                             d.points.vertIndex, seed)
         : visit == VisitOrder::Prominence
             ? KeyFirstOrder(Prominence<Scalar>::Compute(
                                 d.points.pos, d.normal, d.points.vertIndex,
                                 Prominence<Scalar>::Scale::Of(
-                                    BallShare<Scalar>::CellSide(d.points.pos, d.points.vertIndex), scale,
+                                    d.CellSide(), scale,
                                     Prominence<Scalar>::SmoothOn(d.Clean(), smoothClean)),
                                 noise, Prominence<Scalar>::OffSurfaceOn(d.Clean(), offSurface), progress, only),
                             d.points.vertIndex, seed)
@@ -187,7 +187,10 @@ class GeodesicPoissonLod {
     // this radius would about tile the diagonal plane of the box holding the
     // middle 98% of the points on each axis (a few stray points far away would
     // make the whole box's diagonal, and the first runs, far too large).
-    tp.initialRadius = RadiusSearch::FirstRadius(CoreDiagonal(d.points.pos), p.sampleNum);
+    // Both of the points as given, repeats included, as a cluster measures them over its tiles.
+    tp.initialRadius = RadiusSearch::FirstRadius(
+        d.repeats.empty() ? CoreDiagonal(d.points.pos) : CoreDiagonal(d.GivenPositions()), p.sampleNum);
+    if (p.within.empty()) tp.reckoned = d.size() + d.repeats.size();
     // One order for every run of the search: a key order at that guess's scale.
     const VisitOrder visit = ChosenOrder(p.order, d.Scatters());
     const Progress ordering = OrderShare(progress, visit);

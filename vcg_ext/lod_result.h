@@ -29,6 +29,7 @@ struct LodResult {
   size_t pointCount = 0;                      ///< points sampled from
   size_t estimatedNormals = 0;
   size_t leftOut = 0;                         ///< vertices in no triangle, not sampled (mesh geodesics)
+  size_t repeated = 0;                        ///< a cloud's points at an earlier point's position, sampled with it
   int components = 0;
   bool meshGeodesics = false;
   Metric metric = Metric::CurvatureDensity;   ///< the domain's: as asked, an automatic choice made
@@ -85,6 +86,7 @@ struct LodResult {
     r.pointCount = d.size();
     r.estimatedNormals = d.estimatedNormals;
     r.leftOut = d.leftOut;
+    r.repeated = d.repeats.size();
     r.components = d.components;
     r.meshGeodesics = d.meshGeodesics;
     r.metric = d.metric;
@@ -98,10 +100,12 @@ struct LodResult {
     return r;
   }
 
-  /// regionOf from a per-point owner of `d` (an index in the samples).
+  /// regionOf from a per-point owner of `d` (an index in the samples); a
+  /// repeated point's is its position's.
   void SetRegions(const GeodesicDomain<Scalar>& d, const std::vector<int>& owner) {
     regionOf.assign(d.vertexCount, -1);
     for (size_t i = 0; i < owner.size(); ++i) regionOf[d.points.vertIndex[i]] = owner[i];
+    for (const auto& r : d.repeats) regionOf[size_t(r.first)] = regionOf[size_t(r.second)];
   }
 };
 

@@ -139,6 +139,9 @@ class PoissonTargetCount {
     uint64_t seed = 0;           ///< picks the pilot, and the farthest-point fallback's first sample
     const std::vector<int>* order = nullptr;  ///< the Poisson runs' visiting order (PriorityOrder), of
                                               ///< every point or only of those that may be samples
+    /// The candidates the steps and the pilot reckon with, if not the order's
+    /// points: a cloud's rows as given, repeats included, as a cluster counts them.
+    size_t reckoned = 0;
     double keptDisks = 2.5;      ///< disks kept from run to run and for the thinning (DiskCache), in
                                  ///< entries per point (8 bytes each in float); 0: none. A run's disks
                                  ///< hold about 1.9 a point at any radius; 2.5 keeps also the second
@@ -187,10 +190,11 @@ class PoissonTargetCount {
       for (int i : order) candidate[size_t(i)] = 1;
     }
     auto counts = [&](int i) { return candidate.empty() || candidate[size_t(i)] != 0; };
-    const uint64_t below = PilotRadius::Threshold(order.size(), p.sampleNum);
+    const size_t reckoned = p.reckoned ? p.reckoned : order.size();
+    const uint64_t below = PilotRadius::Threshold(reckoned, p.sampleNum);
     const auto points = PilotRadius::Pick(n, p.seed, below, [&](size_t i) { return id[i]; }, counts);
     auto disks = PilotRadius::Disks(search, points, PilotRadius::kReach * p.initialRadius, counts);
-    return PilotFirstRadius(std::move(disks), order.size(), p.sampleNum, p.tolerance, p.initialRadius);
+    return PilotFirstRadius(std::move(disks), reckoned, p.sampleNum, p.tolerance, p.initialRadius);
   }
 
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
@@ -202,9 +206,10 @@ class PoissonTargetCount {
       throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + Counted(candidates) +
                                              "), got " + std::to_string(p.sampleNum));
     CheckTolerance(p.tolerance);
-    RadiusSearch steps(p.sampleNum, p.tolerance, candidates, p.initialRadius, p.maxIterations);
+    const size_t reckoned = p.reckoned ? p.reckoned : candidates;
+    RadiusSearch steps(p.sampleNum, p.tolerance, reckoned, p.initialRadius, p.maxIterations);
     const double pilot = p.pilotIds ? Pilot(n, search, p) : 0;
-    if (pilot > 0) steps = RadiusSearch(p.sampleNum, p.tolerance, candidates, pilot, p.maxIterations);
+    if (pilot > 0) steps = RadiusSearch(p.sampleNum, p.tolerance, reckoned, pilot, p.maxIterations);
     // The runs and the thinning search their disks through the cache: the same
     // disks, fewer searches (the thinning reads those of the last run).
     DiskCache<Scalar> cache(n, size_t(std::max(0.0, p.keptDisks) * double(n)));

@@ -39,10 +39,11 @@ class ScatterShare {
   static constexpr double kScattered = 0.03;
 
   /// The share of the subsample's points whose kNeighbours nearest within it
-  /// scatter (flatness below kFlat), from every (m / 4096)-th of its m points
-  /// (`sub`: CellGrid::SubsampleIndex's points, in order). Neighbourhoods on a
+  /// scatter (flatness below kFlat), from every (m / 4096)-th of its m
+  /// Distinct points (`given`: CellGrid::SubsampleIndex's points, in order). Neighbourhoods on a
   /// line or at one position count as neither. 0 for fewer than 3 points.
-  static double OfSubsample(const std::vector<Coord>& sub) {
+  static double OfSubsample(const std::vector<Coord>& given) {
+    const std::vector<Coord> sub = CellGrid<Scalar>::Distinct(given);  // repeats read once
     const size_t m = sub.size();
     if (m < 3) return 0;
     const int k = int(std::min<size_t>(kNeighbours, m));

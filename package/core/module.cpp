@@ -61,6 +61,7 @@ nb::dict Common(const LodResult& r) {
   d["point_count"] = r.pointCount;
   d["estimated_normals"] = r.estimatedNormals;
   d["left_out"] = r.leftOut;
+  d["repeated"] = r.repeated;
   d["components"] = r.components;
   d["mesh_geodesics"] = r.meshGeodesics;
   d["metric"] = r.metric;
@@ -182,9 +183,10 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
     const Domain d = BuildFrom(points, normals, std::nullopt, dp, pr);
     curvature.resize(d.vertexCount);
     normal.resize(d.vertexCount);
-    for (size_t i = 0; i < d.size(); ++i) {
-      curvature[d.points.vertIndex[i]] = d.curvature[i];
-      normal[d.points.vertIndex[i]] = vcg::Point3d::Construct(d.normal[i]);
+    const std::vector<int> point = d.PointOfVertex(d.vertexCount);  // a repeated point's is its position's
+    for (size_t v = 0; v < point.size(); ++v) {
+      curvature[v] = d.curvature[size_t(point[v])];
+      normal[v] = vcg::Point3d::Construct(d.normal[size_t(point[v])]);
     }
     estimated = d.estimatedNormals;
     return 0;
@@ -316,6 +318,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("components", [](const Domain& d) { return d.components; })
       .def_prop_ro("estimated_normals", [](const Domain& d) { return d.estimatedNormals; })
       .def_prop_ro("left_out", [](const Domain& d) { return d.leftOut; })
+      .def_prop_ro("repeated", [](const Domain& d) { return d.repeats.size(); })
       .def_prop_ro("nbytes", [](const Domain& d) { return d.MemoryBytes(); });
   m.def("build_domain", &DomainOfArrays, "points"_a, "normals"_a.none(), "faces"_a.none(), "param"_a,
         "threads"_a.none(), "progress"_a.none());

@@ -213,7 +213,8 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
 typedef nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu> Doubles;
 
 // The count search's pilot disks of a tile's core (PoissonTile::Pilot), as (certified, needed_halo, hash,
-// offset, dist): disk k holds dist[offset[k]:offset[k + 1]].
+// offset, dist): disk k holds dist[offset[k]:offset[k + 1]]; and `candidates`, the core's points that may be
+// samples (a repeated position's first point only).
 inline nb::dict PilotTileRun(const Domain& d, const Ids& ids, const Flags& core, double radius, uint64_t seed,
                              std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
                              std::optional<Flags> candidate, std::optional<int> threads, uint64_t below) {
@@ -230,6 +231,8 @@ inline nb::dict PilotTileRun(const Domain& d, const Ids& ids, const Flags& core,
     if (candidate) tp.candidate = &may;
     r = Tile::Pilot(d, id, isCore, tp, below);
   }
+  size_t candidates = 0;
+  for (int v : d.points.vertIndex) candidates += isCore[size_t(v)] && (!candidate || may[size_t(v)]);
   std::vector<uint64_t> hash;
   std::vector<int64_t> offset{0};
   std::vector<double> dist;
@@ -245,6 +248,7 @@ inline nb::dict PilotTileRun(const Domain& d, const Ids& ids, const Flags& core,
   out["hash"] = ToNumpy(std::move(hash), {m});
   out["offset"] = ToNumpy(std::move(offset), {m + 1});
   out["dist"] = ToNumpy(std::move(dist), {entries});
+  out["candidates"] = candidates;
   return out;
 }
 
@@ -332,6 +336,8 @@ inline void BindTiles(nb::module_& m) {
   m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
         "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
         "the count search's pilot disks of a tile's core, at radius");
+  m.def("beyond_distinct", &Domain::BeyondDistinct, "distinct"_a, "repeated"_a, "count"_a,
+        "the problem of a count above the distinct positions of a cloud whose other points repeat one");
   m.def("pilot_threshold", &vcg_ext::PilotRadius::Threshold, "candidates"_a, "target"_a,
         "pilot points have a pilot hash below this");
   m.def("pilot_first_radius", &PilotFirstRadiusOf, "hash"_a, "offset"_a, "dist"_a, "candidates"_a, "target"_a,

@@ -54,6 +54,7 @@ class Lod:
     estimated_normals: int
     components: int
     left_out: int
+    repeated: int
     mesh_geodesics: bool
     metric: str
     scatter_share: float

@@ -205,11 +205,14 @@ def _run_on_cluster(args, request: dict) -> int:
                              overwrite=args.overwrite, progress=bar.update,
                              visit_order=args.visit_order)
         else:
-            index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
-                                          adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
-                                          threads=args.threads, progress=bar.update,
-                                          tolerance=1.0 if args.tolerance is None else args.tolerance,
-                                          visit_order=args.visit_order)
+            try:
+                index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
+                                              adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
+                                              threads=args.threads, progress=bar.update,
+                                              tolerance=1.0 if args.tolerance is None else args.tolerance,
+                                              visit_order=args.visit_order)
+            except InputError as e:
+                raise _count_in_options(e, args) from None
         args.kept[:] = [args.output]  # a stop while the cluster closes leaves it complete
     except (KeyboardInterrupt, *stop_signals.broken_by_a_stop()):
         import logging  # the client's pending waits end as it closes: no log of each
@@ -393,8 +396,9 @@ def _write_levels(source: point_files.PointFile, paths: list, chosen: list, lod,
     """Each level's file; a summary line each, naming the vertices in no triangle that `lod` (a result, or
     None) left out."""
     point_files.write_all(source, list(zip(paths, chosen)), overwrite)
-    left_out = getattr(lod, "left_out", 0)
+    left_out, repeated = getattr(lod, "left_out", 0), getattr(lod, "repeated", 0)
     aside = f" ({left_out:,} in no triangle, not sampled with mesh geodesics)" if left_out else ""
+    aside += f" ({repeated:,} at an earlier point's position, one point with it)" if repeated else ""
     return [f"{path}: {len(indices):,} of {len(source.points):,} points{aside}" for path, indices in zip(paths, chosen)]
 
 

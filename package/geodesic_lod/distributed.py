@@ -358,12 +358,17 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
-                  spacing: float, pool: int, first_radius: float, reach: float, where: dict) -> tuple:
+                  spacing: float, pool: int, first_radius: float, reach: float, where: dict, subject: str) -> tuple:
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
     run over all tiles, among `pool` points that may be samples, reading the halo of a radius of at least
-    `reach`: (the accepted or nearest run, runs made)."""
+    `reach`: (the accepted or nearest run, runs made). A target above the points that may be samples (a
+    repeated position's first point only) is refused as one machine refuses it, naming the `subject`."""
     start = time.perf_counter()
-    pilot = _pilot_radius(client, job, boxes, target, tolerance, pool, first_radius, reach, spacing, ticks, where)
+    pilot, candidates = _pilot_radius(client, job, boxes, target, tolerance, pool, first_radius, reach, spacing,
+                                      ticks, where)
+    if target > candidates:
+        problem = _core.beyond_distinct(candidates, pool - candidates, target)
+        raise InputError(f"{subject} {problem}", subject, problem)
     steps = _core.RadiusSearch(target, tolerance / 100, pool, pilot or first_radius, max_runs)
     best, spent = None, {"tiles": time.perf_counter() - start, "seams": 0.0}
     while not steps.done:
@@ -382,7 +387,8 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
 def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, reach: float,
                   spacing: float, ticks: Ticks, where: dict) -> float:
     """The count search's first radius from the pilot disks of every tile (as poisson_lod's, to the bit), or
-    0 to start from the guess. The tiles' reads serve the runs after it."""
+    0 to start from the guess; and the points that may be samples, summed over the tiles. The tiles' reads
+    serve the runs after it."""
     radius = _core.PILOT_REACH * guess
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
@@ -395,16 +401,17 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     held = client.who_has(parts)
     where.update({k: list(held[f.key])[:1] for k, f in enumerate(parts) if held.get(f.key)})
     got = [p for p in worker_check.gather(client, parts) if p is not None]
+    candidates = sum(c for _, _, _, c in got)
     if not got:
-        return 0.0
+        return 0.0, candidates
     offsets, start = [], 0
-    for _, offset, _ in got:
+    for _, offset, _, _ in got:
         offsets.append(offset[:-1] + start)
         start += int(offset[-1])
-    return _core.pilot_first_radius(np.concatenate([h for h, _, _ in got]).astype(np.uint64),
+    return _core.pilot_first_radius(np.concatenate([h for h, _, _, _ in got]).astype(np.uint64),
                                     np.concatenate(offsets + [np.array([start], np.int64)]).astype(np.int64),
-                                    np.concatenate([d for _, _, d in got]).astype(np.float64), pool, target,
-                                    tolerance / 100, guess)
+                                    np.concatenate([d for _, _, d, _ in got]).astype(np.float64), pool, target,
+                                    tolerance / 100, guess), candidates
 
 
 @give_back
@@ -596,7 +603,7 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
             first = _core.RadiusSearch.first_radius(diagonal, value)
             job = dataclasses.replace(job, order=dataclasses.replace(order, scale=first))
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool, first, reach, where)
+                                      pool, first, reach, where, "count" if len(targets) == 1 else arrays.FINEST_COUNT)
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None

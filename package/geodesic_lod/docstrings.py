@@ -120,6 +120,9 @@ LOD_DOMAIN = f"""point_count : int
         Connected parts of the geodesic domain (0 in the Euclidean metric).
     left_out : int
         Input rows in no triangle: mesh geodesics do not sample them.
+    repeated : int
+        Input rows of a cloud at the position of an earlier row: one point with it, never a sample, its region
+        theirs.
     mesh_geodesics : bool
         Whether geodesics ran over the faces (fast marching), else on the point graph or in straight lines.
     metric : str

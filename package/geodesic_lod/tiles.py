@@ -416,8 +416,8 @@ def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo
                    threads: Optional[int] = None, reads: Optional[TileReads] = None, job=None, tile=None,
                    folder=None) -> Optional[tuple]:
     """The count search's pilot disks of one tile's core at `radius` (``_core.pilot_tile``: hash, offset,
-    dist), reading a wider halo until the check passes, as decide_widening. None when the core holds no
-    point."""
+    dist, and the core's candidates), reading a wider halo until the check passes, as decide_widening. None
+    when the core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
                       tile=tile, folder=folder)
@@ -427,7 +427,7 @@ def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo
         r = _core.pilot_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.outer(cloud).as_tuple(),
                              float(t.halo), cloud.as_tuple(), may, threads, int(below))
         if r["certified"]:
-            return r["hash"], r["offset"], r["dist"]
+            return r["hash"], r["offset"], r["dist"], r["candidates"]
         halo = max(r["needed_halo"] * 1.01, 1.5 * t.halo)
 
 

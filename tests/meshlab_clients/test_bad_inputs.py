@@ -113,7 +113,10 @@ CASES = [
     ("all coincident", lambda: layer(np.ones((40, 3))), FPS, {"samplenum": 3}, "the layer holds 40 points at one position"),
     ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), POISSON,
      {"radius": pymeshlab.PureValue(0.1)}, distinct_samples),
-    ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), FPS, {"samplenum": 450}, one_per_part(450)),
+    ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), FPS, {"samplenum": 225}, distinct_samples),
+    ("duplicates", lambda: layer(np.vstack([bumpy_points(15)] * 2)), FPS, {"samplenum": 226},
+     "samplenum must be at most the 225 distinct positions of the 450 points (225 repeat one and are not sampled), "
+     "got 226"),
     ("NaN coordinate", lambda: layer(np.vstack([bumpy_points(10), [[np.nan, 0, 0]]])), POISSON, {},
      "the layer holds 1 point with NaN or infinite coordinates"),
     ("infinite coordinate", lambda: layer(np.vstack([bumpy_points(10), [[0, np.inf, 0]]])), FPS, {"samplenum": 5},

@@ -159,6 +159,33 @@ def test_normal_variation_in_input_order(cloud):
     assert nv.curvature[cloud[:, 0] > 0.2].mean() > nv.curvature[flat].mean()
 
 
+def test_points_given_again_are_one_point_with_the_first(cloud):
+    """A cloud with its points given again (here 0 to 14 more times each, after all of them): the copies
+    change no radius's samples in a random order, are never samples, and share the first's region, normal
+    and eq. 1."""
+    copies = np.arange(len(cloud)) % 15
+    again = np.repeat(np.arange(len(cloud)), copies)
+    q = np.vstack([cloud, cloud[again]])
+    once = gl.poisson_lod(cloud, radius=0.12, visit_order="random", regions="voronoi", seed=4)
+    lod = gl.poisson_lod(q, radius=0.12, visit_order="random", regions="voronoi", seed=4)
+    assert lod.indices.tolist() == once.indices.tolist()
+    assert lod.repeated == len(again) and once.repeated == 0
+    assert lod.region_of.tolist() == once.region_of.tolist() + once.region_of[again].tolist()
+    # A count, in the automatic order: samples at distinct positions, each the first point there, covering the
+    # cloud (the search's first radius reckons with the rows as given, as a cluster's does).
+    lod = gl.poisson_lod(q, count=300)
+    assert len(lod.indices) == 300 and lod.indices.max() < len(cloud)
+    reach, _ = cKDTree(q[lod.indices]).query(cloud)
+    assert reach.max() <= lod.covering_radius
+    nv, nv_once = gl.normal_variation(q), gl.normal_variation(cloud)
+    assert np.array_equal(nv.curvature, np.concatenate([nv_once.curvature, nv_once.curvature[again]]))
+    assert np.array_equal(np.abs(nv.normals), np.abs(np.vstack([nv_once.normals, nv_once.normals[again]])))
+    with pytest.raises(gl.InputError, match=fr"^count must be at most the 4,000 distinct positions of the "
+                                            fr"{len(q):,} points \({len(again):,} repeat one and are not "
+                                            fr"sampled\), got 4001$"):
+        gl.poisson_lod(q, count=4001)
+
+
 def test_mesh_geodesics_and_mesh_output():
     pts, faces = grid_mesh(40)
     lod = gl.poisson_lod(pts, faces=faces, count=120, mesh_output=True, regions="voronoi")

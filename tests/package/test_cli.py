@@ -60,6 +60,20 @@ def test_a_mesh_s_vertices_in_no_face_are_named_in_the_summary(tmp_path):
     assert "20 of 74 points (10 in no triangle, not sampled with mesh geodesics)" in r.stderr
 
 
+def test_points_given_again_are_named_in_the_summary_and_bound_the_count(tmp_path):
+    p = bumpy_sphere(1000)
+    np.save(tmp_path / "in.npy", np.vstack([p, p[:300], p[:300]]))
+    r = run(tmp_path / "in.npy", "-o", tmp_path / "lod.npy", "--count", "50")
+    assert r.returncode == 0, r.stderr
+    assert "50 of 1,600 points (600 at an earlier point's position, one point with it)" in r.stderr
+    for size, said in ((["--count", "1001"], "--count"), (["--rate", "70"], "--rate 70: its count")):
+        r = run(tmp_path / "in.npy", "-o", tmp_path / "over.npy", *size)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+        assert (f"{said} must be at most the 1,000 distinct positions of the 1,600 points (600 repeat one and are "
+                "not sampled), got 1") in r.stderr
+    assert names(tmp_path) == ["in.npy", "lod.npy"]
+
+
 def test_radius_as_a_share_of_the_diagonal_and_fps_order(tmp_path):
     src = ply_cloud(tmp_path / "in.ply")
     points, normals = pf.read(src).points, pf.read(src).normals

@@ -327,6 +327,31 @@ def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_p
     assert len(ids) > 100 and np.abs(xyz - points[ids]).max() < 1e-6  # decimal offsets: to within a rounding
 
 
+def test_points_given_again_are_one_point_on_a_cluster_as_on_one_machine(client, tmp_path):
+    """Points given again (0 to 14 more times each, the copies in later files than the first): the cluster's
+    samples are one machine's, by radius and by count, in the automatic order."""
+    p = bumpy_sphere(5000) * 10
+    again = np.repeat(np.arange(len(p)), np.arange(len(p)) % 15)
+    folder = write_parts(tmp_path / "parts", np.vstack([p, p[again]]))
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(PARTS)])
+    points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-4
+    for out, size in (("r", {"radius": RADIUS}), ("c", {"count": 1500, "tolerance": 1.0})):
+        whole = gl.poisson_lod(points, seed=2, **size)
+        assert whole.repeated >= len(again)
+        index = dist.lod_files([str(folder)], tmp_path / out, seed=2, **size, tile_points=6000, client=client,
+                               threads=1)
+        assert len(index["tiles"]) >= 4 and index["radius"] == whole.radius
+        assert sorted(output_records(tmp_path / out)[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
+    # A count above the distinct positions is refused in one machine's words, before anything is written.
+    over = len(np.unique(points, axis=0)) + 1
+    with pytest.raises(gl.InputError) as one:
+        gl.poisson_lod(points, count=over)
+    with pytest.raises(gl.InputError) as cluster:
+        dist.lod_files([str(folder)], tmp_path / "over", count=over, tile_points=6000, client=client, threads=1)
+    assert str(cluster.value) == str(one.value) and "distinct positions" in str(one.value)
+    assert not (tmp_path / "over").exists()
+
+
 def test_files_that_cannot_go_together_are_named(client, tmp_path):
     p = bumpy_sphere(3000)
     a = write_parts(tmp_path / "a", p, parts=2)

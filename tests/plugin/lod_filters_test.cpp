@@ -594,6 +594,22 @@ TEST(LodFilters, LevelMessagesGroupCountsByThousands) {
   EXPECT_TRUE(log.contains("; 1 connected part;")) << log.toStdString();
 }
 
+TEST(LodFilters, TheLogNamesVerticesGivenAgainAndTheCountIsOfDistinctPositions) {
+  Mesh in;
+  Bumpy(in, 30);  // 900 vertices, then 300 of them again
+  vcg::tri::Allocator<CMeshO>::AddVertices(in, 300);
+  for (size_t v = 900; v < 1200; ++v) in.vert[v].P() = in.vert[v - 900].P();
+  MapSource p(in);
+  p.set("samplenum", 90);
+  const QString log = RunPoissonLod(in, p, nullptr).summary;
+  EXPECT_TRUE(log.contains(": 90 samples of 900 points (10.00%)")) << log.toStdString();
+  EXPECT_TRUE(log.contains("; 300 vertices at an earlier vertex's position, one point with it")) << log.toStdString();
+  p.set("samplenum", 901);
+  EXPECT_NE(ErrorOf(in, p).find("samplenum must be at most the 900 distinct positions of the 1,200 points (300 "
+                                "repeat one and are not sampled), got 901"),
+            std::string::npos) << ErrorOf(in, p);
+}
+
 TEST(LodFilters, HeightFieldTellsWhenTheLayerIsNoHeightField) {
   Mesh grid;
   Bumpy(grid, 30, true);

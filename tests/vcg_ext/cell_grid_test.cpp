@@ -3,9 +3,11 @@
 // also with a far outlier (whose cell shares keys modulo 2^21); a block is
 // exactly the non-empty cells within its ring, in x, y, z order, whether cells
 // are found by column or by their keys; a ball holds the points, or a subset's
-// points, within its radius.
+// points, within its radius; repeated points count as points spread over
+// the surface in its spacing.
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <vector>
@@ -149,5 +151,16 @@ TEST(CellGrid, ABallHoldsThePointsOrTheSubsetsPointsWithinItsRadius) {
   }
 }
 }  // namespace
+
+TEST(CellGrid, RepeatedPointsCountAsPointsSpreadOverTheSurface) {
+  // The measured spacing of points each given twice is that of twice as many points, never 0.
+  const std::vector<Coord> once = Cloud(3000, false);
+  std::vector<Coord> twice = once;
+  twice.insert(twice.end(), once.begin(), once.end());
+  EXPECT_EQ(Grid::Distinct(twice), once);
+  const double side = Grid::SurfaceCellSide(once, 1), sideTwice = Grid::SurfaceCellSide(twice, 1);
+  EXPECT_GT(sideTwice, 0);
+  EXPECT_NEAR(sideTwice, side / std::sqrt(2.0), 1e-12 * side);
+}
 
 }  // namespace cell_grid_test

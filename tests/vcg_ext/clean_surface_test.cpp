@@ -1,5 +1,6 @@
 // vcg_ext/clean_surface.h: a smooth surface's points are clean, a scan's
-// scattered layers are not, the same in any numbering of the points; the
+// scattered layers are not, the same in any numbering of the points and
+// with each point repeated; the
 // domain measures a cloud's and takes a caller's.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -56,6 +57,14 @@ TEST(CleanSurface, TheSameInAnyNumberingOfThePoints) {
   const std::vector<int> id = Ids(pos.size());
   const auto shuffled = test::Shuffled(pos, id, 3);
   EXPECT_EQ(Clean::Of(shuffled.first, shuffled.second), Clean::Of(pos, id));
+}
+
+TEST(CleanSurface, RepeatedPointsAreReadOnce) {
+  TMesh m;
+  ScatteredSphere(m, 5000, 0.2f, 1);
+  std::vector<P3> pos = Positions(m), repeated;
+  for (int c = 0; c < 4; ++c) repeated.insert(repeated.end(), pos.begin(), pos.end());
+  EXPECT_EQ(Clean::Of(repeated, Ids(repeated.size())), Clean::Of(pos, Ids(pos.size())));
 }
 
 TEST(CleanSurface, TheDomainMeasuresACloudsAndTakesACallers) {

@@ -5,12 +5,14 @@
 // `leftOut`) and never sampled; its border is the edges of one triangle;
 // PointOfVertex maps every vertex back to its point, -1 for the left-out and
 // the deleted ones; without orientNormals the estimated normals keep the
-// fits' signs and every sample is the same.
+// fits' signs and every sample is the same; a cloud's points at one position
+// are one point (the first of them), the others sampled with it or never.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <set>
 #include <vcg_ext/geodesic_domain.h>
 #include <vcg_ext/geodesic_fps_lod.h>
+#include <vcg_ext/geodesic_lod_pyramid.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/mesh_triangles.h>
@@ -36,6 +38,26 @@ void GridWithStrays(test::TMesh& m, int extra) {
   const size_t base = m.vert.size();
   Alloc::AddVertices(m, size_t(extra));
   for (int i = 0; i < extra; ++i) m.vert[base + size_t(i)].P() = test::P3(0.2f * float(i), 0.5f, 0.5f);
+}
+// `m` followed by `copies` more copies of all its points, in turn.
+void WithCopies(const test::TMesh& m, int copies, test::TMesh& out) {
+  const size_t n = m.vert.size();
+  Alloc::AddVertices(out, n * size_t(copies + 1));
+  for (size_t v = 0; v < out.vert.size(); ++v) {
+    out.vert[v].P() = m.vert[v % n].cP();
+    out.vert[v].N() = m.vert[v % n].cN();
+  }
+}
+
+// The InputError `f` throws: its field and problem ("no error" when none).
+template <class F>
+std::pair<std::string, std::string> ErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const vcg_ext::InputError& e) {
+    return {vcg_ext::FieldId(e.field), e.what()};
+  }
+  return {"no error", ""};
 }
 }  // namespace
 
@@ -213,6 +235,108 @@ TEST(GeodesicDomain, PointOfVertexMapsBackAndMarksTheMissing) {
     }
     EXPECT_EQ(seen.size(), d.size()) << "every point is some vertex's";
   }
+}
+
+TEST(GeodesicDomain, PointsRepeatedAtOnePositionAreOnePoint) {
+  // 25 copies of each position: every point's k nearest would be its own
+  // copies, the graph one part per position and the normals fitted to one
+  // point. The copies after the first change nothing, whatever the metric,
+  // in a random visiting order (a key order's balls are scaled by the
+  // spacing of the points as given, copies included).
+  test::TMesh once, many;
+  test::HeightField(once, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  WithCopies(once, 24, many);
+  const size_t n = once.vert.size();
+  for (vcg_ext::Metric metric : {vcg_ext::Metric::CurvatureDensity, vcg_ext::Metric::Euclidean}) {
+    Domain::Param p;
+    p.metric = metric;
+    const Domain a = Domain::FromMesh(once, p), b = Domain::FromMesh(many, p);
+    ASSERT_EQ(b.size(), n);
+    EXPECT_EQ(b.repeats.size(), 24 * n);
+    EXPECT_EQ(b.vertexCount, 25 * n);
+    EXPECT_EQ(b.points.vertIndex, a.points.vertIndex);
+    EXPECT_EQ(b.normal, a.normal);
+    EXPECT_EQ(b.curvature, a.curvature);
+    EXPECT_EQ(b.components, a.components);
+    // Every vertex maps to the point at its position.
+    const std::vector<int> point = b.PointOfVertex(b.vertexCount);
+    for (size_t v = 0; v < point.size(); ++v) {
+      ASSERT_GE(point[v], 0) << "vertex " << v;
+      EXPECT_EQ(b.points.pos[size_t(point[v])], many.vert[v].cP());
+    }
+  }
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param byRadius;
+  byRadius.order = vcg_ext::VisitOrder::Random;
+  byRadius.radius = 0.08;
+  byRadius.regions = vcg_ext::Regions::Voronoi;
+  const auto a = vcg_ext::MeshLod<Poisson>(once, byRadius), b = vcg_ext::MeshLod<Poisson>(many, byRadius);
+  EXPECT_EQ(b.vertIndex, a.vertIndex);
+  EXPECT_EQ(b.repeated, 24 * n);
+  ASSERT_EQ(b.regionOf.size(), 25 * n);
+  for (size_t v = 0; v < b.regionOf.size(); ++v) EXPECT_EQ(b.regionOf[v], a.regionOf[v % n]) << "vertex " << v;
+  typedef vcg_ext::GeodesicFpsLod<float> Fps;
+  Fps::Param fps;
+  fps.sampleNum = 60;
+  EXPECT_EQ(vcg_ext::MeshLod<Fps>(many, fps).vertIndex, vcg_ext::MeshLod<Fps>(once, fps).vertIndex);
+  // Counts (searched from a first radius reckoned with the points as given): only first points, as many as asked.
+  Poisson::Param byCount;
+  byCount.sampleNum = 120;
+  typedef vcg_ext::GeodesicLodPyramid<float> Pyramid;
+  Pyramid::Param pyramid;
+  pyramid.counts = {300, 100, 30};
+  for (const auto& r : {vcg_ext::MeshLod<Poisson>(many, byCount).vertIndex, vcg_ext::MeshLod<Pyramid>(many, pyramid).vertIndex}) {
+    EXPECT_TRUE(r.size() == 120 || r.size() == 300) << r.size();
+    for (int v : r) EXPECT_LT(v, int(n));
+  }
+}
+
+TEST(GeodesicDomain, OfPointsAtOnePositionTheFirstIsSampled) {
+  // Copies before and after the first of a position in the input's order.
+  test::TMesh once, many;
+  test::Sphere(once, 800);
+  WithCopies(once, 3, many);
+  std::reverse(many.vert.begin() + 400, many.vert.end());  // copies of the last half first
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param p;
+  p.radius = 0.2;
+  const auto r = vcg_ext::MeshLod<Poisson>(many, p);
+  ASSERT_FALSE(r.vertIndex.empty());
+  std::set<std::array<float, 3>> at;
+  for (size_t k = 0; k < r.vertIndex.size(); ++k) {
+    const vcg::Point3f q = many.vert[size_t(r.vertIndex[k])].cP();
+    EXPECT_TRUE(at.insert({q[0], q[1], q[2]}).second) << "two samples at one position";
+    for (int v = 0; v < r.vertIndex[k]; ++v) EXPECT_NE(many.vert[size_t(v)].cP(), q) << "not the first of its position";
+  }
+}
+
+TEST(GeodesicDomain, CountsAndNeighboursAreOfDistinctPositions) {
+  test::TMesh once, many;
+  test::Sphere(once, 200);
+  WithCopies(once, 4, many);
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param p;
+  p.sampleNum = 200;
+  EXPECT_EQ(vcg_ext::MeshLod<Poisson>(many, p).vertIndex.size(), 200u);
+  p.sampleNum = 201;
+  const auto tooMany = ErrorOf([&] { vcg_ext::MeshLod<Poisson>(many, p); });
+  EXPECT_EQ(tooMany.first, "SampleNum");
+  EXPECT_EQ(tooMany.second,
+            "must be at most the 200 distinct positions of the 1,000 points (800 repeat one and are not sampled), "
+            "got 201");
+  typedef vcg_ext::GeodesicFpsLod<float> Fps;
+  Fps::Param f;
+  f.sampleNum = 201;
+  EXPECT_EQ(ErrorOf([&] { vcg_ext::MeshLod<Fps>(many, f); }).first, "SampleNum");
+  // 15 positions cannot each have 20 others to fit a normal to, however often each is given.
+  test::TMesh few, fewMany;
+  test::Sphere(few, 15);
+  WithCopies(few, 9, fewMany);
+  const auto tooFew = ErrorOf([&] { Domain::FromMesh(fewMany, Domain::Param()); });
+  EXPECT_EQ(tooFew.first, "Points");
+  EXPECT_EQ(tooFew.second,
+            "holds 15 distinct positions among its 150 points: at least 21 are needed (the neighbours each normal "
+            "and the geodesics are built from)");
 }
 
 }  // namespace geodesic_domain_test

@@ -1,5 +1,5 @@
 // vcg_ext/scatter_share.h: none on surfaces, most in an even scatter, the same in any numbering of
-// the points; the automatic metric and visiting order follow it in the domain and in Poisson runs.
+// the points, a repeated point read once; the automatic metric and visiting order follow it in the domain and in Poisson runs.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <numeric>
@@ -124,6 +124,15 @@ TEST(ScatterShare, TheAutomaticOrderIsRimsFirstWhereThePointsScatterElseProminen
       EXPECT_EQ(automatic.metric, d.metric);
     }
   }
+}
+
+TEST(ScatterShare, RepeatedPointsAreReadOnce) {
+  // Each point four times, the copies after all of them: every neighbourhood would be one position.
+  TMesh m;
+  GroundWithTrees(m, 60, 900, 1);
+  std::vector<P3> pos = Positions(m), repeated;
+  for (int c = 0; c < 4; ++c) repeated.insert(repeated.end(), pos.begin(), pos.end());
+  EXPECT_EQ(Share::Of(repeated, Ids(repeated.size())), Share::Of(pos, Ids(pos.size())));
 }
 
 }  // namespace scatter_share_test
