@@ -8,6 +8,9 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
+import sys
+import warnings
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Sequence, Union
@@ -230,6 +233,26 @@ def percent(value, name: str) -> float:
     if not (math.isfinite(x) and 0 < x <= 100):
         raise InputError(f"{name} must be a percentage from above 0 to 100 such as 10 or '10%', got {value!r}")
     return x
+
+
+def rate_percent(rate) -> float:
+    """percent(rate, "rate"), with a warning where a rate below 1 without a % sign is most likely a fraction
+    meant as a share (0.1 for a tenth), as the command notes its --rate."""
+    r = percent(rate, "rate")
+    if r < 1 and not (isinstance(rate, str) and rate.strip().endswith("%")):
+        warn_caller(f"rate={rate!r} is {r:g}% of the points (a tenth is rate=10); give rate='{r:g}%' to mean it")
+    return r
+
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_caller(message: str) -> None:
+    """A UserWarning at the line outside this package that called into it."""
+    frame, level = sys._getframe(0), 1
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, UserWarning, stacklevel=level)
 
 
 def level_items(levels, name: str = "levels") -> list:
@@ -498,7 +521,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
         param.sample_num = whole_number(count, "count", 1, pool,
                                     " (the number of points)" if within is None else " (the points in within)")
     else:
-        r = percent(rate, "rate")
+        r = rate_percent(rate)
         param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
         if param.sample_num > pool:
             raise InputError(f"rate asks for {counted(param.sample_num, 'sample')}, more than the "

@@ -17,6 +17,7 @@ import math
 import pathlib
 import sys
 import time
+import warnings
 from typing import Optional
 
 import numpy as np
@@ -206,11 +207,14 @@ def _run_on_cluster(args, request: dict) -> int:
                              visit_order=args.visit_order)
         else:
             try:
-                index = distributed.lod_files(args.input, args.output, **request, seed=args.seed, metric=args.metric,
-                                              adaptivity=args.adaptivity, tile_points=args.tile_points, client=client,
-                                              threads=args.threads, progress=bar.update,
-                                              tolerance=1.0 if args.tolerance is None else args.tolerance,
-                                              visit_order=args.visit_order)
+                with warnings.catch_warnings():  # a fraction-like --rate is noted above, in the command's words
+                    warnings.filterwarnings("ignore", "rate=", UserWarning)
+                    index = distributed.lod_files(args.input, args.output, **request, seed=args.seed,
+                                                  metric=args.metric, adaptivity=args.adaptivity,
+                                                  tile_points=args.tile_points, client=client, threads=args.threads,
+                                                  progress=bar.update,
+                                                  tolerance=1.0 if args.tolerance is None else args.tolerance,
+                                                  visit_order=args.visit_order)
             except InputError as e:
                 raise _count_in_options(e, args) from None
         args.kept[:] = [args.output]  # a stop while the cluster closes leaves it complete

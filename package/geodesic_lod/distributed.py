@@ -541,7 +541,7 @@ def _lod_files(paths, out, size, seed, adaptivity, domain, tile_points, client, 
         elif size["count"] is not None:
             targets = [("count", arrays.whole_number(size["count"], "count", 1, total, " (the number of points)"))]
         else:
-            pct = arrays.percent(size["rate"], "rate")
+            pct = arrays.rate_percent(size["rate"])
             targets = [("count", int(max(1, _core.percent_of(pct, total))))]
         folders = [None]
     before = set(client.futures)  # this job's tasks: those started from here

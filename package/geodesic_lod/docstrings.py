@@ -81,7 +81,8 @@ POISSON_SIZE = """radius : float or str, optional
         Exactly this many samples (1 to the points that may be samples): the radius is searched and a
         slightly denser Poisson set thinned, the samples nearest to others first.
     rate : float or str, optional
-        A percentage of the points as a count: 10 or ``'10%'``.
+        A percentage of the points as a count: 10 or ``'10%'`` (0.1 is a thousandth, with a warning that a
+        tenth is 10; ``'0.1%'`` says it is meant).
     tolerance : float
         With ``count`` or ``rate``: a Poisson set within this percentage of the count is kept untrimmed.
         Default 0 (an exact count)."""
@@ -441,7 +442,8 @@ TEXTS = {
     count : int, optional
         Exactly this many samples: at least the hull's corners, at most the distinct points in x, y.
     rate : float or str, optional
-        A percentage of the points as a count: 10 or ``'10%'``. Give exactly one of ``count`` and ``rate``.
+        A percentage of the points as a count: 10 or ``'10%'`` (below 1 without ``%``, with a warning, as in
+        ``poisson_lod``). Give exactly one of ``count`` and ``rate``.
     separation : float
         beta, >= 0: the disks' size relative to an even spread of k samples over the hull; 0 is plain
         greedy insertion. Default {_core.HeightFieldParam().separation:g}.

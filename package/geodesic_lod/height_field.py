@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from .arrays import GRID_HINT, Progress, call_core, percent, point_arrays, real_number, whole_number
+from .arrays import GRID_HINT, Progress, call_core, point_arrays, rate_percent, real_number, whole_number
 from .docstrings import documented
 from .errors import InputError
 
@@ -54,7 +54,7 @@ def height_field_lod(points, *, count: Optional[int] = None, rate=None,
     if count is not None:
         param.sample_num = whole_number(count, "count", 1, p.shape[0], " (the number of points)")
     else:
-        param.sample_num = int(max(1.0, _core.percent_of(percent(rate, "rate"), p.shape[0])))
+        param.sample_num = int(max(1.0, _core.percent_of(rate_percent(rate), p.shape[0])))
     param.separation = real_number(separation, "separation", positive=False)
     if separation_in not in SEPARATION_SPACES:
         raise InputError(f"separation_in must be 'xyz' or 'xy', got {separation_in!r}")

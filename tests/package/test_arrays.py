@@ -186,6 +186,24 @@ def test_points_given_again_are_one_point_with_the_first(cloud):
         gl.poisson_lod(q, count=4001)
 
 
+@pytest.mark.parametrize("rate, warned", [(0.1, True), ("0.5", True), ("0.5%", False), (1, False)])
+def test_a_rate_below_one_is_a_percentage_and_warned_of_unless_it_says_so(cloud, rate, warned):
+    """Rates are percentages: 0.1 asks for a thousandth, though a numpy user may mean a tenth."""
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        lod = gl.poisson_lod(cloud, rate=rate)
+        with pytest.raises(gl.InputError, match="points on the hull"):  # a TIN of a sphere's few points
+            gl.height_field_lod(cloud, rate=rate)
+    r = float(str(rate).rstrip("%"))
+    assert len(lod.indices) == max(1, int(gl._core.percent_of(r, len(cloud))))
+    said = [w for w in caught if "of the points (a tenth is rate=10)" in str(w.message)]
+    assert len(said) == (2 if warned else 0), [str(w.message) for w in caught]
+    for w in said:  # at the user's line, in the user's words
+        assert w.filename == __file__ and str(w.message) == (f"rate={rate!r} is {r:g}% of the points (a tenth is "
+                                                             f"rate=10); give rate='{r:g}%' to mean it")
+
+
 def test_mesh_geodesics_and_mesh_output():
     pts, faces = grid_mesh(40)
     lod = gl.poisson_lod(pts, faces=faces, count=120, mesh_output=True, regions="voronoi")
