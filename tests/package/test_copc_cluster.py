@@ -92,6 +92,22 @@ def test_any_tiling_gives_the_single_machine_nodes(strip, client, tmp_path, tile
     assert names(tmp_path) == ["lod.copc.laz"]
 
 
+def test_points_given_again_give_the_single_machine_nodes(client, tmp_path):
+    """Points given again (0 to 5 more times each, the copies in later files than the first): one point with
+    the first, on a cluster as on one machine."""
+    p = wavy_strip(20000)
+    parts = write_parts(tmp_path / "parts", np.vstack([p, p[np.repeat(np.arange(len(p)), np.arange(len(p)) % 6)]]),
+                        scales=(1e-3,) * 3)
+    records = np.concatenate([laspy.read(str(f)).points.array for f in sorted(parts.glob("*.laz"))])
+    las = laspy.read(str(parts / "part0.laz"))
+    las.points = laspy.PackedPointRecord(records, las.point_format)
+    las.write(str(tmp_path / "all.laz"))
+    gl.write_copc(tmp_path / "all.laz", tmp_path / "one.copc.laz")
+    made = copc_cluster.copc_file([str(parts)], tmp_path / "lod.copc.laz", tile_points=8000, client=client)
+    assert made["depths"] >= 3 and made["tiles"] > 1
+    assert nodes(tmp_path / "lod.copc.laz") == nodes(tmp_path / "one.copc.laz")
+
+
 def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(strip, client, tmp_path):
     parts, _ = strip
     with pytest.raises(gl.ClusterJobError, match="memory may be too small for tiles of 7000 points"):
