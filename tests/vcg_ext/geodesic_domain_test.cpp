@@ -16,6 +16,7 @@
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/mesh_triangles.h>
+#include "on_threads.h"
 #include "test_mesh.h"
 
 namespace geodesic_domain_test {
@@ -308,6 +309,20 @@ TEST(GeodesicDomain, OfPointsAtOnePositionTheFirstIsSampled) {
     EXPECT_TRUE(at.insert({q[0], q[1], q[2]}).second) << "two samples at one position";
     for (int v = 0; v < r.vertIndex[k]; ++v) EXPECT_NE(many.vert[size_t(v)].cP(), q) << "not the first of its position";
   }
+}
+
+TEST(GeodesicDomain, RepeatedPositionsGiveTheSameSamplesOnAnyNumberOfThreads) {
+  test::TMesh once, many;
+  test::Sphere(once, 5000);
+  WithCopies(once, 3, many);
+  std::reverse(many.vert.begin(), many.vert.end());  // the first of each position among the last given
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param p;
+  p.sampleNum = 400;
+  const auto one = test::OnThreads(1, [&] { return vcg_ext::MeshLod<Poisson>(many, p); });
+  const auto all = test::OnThreads(4, [&] { return vcg_ext::MeshLod<Poisson>(many, p); });
+  EXPECT_EQ(one.repeated, 15000u);
+  EXPECT_EQ(all.vertIndex, one.vertIndex);
 }
 
 TEST(GeodesicDomain, CountsAndNeighboursAreOfDistinctPositions) {
