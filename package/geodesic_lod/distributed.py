@@ -385,7 +385,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
 
 
 def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, reach: float,
-                  spacing: float, ticks: Ticks, where: dict) -> float:
+                  spacing: float, ticks: Ticks, where: dict) -> tuple:
     """The count search's first radius from the pilot disks of every tile (as poisson_lod's, to the bit), or
     0 to start from the guess; and the points that may be samples, summed over the tiles. The tiles' reads
     serve the runs after it."""
