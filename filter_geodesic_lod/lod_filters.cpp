@@ -347,20 +347,19 @@ LodRun RunNormalVariation(const CMeshO& in, const ParamSource& src, vcg::CallBac
     d.normalNeighbours = int(src.number(kNormalNeighbors));
     d.useInputNormals = !src.flag(kRecomputeNormals);
     const auto domain = vcg_ext::GeodesicDomain<Scalarm>::FromMesh(in, d, vcg_ext::Progress(cb));
-    std::vector<int> all(domain.size());
-    for (size_t i = 0; i < all.size(); ++i) all[i] = int(i);
     LodRun run;
-    run.result = vcg_ext::LodResult<Scalarm>::Collect(domain, all);
+    run.result = vcg_ext::LodResult<Scalarm>::CollectEvery(domain);  // repeated vertices too
     double lo = 1, hi = 0, sum = 0;
     for (Scalarm v : run.result.curvature) {
       lo = std::min(lo, double(v));
       hi = std::max(hi, double(v));
       sum += v;
     }
-    const double mean = sum / std::max<size_t>(1, all.size());
+    const size_t all = run.result.vertIndex.size();
+    const double mean = sum / std::max<size_t>(1, all);
     run.summary = QString("Normal variation curvature (eq. 1, k = %1) in the vertex quality of %2: "
                           "min %3, mean %4, max %5; %6 estimated")
-                      .arg(d.normalNeighbours).arg(Many(all.size(), "vertex", "vertices")).arg(lo).arg(mean).arg(hi)
+                      .arg(d.normalNeighbours).arg(Many(all, "vertex", "vertices")).arg(lo).arg(mean).arg(hi)
                       .arg(Many(domain.estimatedNormals, "normal", "normals"));
     run.values = {{"min", QVariant(lo)}, {"mean", QVariant(mean)}, {"max", QVariant(hi)}};
     return run;

@@ -100,6 +100,23 @@ struct LodResult {
     return r;
   }
 
+  /// The data of every vertex of `d`'s points: each point, then each repeat
+  /// (with its position's point's data).
+  static LodResult CollectEvery(const GeodesicDomain<Scalar>& d) {
+    std::vector<int> all(d.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+    LodResult r = Collect(d, all);
+    const std::vector<int> point = d.PointOfVertex(d.vertexCount);
+    for (const auto& rep : d.repeats) {
+      const size_t i = size_t(point[size_t(rep.first)]);
+      r.vertIndex.push_back(rep.first);
+      r.position.push_back(d.points.pos[i]);
+      r.normal.push_back(vcg::Point3<Scalar>::Construct(d.normal[i]));
+      r.curvature.push_back(d.curvature[i]);
+    }
+    return r;
+  }
+
   /// regionOf from a per-point owner of `d` (an index in the samples); a
   /// repeated point's is its position's.
   void SetRegions(const GeodesicDomain<Scalar>& d, const std::vector<int>& owner) {

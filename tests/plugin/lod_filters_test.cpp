@@ -311,6 +311,15 @@ TEST(LodFilters, NormalVariationFilterGivesEq1ForEveryVertexInPlace) {
   EXPECT_LT(flat, 1e-6);
   EXPECT_GT(bumpy, 0.01);
   EXPECT_DOUBLE_EQ(run.values.at("max").toDouble(), top);
+  // Vertices given again: each gets its position's eq. 1, as the first one there.
+  vcg::tri::Allocator<CMeshO>::AddVertices(in, 300);
+  for (size_t v = 900; v < 1200; ++v) in.vert[v].P() = in.vert[v - 900].P();
+  const LodRun again = f.run(in, MapSource(in, NormalVariationParams), nullptr);
+  ASSERT_EQ(again.result.vertIndex.size(), size_t(in.vn));
+  std::vector<double> of(in.vert.size(), -1);
+  for (size_t k = 0; k < again.result.vertIndex.size(); ++k) of[size_t(again.result.vertIndex[k])] = again.result.curvature[k];
+  for (size_t v = 0; v < 1200; ++v) EXPECT_EQ(of[v], of[v % 900]) << "vertex " << v;
+  EXPECT_TRUE(again.summary.contains("in the vertex quality of 1,200 vertices")) << again.summary.toStdString();
 }
 
 TEST(LodFilters, TheLogNamesWhatTheAutomaticDefaultsTook) {
