@@ -20,6 +20,7 @@
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "parallel.h"
 #include "places_within.h"
+#include "point_set.h"
 #include "radix_sort.h"
 
 namespace vcg_ext {
@@ -202,14 +203,10 @@ class CellGrid {
   static size_t SubsampleIndex(size_t i, size_t n) { return i * n / SubsampleSize(n); }
   /// The points of `sub` at positions no point before them holds, in order:
   /// what the measures of a subsample read, so that a cloud's repeated points
-  /// (each copy at distance 0) do not fill the neighbourhoods. O(m log m).
+  /// (each copy at distance 0) do not fill the neighbourhoods. O(m).
   static std::vector<Coord> Distinct(const std::vector<Coord>& sub) {
-    std::vector<int> order(sub.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return sub[size_t(a)] < sub[size_t(b)] || (sub[size_t(a)] == sub[size_t(b)] && a < b); });
     std::vector<char> repeat(sub.size(), 0);
-    for (size_t k = 1; k < order.size(); ++k)
-      repeat[size_t(order[k])] = sub[size_t(order[k])] == sub[size_t(order[k - 1])];
+    for (const auto& p : CoincidentPairs(sub)) repeat[size_t(p.second)] = 1;  // each pair's later point
     std::vector<Coord> out;
     out.reserve(sub.size());
     for (size_t i = 0; i < sub.size(); ++i)

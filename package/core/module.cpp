@@ -183,10 +183,10 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
     const Domain d = BuildFrom(points, normals, std::nullopt, dp, pr);
     curvature.resize(d.vertexCount);
     normal.resize(d.vertexCount);
-    const std::vector<int> point = d.PointOfVertex(d.vertexCount);  // a repeated point's is its position's
-    for (size_t v = 0; v < point.size(); ++v) {
-      curvature[v] = d.curvature[size_t(point[v])];
-      normal[v] = vcg::Point3d::Construct(d.normal[size_t(point[v])]);
+    const LodResult every = LodResult::CollectEvery(d);  // a repeated point's is its position's
+    for (size_t k = 0; k < every.vertIndex.size(); ++k) {
+      curvature[size_t(every.vertIndex[k])] = every.curvature[k];
+      normal[size_t(every.vertIndex[k])] = every.normal[k];
     }
     estimated = d.estimatedNormals;
     return 0;
