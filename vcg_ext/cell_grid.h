@@ -19,6 +19,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/index/kdtree/kdtree.h>
 #include "parallel.h"
+#include "near_points.h"
 #include "places_within.h"
 #include "point_set.h"
 #include "radix_sort.h"
@@ -201,16 +202,18 @@ class CellGrid {
   /// i-th point's index (a cluster reads the same points of its tiles).
   static size_t SubsampleSize(size_t n) { return std::min<size_t>(n, 1 << 16); }
   static size_t SubsampleIndex(size_t i, size_t n) { return i * n / SubsampleSize(n); }
-  /// The points of `sub` at positions no point before them holds, in order:
-  /// what the measures of a subsample read, so that a cloud's repeated points
-  /// (each copy at distance 0) do not fill the neighbourhoods. O(m).
+  /// The points of `sub` that are not one point with one before them
+  /// (NearPoints, at the merge distance of `sub` itself), in order: what the
+  /// measures of a subsample read, so that a cloud's repeated or near points
+  /// do not fill the neighbourhoods. O(m).
   static std::vector<Coord> Distinct(const std::vector<Coord>& sub) {
-    std::vector<char> repeat(sub.size(), 0);
-    for (const auto& p : CoincidentPairs(sub)) repeat[size_t(p.second)] = 1;  // each pair's later point
+    std::vector<int> take(sub.size());
+    std::iota(take.begin(), take.end(), 0);
+    const std::vector<int> first = NearPoints<Scalar>::FirstOf(sub, take, NearPoints<Scalar>::DistanceOf(sub));
     std::vector<Coord> out;
     out.reserve(sub.size());
     for (size_t i = 0; i < sub.size(); ++i)
-      if (!repeat[i]) out.push_back(sub[i]);
+      if (first[i] < 0) out.push_back(sub[i]);
     return out;
   }
   /// SurfaceCellSide of n points from their subsample `sub` (SubsampleIndex's

@@ -3,7 +3,8 @@
 // Everything the samplers need from a layer, built once: normals (n_i),
 // curvature (eq. 1) and the geodesics of the weighted metric (eq. 2-3), on
 // the point graph or by fast marching over the mesh's triangles. A cloud's
-// points repeated at one position are one point (Build).
+// points at one position, or within a millionth of its size of an earlier
+// one, are one point (Build).
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -17,9 +18,11 @@
 #include "euclidean_ball.h"
 #include "fast_marching.h"
 #include "clean_surface.h"
+#include "core_diagonal.h"
 #include "geodesic_metric.h"
 #include "knn_table.h"
 #include "mesh_triangles.h"
+#include "near_points.h"
 #include "triangle_borders.h"
 #include "neighbour_graph.h"
 #include "normal_variation.h"
@@ -61,6 +64,10 @@ class GeodesicDomain {
     /// A cloud's CleanSurface exponent where a caller measured it; < 0:
     /// measured here (on a cloud; a mesh's vertices are clean).
     double cleanExponent = -1;
+    /// A cloud's points within this distance of an earlier one are one point
+    /// with it (NearPoints) where a caller measured it (a cluster, on the
+    /// whole cloud); < 0: MergeDistanceOf the subsample measured here.
+    double mergeDistance = -1;
   };
 
   /// Numbered in the cells' Morton order, near points at near numbers
@@ -93,12 +100,14 @@ class GeodesicDomain {
   std::vector<Scalar> reach;        ///< with keepReach: per point, the distance to the last of its kNN row
   int components = 0;               ///< connected parts (0 for Euclidean)
   size_t leftOut = 0;               ///< vertices in no usable triangle, not sampled in Mesh mode
-  /// A cloud's points at the position of a point before them (by vertIndex):
-  /// (its vertex, the vertex of that first point). Not points of the domain,
-  /// they share the first one's normal, curvature and region and are never
-  /// samples: at distance 0 every disk and every farthest point takes them
-  /// with it, and as points they would fill each other's kNN rows.
+  /// A cloud's points at the position of a point before them (by vertIndex),
+  /// or within the merge distance of one (NearPoints): (its vertex, the
+  /// vertex of that first point). Not points of the domain, they share the
+  /// first one's normal, curvature and region and are never samples: at
+  /// (nearly) distance 0 every disk and every farthest point takes them with
+  /// it, and as points they would fill each other's kNN rows.
   std::vector<std::pair<int, int>> repeats;
+  std::vector<Coord> repeatPos;  ///< each repeat's own position
   bool hasFaces = false;            ///< the input had faces (usable or not): a triangle-mesh output needs them
   /// The input's vertices, live or not (regions are reported for all of
   /// them): PointSet::vertexCount, at least one past the largest vertIndex.
@@ -157,7 +166,8 @@ class GeodesicDomain {
     }
     // Both measures read one subsample, taken once (O(n)).
     const bool measureClean = !d.hasFaces && !(p.cleanExponent >= 0);
-    const std::vector<Coord> sub = !(p.scatterShare >= 0) || measureClean
+    const bool measureMerge = !d.hasFaces && !(p.mergeDistance >= 0);
+    const std::vector<Coord> sub = !(p.scatterShare >= 0) || measureClean || measureMerge
                                        ? BallShare<Scalar>::SubsampleById(ps.pos, ps.vertIndex)
                                        : std::vector<Coord>();
     d.scatterShare = p.scatterShare >= 0 ? p.scatterShare : ScatterShare<Scalar>::OfSubsample(sub);
@@ -165,6 +175,7 @@ class GeodesicDomain {
     if (!sub.empty()) d.cellSide = CellGrid<Scalar>::SurfaceCellSideOf(sub, ps.size(), 1);
     d.metric = ChosenMetric(p.metric, d.Scatters());
     if (!d.hasFaces) d.cleanExponent = measureClean ? CleanSurface<Scalar>::OfSubsample(sub) : p.cleanExponent;
+    const double merge = measureMerge ? MergeDistanceOf(sub) : std::max(p.mergeDistance, 0.0);  // 0: copies alone
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a
@@ -185,12 +196,12 @@ class GeodesicDomain {
         knn = KnnTable<Scalar>::Compute(grid, d.points.pos, k, progress.Sub(0, 35), &d.points.vertIndex);
       };
       nearest();
-      // A cloud's repeated positions show in the table (a copy is among the
-      // nearest two); then the copies go and the table is made again. A
-      // mesh's copies (seams) are kept: its triangles name them.
-      if (d.triangles.empty() && AnyRepeat(d.points.pos, knn)) {
+      // A cloud's repeated or near positions show in the table (a copy is
+      // among the nearest two); then the copies go and the table is made
+      // again. A mesh's copies (seams) are kept: its triangles name them.
+      if (d.triangles.empty() && AnyNear(d.points.pos, knn, merge)) {
         const size_t given = d.size();
-        d.repeats = DropRepeats(d.points);
+        d.DropRepeats(NearPoints<Scalar>::FirstOf(d.points.pos, NearOnes(d.points, knn, merge), merge));
         if (d.size() <= size_t(k))
           throw InputError(Field::Points, "holds " + Counted(d.size()) + " distinct positions among its " +
                                               Counted(given) + " points: at least " + std::to_string(k + 1) +
@@ -275,6 +286,12 @@ class GeodesicDomain {
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
+  /// How near a cloud's point must lie to an earlier one to be one point with
+  /// it, from the cloud's subsample (BallShare::SubsampleById; a cluster's
+  /// tiles take the value it measured on the same points).
+  static double MergeDistanceOf(const std::vector<Coord>& sub) {
+    return NearPoints<Scalar>::DistanceOf(sub);
+  }
   /// BallShare::CellSide of the points as given (before repeats were
   /// dropped): the spacing key orders scale their balls by.
   double CellSide() const {
@@ -299,7 +316,7 @@ class GeodesicDomain {
   std::vector<Coord> GivenPositions() const {
     std::vector<Coord> pos = points.pos;
     const std::vector<int> point = PointOfVertex(vertexCount);
-    for (const auto& r : repeats) pos.push_back(points.pos[size_t(point[size_t(r.second)])]);
+    pos.insert(pos.end(), repeatPos.begin(), repeatPos.end());
     return pos;
   }
 
@@ -308,7 +325,7 @@ class GeodesicDomain {
     const auto& g = meshGeodesics ? fmMesh.edges : graph;
     return Bytes(points.pos) + Bytes(points.normal) + Bytes(points.vertIndex) + Bytes(normal) + Bytes(curvature) + Bytes(density) +
            Bytes(g.offset) + g.adj.MemoryBytes() + Bytes(g.w) + Bytes(fmMesh.fanOffset) + Bytes(fmMesh.fans) +
-           Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach) + Bytes(repeats);
+           Bytes(triangles) + Bytes(borderEdges) + Bytes(onBorder) + Bytes(reach) + Bytes(repeats) + Bytes(repeatPos);
   }
 
   /// The point number of each mesh vertex (index in m.vert, below
@@ -359,49 +376,58 @@ class GeodesicDomain {
     for (auto& t : tri)
       for (int& c : t) c = newIndex[c];
   }
-  // Whether a point's table row has another point at its position: the
-  // nearest two of a point with a copy are at distance 0 (with k = 1, only
-  // the row's one column is looked at). O(n).
-  static bool AnyRepeat(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn) {
+  // Whether point i's nearest other lies within `merge`: a copy or near
+  // point is among a row's nearest two (with k = 1, only the row's one
+  // column is looked at).
+  static bool HasNear(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, double merge, size_t i) {
     const int cols = std::min(knn.k, 2);
+    bool any = false;
+    for (int c = 0; c < cols; ++c) {
+      const size_t j = size_t(knn.At(i, c));
+      any |= j != i && NearPoints<Scalar>::Distance2(pos[i], pos[j]) <= merge * merge;
+    }
+    return any;
+  }
+  // Whether any point has another within `merge`. O(n), on all threads.
+  static bool AnyNear(const std::vector<Coord>& pos, const KnnTable<Scalar>& knn, double merge) {
     std::atomic<bool> found{false};
     ParallelChunks(pos.size(), Progress(nullptr), "", [&](size_t b, size_t e) {
       bool any = false;
-      for (size_t i = b; i < e; ++i)
-        for (int c = 0; c < cols; ++c) {
-          const size_t j = size_t(knn.At(i, c));
-          any |= j != i && pos[j] == pos[i];
-        }
+      for (size_t i = b; i < e; ++i) any |= HasNear(pos, knn, merge, i);
       if (any) found.store(true, std::memory_order_relaxed);
     });
     return found.load();
   }
-  // Keeps the first point (by vertIndex) at each position, ordered by
-  // vertIndex; returns the others as `repeats` holds them. O(n log n).
-  static std::vector<std::pair<int, int>> DropRepeats(PointSet<Scalar>& ps) {
-    const std::vector<std::pair<int, int>> pairs = CoincidentPairs(ps.pos);  // chains of equal positions
-    std::vector<int> first(ps.size(), -1);  // per copy: the point kept at its position
-    for (size_t b = 0, e; b < pairs.size(); b = e) {
-      for (e = b + 1; e < pairs.size() && pairs[e].first == pairs[e - 1].second;) ++e;
-      int keep = pairs[b].first;
-      for (size_t c = b; c < e; ++c)
-        if (ps.vertIndex[size_t(pairs[c].second)] < ps.vertIndex[size_t(keep)]) keep = pairs[c].second;
-      if (keep != pairs[b].first) first[size_t(pairs[b].first)] = keep;
-      for (size_t c = b; c < e; ++c)
-        if (pairs[c].second != keep) first[size_t(pairs[c].second)] = keep;
-    }
-    std::vector<std::pair<int, int>> repeats;
+  // The points with another within `merge` (the only ones any other can be
+  // one with), by vertIndex. O(n).
+  static std::vector<int> NearOnes(const PointSet<Scalar>& ps, const KnnTable<Scalar>& knn, double merge) {
+    std::vector<int> near;
+    for (size_t i = 0; i < ps.size(); ++i)
+      if (HasNear(ps.pos, knn, merge, i)) near.push_back(int(i));
+    std::sort(near.begin(), near.end(), [&](int a, int b) { return ps.vertIndex[size_t(a)] < ps.vertIndex[size_t(b)]; });
+    return near;
+  }
+  // Keeps the points `first` leaves (-1), ordered by vertIndex; the others
+  // go to `repeats` and `repeatPos`, by vertIndex. O(n log n).
+  void DropRepeats(const std::vector<int>& first) {
+    PointSet<Scalar>& ps = points;
+    std::vector<std::pair<std::pair<int, int>, Coord>> dropped;
     std::vector<int> keep;  // the rest, by vertIndex: as if the copies had never been given
     for (size_t i = 0; i < ps.size(); ++i) {
-      if (first[i] >= 0) repeats.emplace_back(ps.vertIndex[i], ps.vertIndex[size_t(first[i])]);
+      if (first[i] >= 0) dropped.push_back({{ps.vertIndex[i], ps.vertIndex[size_t(first[i])]}, ps.pos[i]});
       else keep.push_back(int(i));
     }
     std::sort(keep.begin(), keep.end(), [&](int a, int b) { return ps.vertIndex[size_t(a)] < ps.vertIndex[size_t(b)]; });
     Permute(keep, ps.pos);
     Permute(keep, ps.normal);
     Permute(keep, ps.vertIndex);
-    std::sort(repeats.begin(), repeats.end());
-    return repeats;
+    std::sort(dropped.begin(), dropped.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    repeats.clear();
+    repeatPos.clear();
+    for (const auto& r : dropped) {
+      repeats.push_back(r.first);
+      repeatPos.push_back(r.second);
+    }
   }
   template <class Array>
   static size_t Bytes(const Array& v) { return v.capacity() * sizeof(typename Array::value_type); }

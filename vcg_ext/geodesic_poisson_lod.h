@@ -206,23 +206,6 @@ class GeodesicPoissonLod {
     return r;
   }
 
-  /// The diagonal of the box from the 1st to the 99th percentile of each
-  /// coordinate (the whole box's below 100 points, or where that box is flat
-  /// to a point). O(n).
-  static double CoreDiagonal(const std::vector<vcg::Point3<Scalar>>& pos, bool whole = false) {
-    const size_t n = pos.size(), cut = n < 100 || whole ? 0 : n / 100;
-    std::vector<double> x(n);
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      for (size_t i = 0; i < n; ++i) x[i] = double(pos[i][a]);
-      std::nth_element(x.begin(), x.begin() + cut, x.end());
-      const double lo = x[cut];
-      std::nth_element(x.begin(), x.end() - 1 - cut, x.end());
-      d2 += (x[n - 1 - cut] - lo) * (x[n - 1 - cut] - lo);
-    }
-    return d2 > 0 || cut == 0 ? std::sqrt(d2) : CoreDiagonal(pos, true);
-  }
-
   /// Throws InputError for a parameter that no domain can satisfy: checked
   /// before a domain is built for it.
   static void CheckParam(const Param& p, bool hasFaces) {

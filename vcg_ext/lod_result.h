@@ -29,7 +29,7 @@ struct LodResult {
   size_t pointCount = 0;                      ///< points sampled from
   size_t estimatedNormals = 0;
   size_t leftOut = 0;                         ///< vertices in no triangle, not sampled (mesh geodesics)
-  size_t repeated = 0;                        ///< a cloud's points at an earlier point's position, sampled with it
+  size_t repeated = 0;                        ///< a cloud's points at (or a hair from) an earlier point's position, sampled with it
   int components = 0;
   bool meshGeodesics = false;
   Metric metric = Metric::CurvatureDensity;   ///< the domain's: as asked, an automatic choice made

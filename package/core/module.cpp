@@ -246,7 +246,8 @@ NB_MODULE(_core, m) {
       .def_rw("adaptivity", &Domain::Param::adaptivity)
       .def_rw("normal_neighbors", &Domain::Param::normalNeighbours)
       .def_rw("graph_neighbors", &Domain::Param::graphNeighbours)
-      .def_rw("use_input_normals", &Domain::Param::useInputNormals);
+      .def_rw("use_input_normals", &Domain::Param::useInputNormals)
+      .def_rw("merge_distance", &Domain::Param::mergeDistance);
   nb::class_<Poisson::Param>(m, "PoissonParam")
       .def(nb::init<>())
       .def_rw("domain", &Poisson::Param::domain)

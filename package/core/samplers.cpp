@@ -40,6 +40,8 @@ Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, co
 Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress) {
   if (domain.metric == vcg_ext::Metric::Automatic)
     throw std::invalid_argument("a tile takes a chosen metric: the cluster chooses for the whole cloud");
+  if (!(domain.mergeDistance >= 0))
+    throw std::invalid_argument("a tile takes the merge distance the cluster measured on the whole cloud");
   Domain::Param dp = domain;
   dp.scatterShare = 0;  // the metric is chosen: nothing here reads the share
   dp.cleanExponent = 0;  // the tile's prominence takes the whole cloud's (key_clean)

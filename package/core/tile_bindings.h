@@ -270,10 +270,10 @@ inline double PilotFirstRadiusOf(const Ids& hash, const Int64s& offset, const Do
                                                        tolerance, guess);
 }
 
-// The diagonal one machine's count search guesses its first radius from (GeodesicPoissonLod::CoreDiagonal).
+// The diagonal one machine's count search guesses its first radius from (CoreDiagonal).
 inline double CoreDiagonalOf(const Array2& points) {
   const vcg_ext::PointSet<double> ps = ReadPoints(points, nullptr);
-  return Poisson::CoreDiagonal(ps.pos);
+  return vcg_ext::CoreDiagonal(ps.pos);
 }
 
 typedef vcg_ext::CellGrid<double> Cells;
@@ -296,6 +296,10 @@ inline nb::ndarray<nb::numpy, uint64_t> CellSideSubsample(uint64_t n) {
 }
 
 // SurfaceCellSide(pos, 1) of n points from the points of CellSideSubsample(n), in order.
+// The distance within which the points' later ones are one point with an earlier one, from their
+// CellSideSubsample(n), in order (GeodesicDomain::MergeDistanceOf).
+inline double MergeDistanceOf(const Array2& sub) { return Domain::MergeDistanceOf(ReadPoints(sub, nullptr).pos); }
+
 inline double CellSideOf(const Array2& sub, uint64_t n) {
   const size_t m = sub.shape(0);
   if (n < 2 || m != Cells::SubsampleSize(size_t(n)))
@@ -349,6 +353,8 @@ inline void BindTiles(nb::module_& m) {
         "the ids of the points the prominence order's point spacing is measured on, of n points");
   m.def("cell_side", &CellSideOf, "subsample"_a, "n"_a,
         "the point spacing (a cell side holding one point) of n points, from their cell_side_subsample");
+  m.def("merge_distance", &MergeDistanceOf, "subsample"_a,
+        "how near a point must lie to an earlier one to be one point with it, from the cell_side_subsample (in id order)");
   m.def("scatter_share", &ScatterShareOf, "subsample"_a,
         "the share of n points whose neighbourhoods scatter, from their cell_side_subsample (in id order)");
   m.attr("SCATTERED_ABOVE") = vcg_ext::ScatterShare<double>::kScattered;

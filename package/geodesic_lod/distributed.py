@@ -481,11 +481,12 @@ class Choices:
 def cluster_choices(client, cells: partition.Partition, domain: dict, kind: str, total: int) -> Choices:
     """The metric and visiting order as one machine takes them for the whole cloud (its automatic choices
     from the points' scatter share; with a key order, the point spacing; with prominence, whether they lie on a
-    clean surface), each measured on the points one machine measures them on (a pass over the cells)."""
+    clean surface), and the distance within which points are one, each measured on the points one machine
+    measures them on (a pass over the cells)."""
     share = 0.0
     chosen = domain["metric"]
     automatic = chosen == _core.Metric.Automatic or kind == "automatic"
-    sub = _cluster_subsample(client, cells, total) if automatic or kind != "random" else None
+    sub = _cluster_subsample(client, cells, total)
     if automatic:
         share = _core.scatter_share(sub)
         chosen = _core.chosen_metric(chosen, share)
@@ -493,7 +494,8 @@ def cluster_choices(client, cells: partition.Partition, domain: dict, kind: str,
     noise = _core.PoissonParam().noise_of(arrays.VISIT_ORDERS[kind]) if kind != "random" else 0.0
     cell_side = _core.cell_side(sub, total) if kind != "random" else 0.0
     clean = kind == "prominence" and _core.is_clean(_core.clean_exponent(sub))
-    return Choices({**domain, "metric": chosen}, tiles.Order(kind, 0.0, noise, cell_side, clean), share)
+    return Choices({**domain, "metric": chosen, "merge_distance": _core.merge_distance(sub)},
+                   tiles.Order(kind, 0.0, noise, cell_side, clean), share)
 
 
 def _cluster_subsample(client, cells: partition.Partition, total: int) -> np.ndarray:

@@ -122,8 +122,8 @@ LOD_DOMAIN = f"""point_count : int
     left_out : int
         Input rows in no triangle: mesh geodesics do not sample them.
     repeated : int
-        Input rows of a cloud at the position of an earlier row: one point with it, never a sample, its region
-        theirs.
+        Input rows of a cloud at the position of an earlier row, or within a millionth of the cloud's size of
+        it: one point with it, never a sample, its region theirs.
     mesh_geodesics : bool
         Whether geodesics ran over the faces (fast marching), else on the point graph or in straight lines.
     metric : str

@@ -186,6 +186,19 @@ def test_points_given_again_are_one_point_with_the_first(cloud):
         gl.poisson_lod(q, count=4001)
 
 
+def test_points_a_rounding_apart_are_one_point_with_the_first(cloud):
+    """Copies moved by a rounding of their coordinates (here up to 3e-7 of the sphere's size, 11 to 15 at
+    each of a third of the positions: enough to fill a graph row) are one point with the first, as exact
+    copies are: the same samples, none of them a copy."""
+    again = np.repeat(np.arange(0, len(cloud), 3), 10 + np.arange(0, len(cloud), 3) % 5)
+    moved = cloud[again] + np.random.default_rng(3).uniform(-1e-7, 1e-7, (len(again), 3))
+    q = np.vstack([cloud, moved])
+    once = gl.poisson_lod(cloud, radius=0.12, visit_order="random", seed=4)
+    lod = gl.poisson_lod(q, radius=0.12, visit_order="random", seed=4)
+    assert lod.indices.tolist() == once.indices.tolist() and lod.repeated == len(again)
+    assert gl.poisson_lod(q, count=300).indices.max() < len(cloud)
+
+
 @pytest.mark.parametrize("rate, warned", [(0.1, True), ("0.5", True), ("0.5%", False), (1, False)])
 def test_a_rate_below_one_is_a_percentage_and_warned_of_unless_it_says_so(cloud, rate, warned):
     """Rates are percentages: 0.1 asks for a thousandth, though a numpy user may mean a tenth."""

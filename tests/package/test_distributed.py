@@ -352,6 +352,26 @@ def test_points_given_again_are_one_point_on_a_cluster_as_on_one_machine(client,
     assert not (tmp_path / "over").exists()
 
 
+def test_points_a_rounding_apart_are_one_point_on_a_cluster_as_on_one_machine(client, tmp_path):
+    """Copies moved by 3e-5 (below a millionth of the cloud's size, 3.4e-5, and above a tile's; 11 to 15 at
+    a third of the positions, in later files): one point with the first on the cluster's tiles as on one
+    machine: the tiles take the merge distance of the whole cloud."""
+    p = bumpy_sphere(5000) * 10
+    again = np.repeat(np.arange(0, len(p), 3), 10 + np.arange(0, len(p), 3) % 5)
+    away = np.random.default_rng(5).normal(size=(len(again), 3))
+    moved = p[again] + 3e-5 * away / np.linalg.norm(away, axis=1)[:, None]
+    folder = write_parts(tmp_path / "parts", np.vstack([p, moved]), scales=(1e-6,) * 3)
+    records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(PARTS)])
+    points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-6
+    for out, size in (("r", {"radius": RADIUS}), ("c", {"count": 1500, "tolerance": 1.0})):
+        whole = gl.poisson_lod(points, seed=2, **size)
+        assert whole.repeated == len(again) and whole.indices.max() < len(p)
+        index = dist.lod_files([str(folder)], tmp_path / out, seed=2, **size, tile_points=6000, client=client,
+                               threads=1)
+        assert len(index["tiles"]) >= 4 and index["radius"] == whole.radius
+        assert sorted(output_records(tmp_path / out)[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
+
+
 def test_files_that_cannot_go_together_are_named(client, tmp_path):
     p = bumpy_sphere(3000)
     a = write_parts(tmp_path / "a", p, parts=2)

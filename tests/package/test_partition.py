@@ -183,7 +183,7 @@ def test_after_the_split_no_task_decodes_a_file(files, tmp_path, monkeypatch):
         raise AssertionError("a file was decoded after the split")
     monkeypatch.setattr(las_files, "chunks", refuse)
     radius = 0.5
-    domain = dist.domain_fields("curvature-density", arrays.DOMAIN_DEFAULTS.adaptivity)
+    domain = {**dist.domain_fields("curvature-density", arrays.DOMAIN_DEFAULTS.adaptivity), "merge_distance": 0.0}
     job = dist.Job(files, cloud, radius, 0, domain, 1, tiles.first_halo(radius, tiles.spacing_of(cloud, total)), cells)
     decisions = [dist.decide_tile(job, b) for b in boxes]
     settled = tiles.settle([d.seams() for d in decisions if d is not None], 0)

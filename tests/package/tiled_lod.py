@@ -22,6 +22,7 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
     p, n = arrays.point_arrays(points, normals)
     domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
     domain.metric = _core.chosen_metric(domain.metric, arrays.scatter_share(p))  # as a cluster, for the whole cloud
+    domain.merge_distance = _core.merge_distance(np.ascontiguousarray(p[_core.cell_side_subsample(len(p)).astype(np.int64)]))
     cloud = Box(p.min(axis=0), p.max(axis=0))
     ids = np.arange(len(p), dtype=np.uint64)
     width = halo if halo is not None else first_halo(radius, spacing_of(cloud, len(p)))

@@ -6,9 +6,12 @@
 // PointOfVertex maps every vertex back to its point, -1 for the left-out and
 // the deleted ones; without orientNormals the estimated normals keep the
 // fits' signs and every sample is the same; a cloud's points at one position
-// are one point (the first of them), the others sampled with it or never.
+// are one point (the first of them), the others sampled with it or never,
+// and so are points within the merge distance (a millionth of the cloud's
+// size) of an earlier one, those kept further apart than it.
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <random>
 #include <set>
 #include <vcg_ext/geodesic_domain.h>
 #include <vcg_ext/geodesic_fps_lod.h>
@@ -48,6 +51,22 @@ void WithCopies(const test::TMesh& m, int copies, test::TMesh& out) {
     out.vert[v].P() = m.vert[v % n].cP();
     out.vert[v].N() = m.vert[v % n].cN();
   }
+}
+
+// WithCopies, each copy moved by up to `jitter` along each axis.
+void WithNearCopies(const test::TMesh& m, int copies, float jitter, test::TMesh& out) {
+  WithCopies(m, copies, out);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-jitter, jitter);
+  for (size_t v = m.vert.size(); v < out.vert.size(); ++v) out.vert[v].P() += test::P3(u(rng), u(rng), u(rng));
+}
+
+// The distance within which a cloud of m's vertices merges points.
+double MergeDistance(const test::TMesh& m) {
+  const std::vector<test::P3> pos = test::Positions(m);
+  std::vector<int> id(pos.size());
+  for (size_t i = 0; i < id.size(); ++i) id[i] = int(i);
+  return Domain::MergeDistanceOf(vcg_ext::BallShare<float>::SubsampleById(pos, id));
 }
 
 // The InputError `f` throws: its field and problem ("no error" when none).
@@ -352,6 +371,66 @@ TEST(GeodesicDomain, CountsAndNeighboursAreOfDistinctPositions) {
   EXPECT_EQ(tooFew.second,
             "holds 15 distinct positions among its 150 points: at least 21 are needed (the neighbours each normal "
             "and the geodesics are built from)");
+}
+
+TEST(GeodesicDomain, PointsWithinTheMergeDistanceOfAnEarlierOneAreOnePoint) {
+  // 25 points at each position, all but the first moved by up to 1e-7 (a
+  // float's rounding here): as for exact copies, every point's k nearest
+  // would be its own, the graph one part per position.
+  test::TMesh once, many;
+  test::HeightField(once, 30, [](float x, float y) { return test::HalfBumpy(x, y, 0.1f); });
+  WithNearCopies(once, 24, 1e-7f, many);
+  const size_t n = once.vert.size();
+  const Domain a = Domain::FromMesh(once, Domain::Param()), b = Domain::FromMesh(many, Domain::Param());
+  ASSERT_EQ(b.size(), n);
+  EXPECT_EQ(b.repeats.size(), 24 * n);
+  EXPECT_EQ(b.points.vertIndex, a.points.vertIndex);
+  EXPECT_EQ(b.normal, a.normal);
+  EXPECT_EQ(b.curvature, a.curvature);
+  EXPECT_EQ(b.components, 1u);
+  const double merge = MergeDistance(many);
+  ASSERT_LT(merge, 1e-5);
+  for (const auto& r : b.repeats)
+    EXPECT_LE(vcg::Distance(many.vert[size_t(r.first)].cP(), many.vert[size_t(r.second)].cP()), merge);
+  typedef vcg_ext::GeodesicPoissonLod<float> Poisson;
+  Poisson::Param byRadius;
+  byRadius.order = vcg_ext::VisitOrder::Random;
+  byRadius.radius = 0.08;
+  EXPECT_EQ(vcg_ext::MeshLod<Poisson>(many, byRadius).vertIndex, vcg_ext::MeshLod<Poisson>(once, byRadius).vertIndex);
+  // The merge distance a caller gives (a cluster's, measured on the whole cloud) is the one taken: at 0 only
+  // the copies that rounding left at their first's very position are one point with it.
+  Domain::Param given;
+  given.mergeDistance = 0;
+  const Domain exact = Domain::FromMesh(many, given);
+  EXPECT_GT(exact.size(), 20 * n);
+  for (const auto& r : exact.repeats) EXPECT_EQ(many.vert[size_t(r.first)].cP(), many.vert[size_t(r.second)].cP());
+}
+
+TEST(GeodesicDomain, PointsCloserThanTheMergeDistanceKeepOneAboutEveryMergeDistance) {
+  // A stretch of points far denser than the rest (a scanner's nearest): the
+  // points kept are further apart than the merge distance and every other
+  // lies within it of the kept point it is one with, so the stretch stays
+  // covered however long it is.
+  test::TMesh m;
+  test::Sphere(m, 3000);
+  const size_t sphere = m.vert.size(), line = 2000;
+  Alloc::AddVertices(m, line);
+  for (size_t i = 0; i < line; ++i) m.vert[sphere + i].P() = test::P3(1e-7f * float(i), 0, 1);
+  const Domain d = Domain::FromMesh(m, Domain::Param());
+  const double merge = MergeDistance(m);
+  ASSERT_GT(merge, 1e-7);
+  ASSERT_LT(merge * 10, 1e-7 * line) << "the stretch must be longer than a few merge distances";
+  std::vector<int> kept;
+  for (int v : d.points.vertIndex)
+    if (size_t(v) >= sphere) kept.push_back(v);
+  std::sort(kept.begin(), kept.end());  // along the stretch
+  EXPECT_EQ(kept.size() + d.repeats.size(), line);
+  for (size_t i = 1; i < kept.size(); ++i)
+    EXPECT_GT(vcg::Distance(m.vert[size_t(kept[i])].cP(), m.vert[size_t(kept[i - 1])].cP()), merge);
+  for (const auto& r : d.repeats) {
+    EXPECT_TRUE(std::binary_search(kept.begin(), kept.end(), r.second));
+    EXPECT_LE(vcg::Distance(m.vert[size_t(r.first)].cP(), m.vert[size_t(r.second)].cP()), merge);
+  }
 }
 
 }  // namespace geodesic_domain_test

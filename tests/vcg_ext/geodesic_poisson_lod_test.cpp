@@ -1,4 +1,4 @@
-// vcg_ext/geodesic_poisson_lod.h: checks, visiting order (a mesh's border first), radius and count runs, regions, `within`, CoreDiagonal.
+// vcg_ext/geodesic_poisson_lod.h: checks, visiting order (a mesh's border first), radius and count runs, regions, `within`.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
@@ -351,33 +351,6 @@ TEST(GeodesicPoissonLod, MeshOutputTriangulatesTheSameSamples) {
     }
     for (int s = 0; s < k; ++s) EXPECT_EQ(mesh.position[size_t(s)], m.vert[size_t(mesh.vertIndex[size_t(s)])].cP());
   }
-}
-
-TEST(GeodesicPoissonLod, CoreDiagonalLeavesOutAFewStrayPoints) {
-  typedef std::vector<vcg::Point3<Scalar>> Points;
-  auto wholeDiagonal = [](const Points& pos) {
-    vcg::Box3<Scalar> box;
-    for (const auto& q : pos) box.Add(q);
-    return double(box.Diag());
-  };
-  // A 10 x 11 x 9 lattice on the unit cube (990 points) and 10 points far away:
-  // the 1st to 99th percentiles on each axis are the lattice's 0 and 1.
-  Points pos;
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 11; ++j)
-      for (int k = 0; k < 9; ++k) pos.emplace_back(Scalar(i / 9.0), Scalar(j / 10.0), Scalar(k / 8.0));
-  for (int s = 0; s < 10; ++s) pos.emplace_back(Scalar(1e6), Scalar(1e6 + s), Scalar(1e6));
-  EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pos), std::sqrt(3.0));
-  EXPECT_NEAR(Poisson::CoreDiagonal(pos, true), wholeDiagonal(pos), 1e-6 * wholeDiagonal(pos));
-  // Below 100 points, the whole box.
-  const Points few(pos.end() - 60, pos.end());
-  EXPECT_NEAR(Poisson::CoreDiagonal(few), wholeDiagonal(few), 1e-6 * wholeDiagonal(few));
-  // A core flat to one point (most points coincide) falls back to the whole box.
-  Points pile(500, vcg::Point3<Scalar>(0.5f, 0.5f, 0.5f));
-  pile.emplace_back(0, 0, 0);
-  pile.emplace_back(1, 2, 3);
-  pile.emplace_back(2, 0, 1);
-  EXPECT_DOUBLE_EQ(Poisson::CoreDiagonal(pile), std::sqrt(17.0));
 }
 
 TEST(GeodesicPoissonLod, ACountIsMetExactlyInEveryVisitingOrder) {

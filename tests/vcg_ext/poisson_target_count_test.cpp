@@ -183,7 +183,7 @@ TEST(TargetCount, APilotsFirstRadiusGivesACountNearTheTargetOnTheBunnyScan) {
     p.seed = 3;
     p.order = &order;
     p.pilotIds = &d.points.vertIndex;
-    p.initialRadius = vcg_ext::RadiusSearch::FirstRadius(LOD::CoreDiagonal(d.points.pos), p.sampleNum);
+    p.initialRadius = vcg_ext::RadiusSearch::FirstRadius(vcg_ext::CoreDiagonal(d.points.pos), p.sampleNum);
     double r = 0;
     size_t count = 0;
     d.WithSearch([&](auto& search) {

@@ -205,7 +205,7 @@ TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
       const std::vector<int> order = vcg_ext::PriorityOrder(whole.points.vertIndex, tp.seed);
       tp.order = &order;
       tp.pilotIds = &whole.points.vertIndex;
-      tp.initialRadius = vcg_ext::RadiusSearch::FirstRadius(Whole::CoreDiagonal(whole.points.pos), target);
+      tp.initialRadius = vcg_ext::RadiusSearch::FirstRadius(vcg_ext::CoreDiagonal(whole.points.pos), target);
       double expected = 0;
       whole.WithSearch([&](auto& search) { expected = vcg_ext::PoissonTargetCount::Pilot(whole.size(), search, tp); });
       ASSERT_GT(expected, 0);
