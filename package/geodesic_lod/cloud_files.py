@@ -36,8 +36,12 @@ class Source:
     offsets : tuple of 3 floats or None
         The offsets its X, Y, Z integers are written with: the first file's (LAS; None for other formats).
     shift : tuple of 3 ints
-        Steps of the scale added to its X, Y, Z integers to write them with the first file's offsets (a
-        survey's tiles each offset at its own corner).
+        Steps of the common scale added to its X, Y, Z integers to write them with the first file's offsets
+        (a survey's tiles each offset at its own corner).
+    scales : tuple of 3 floats or None
+        The scale its rebased integers are written at: the finest of all the files' on each axis (LAS).
+    factor : tuple of 3 ints
+        Its own scale over that one: its integers are multiplied by it before the shift.
     """
     path: str
     kind: str
@@ -48,10 +52,18 @@ class Source:
     signature: tuple = field(default_factory=tuple)
     offsets: Optional[tuple] = None
     shift: tuple = (0, 0, 0)
+    scales: Optional[tuple] = None
+    factor: tuple = (1, 1, 1)
 
     def scaling(self) -> Optional[tuple]:
         """(scales, offsets) its rebased integers are coordinates with (LAS; None for other formats)."""
-        return None if self.offsets is None else (self.signature[3], self.offsets)
+        return None if self.offsets is None else (self.scales, self.offsets)
+
+    def rebased(self, ints: np.ndarray) -> np.ndarray:
+        """Its X, Y, Z integers (n, 3) as they are written: at the common scale, from the first file's offsets."""
+        if self.factor == (1, 1, 1) and not any(self.shift):
+            return ints
+        return ints.astype(np.int64) * np.asarray(self.factor, np.int64) + np.asarray(self.shift, np.int64)
 
 
 def _las_signature(source: las_files.LasSource) -> tuple:
@@ -102,13 +114,13 @@ def _crs(path: str):
 def _difference(path: str, signature: tuple, first: Source) -> Optional[str]:
     """What keeps a file of this signature from being written with the first file's header and records,
     or None. A LAS file's CRS may be stored otherwise if it is the same (one survey's tiles re-saved by
-    other software: WKT 1 or 2, GeoTIFF keys counted otherwise); its offsets are settled by ``_shift``."""
-    if signature == first.signature:
+    other software: WKT 1 or 2, GeoTIFF keys counted otherwise); its scales by ``_common_scales``, its offsets
+    by ``_shift``."""
+    if signature[:3] + signature[4:] == first.signature[:3] + first.signature[4:]:
         return None
     if signature[0] != "las":
         return f"its fields differ from {first.path}'s"
-    for name, mine, theirs in zip(("point format", "extra dimensions", "scale factors"), signature[1:4],
-                                  first.signature[1:4]):
+    for name, mine, theirs in zip(("point format", "extra dimensions"), signature[1:3], first.signature[1:3]):
         if mine != theirs:
             verb = "differs" if name == "point format" else "differ"
             return f"its {name} {_shown(mine)} {verb} from {first.path}'s {_shown(theirs)}"
@@ -120,10 +132,28 @@ def _difference(path: str, signature: tuple, first: Source) -> Optional[str]:
     return f"its coordinate reference system{named[0]} differs from {first.path}'s{named[1]}"
 
 
-def _shift(path: str, offsets: tuple, first: Source) -> tuple:
+def _common_scales(paths: Sequence[str], surveys: Sequence[dict]) -> Optional[tuple]:
+    """The finest scale of the LAS files on each axis, of which every file's must be a whole multiple (None:
+    no LAS file)."""
+    las = [(path, s["signature"][3]) for path, s in zip(paths, surveys) if s["count"] and s.get("offsets")]
+    if not las:
+        return None
+    finest = np.min([scales for _, scales in las], axis=0)
+    for path, scales in las:
+        ratio = np.asarray(scales) / finest
+        if np.any(np.abs(ratio - np.round(ratio)) > 1e-6 * ratio):
+            owner = next(p for p, sc in las if np.array_equal(sc, finest)) if any(
+                np.array_equal(sc, finest) for _, sc in las) else None
+            finer = f"{owner}'s {_shown(tuple(float(v) for v in finest))}" if owner else \
+                _shown(tuple(float(v) for v in finest))
+            raise point_files.PointFileError(path, f"its scale factors {_shown(scales)} are not whole multiples of "
+                                                   f"the finest, {finer}: the files cannot be sampled as one cloud")
+    return tuple(float(v) for v in finest)
+
+
+def _shift(path: str, offsets: tuple, first: Source, scales: tuple) -> tuple:
     """Whole steps of the common scale from the first file's offsets to this file's, per axis."""
-    scales = np.asarray(first.signature[3])
-    steps = (np.asarray(offsets) - np.asarray(first.offsets)) / scales
+    steps = (np.asarray(offsets) - np.asarray(first.offsets)) / np.asarray(scales)
     whole = np.round(steps)
     if np.any(np.abs(steps - whole) > 1e-4):  # within a ten-thousandth of a step: the same grid, as doubles hold it
         raise point_files.PointFileError(path, f"its offsets {_shown(offsets)} are not a whole number of steps of "
@@ -133,22 +163,23 @@ def _shift(path: str, offsets: tuple, first: Source) -> tuple:
 
 
 def rebase(records: np.ndarray, s: Source, srcs: Sequence[Source]) -> None:
-    """Adds a LAS file's shift to its records' X, Y, Z (in place): the integers of the first file's offsets.
-    Refuses points that lie beyond those integers' range."""
-    for axis, d in zip("XYZ", s.shift):
-        if not d or not len(records):
+    """A LAS file's records' X, Y, Z (in place) as ``Source.rebased`` gives them: the integers of the common
+    scale and the first file's offsets. Refuses points that lie beyond those integers' range."""
+    for a, (axis, d, k) in enumerate(zip("XYZ", s.shift, s.factor)):
+        if (not d and k == 1) or not len(records):
             continue
-        v = records[axis].astype(np.int64) + d
+        v = records[axis].astype(np.int64) * k + d
         if v.min() < -2 ** 31 or v.max() >= 2 ** 31:
             raise point_files.PointFileError(
                 s.path, f"its points lie too far from {srcs[0].path}'s offsets to be written with its header at a "
-                        f"scale of {s.signature[3]['XYZ'.index(axis)]:g}: give files offset alike")
+                        f"scale of {s.scales[a]:g}: give files offset alike")
         records[axis] = v
 
 
 def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
     """The files in order with their first ids; refuses files that cannot be written together."""
     out, first = [], 0
+    common = _common_scales(paths, surveys)
     for path, s in zip(paths, surveys):
         if s["count"] == 0:
             continue
@@ -156,9 +187,11 @@ def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
         if problem:
             raise point_files.PointFileError(path, f"{problem}: the files cannot be sampled as one cloud")
         offsets = s.get("offsets")
-        shift = _shift(path, offsets, out[0]) if out and offsets is not None else (0, 0, 0)
+        shift = _shift(path, offsets, out[0], common) if out and offsets is not None else (0, 0, 0)
+        factor = tuple(int(round(v / c)) for v, c in zip(s["signature"][3], common)) if offsets is not None \
+            else (1, 1, 1)
         out.append(Source(path, s["kind"], s["count"], first, s["lo"], s["hi"], s["signature"],
-                          out[0].offsets if out else offsets, shift))
+                          out[0].offsets if out else offsets, shift, common if offsets is not None else None, factor))
         first += s["count"]
     if not out:
         raise point_files.PointFileError(paths[0] if paths else "(no input)", arrays.too_few_points(0))
@@ -190,9 +223,7 @@ def chunks(s: Source):
     """(first row, xyz, normals) of a file, a chunk at a time for LAS/LAZ."""
     if s.kind == "las":
         for start, chunk in las_files.chunks(s.path):
-            ints = las_files.integers(chunk.array)
-            if any(s.shift):  # as rebase gives them, without writing to the records
-                ints = ints.astype(np.int64) + np.asarray(s.shift)
+            ints = s.rebased(las_files.integers(chunk.array))  # as rebase gives them, the records untouched
             yield start, las_files.scaled(ints, *s.scaling()), None
     else:
         src = point_files.read(s.path)
@@ -201,12 +232,20 @@ def chunks(s: Source):
 
 def records_source(srcs: Sequence[Source], records: np.ndarray):
     """Records of the files (a structured array) as a source to write them with."""
-    first = las_files.open_source(srcs[0].path) if srcs[0].kind == "las" else point_files.read(srcs[0].path).source
+    first = output_source(srcs) if srcs[0].kind == "las" else point_files.read(srcs[0].path).source
     if srcs[0].kind == "las":
         import laspy
         rows = laspy.PackedPointRecord(records, first.header.point_format)
         return point_files.PointFile(pathlib.Path(srcs[0].path), "las", None, None, None, rows, first)
     return point_files.PointFile(pathlib.Path(srcs[0].path), srcs[0].kind, None, None, None, records, first)
+
+
+def output_source(srcs: Sequence[Source]) -> las_files.LasSource:
+    """The first LAS file's header and records, its scales the files' common ones: what the output is written
+    with."""
+    first = las_files.open_source(srcs[0].path)
+    first.header.scales = np.asarray(srcs[0].scales, dtype=np.float64)
+    return first
 
 
 def expand_inputs(inputs: Sequence[str]) -> list:

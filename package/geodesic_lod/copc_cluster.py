@@ -23,7 +23,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from . import arrays, cloud_files, las_files, partition, point_files, stop_signals, tiles, worker_check
+from . import arrays, cloud_files, partition, point_files, stop_signals, tiles, worker_check
 from . import tile_points as tile_points_
 from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
@@ -250,7 +250,7 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         shallow = [np.concatenate([p["shallow"][i] for p in parts]) for i in range(4)]
         by_id = np.argsort(shallow[3], kind="stable")  # a node keeps its records in id order
         order, s_keys, s_counts = nodes_of(octree, shallow[1][by_id], shallow[2][by_id])
-        first = las_files.open_source(srcs[0].path)
+        first = cloud_files.output_source(srcs)
         fmt = copc_format(first.header.point_format)
         data, sizes = compress_nodes(shallow[0][by_id][order], s_counts, fmt)
 

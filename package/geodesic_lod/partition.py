@@ -125,7 +125,7 @@ def split(srcs: Sequence[cloud_files.Source], piece: tuple, number: int, grid: G
     if s.kind == "las":
         parts = [chunk.array for _, chunk in las_files.chunks(s.path, first=first, stop=stop, threads=threads)]
         records = parts[0] if len(parts) == 1 else np.concatenate(parts)  # one chunk: no copy
-        cloud_files.rebase(records, s, srcs)  # the integers of the first file's offsets, as they are written
+        cloud_files.rebase(records, s, srcs)  # the integers of the common scale and first offsets, as written
         scaling = Scaling(*s.scaling())
         kept = las_files.integers(records)
         xyz, normals = scaling.apply(kept), None
@@ -171,8 +171,8 @@ class Scaling:
     Attributes
     ----------
     scales, offsets : tuple of 3 floats
-        The first file's, per axis: every file's integers are rebased to its offsets
-        (``cloud_files.Source.shift``).
+        The files' common (finest) scales and the first file's offsets, per axis: every file's integers are
+        rebased to them (``cloud_files.Source.rebased``).
     """
     scales: tuple
     offsets: tuple

@@ -19,6 +19,7 @@ import pytest
 from dask.distributed import Client
 
 import geodesic_lod as gl
+from geodesic_lod import copc_cluster
 from geodesic_lod import distributed as dist
 from geodesic_lod import point_files as pf
 from geodesic_lod import worker_check
@@ -285,11 +286,12 @@ def test_the_command_on_a_local_cluster(cloud, tmp_path):
 
 def write_with_offsets(folder, p, scale, offsets):
     """p split into one LAZ file per offset, each quantized at its own offsets (a survey's tiles, each
-    offset at its own corner); each record's gps_time is its row in p."""
+    offset at its own corner) and at its scale (`scale`, or one per file); each record's gps_time is its row
+    in p."""
     folder.mkdir(exist_ok=True)
     for k, rows in enumerate(np.array_split(np.arange(len(p)), len(offsets))):
         header = laspy.LasHeader(point_format=6, version="1.4")
-        header.scales, header.offsets = [scale] * 3, list(offsets[k])
+        header.scales, header.offsets = [scale[k] if isinstance(scale, list) else scale] * 3, list(offsets[k])
         las = laspy.LasData(header)
         las.x, las.y, las.z = p[rows, 0], p[rows, 1], p[rows, 2]
         las.gps_time, las.intensity = rows.astype(float), rows % 4096
@@ -325,6 +327,28 @@ def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_p
     dist.lod_files([str(tmp_path / "b")], tmp_path / "lod_b", radius=RADIUS, client=client, threads=1)
     _, xyz, ids = tiles_read(tmp_path / "lod_b")
     assert len(ids) > 100 and np.abs(xyz - points[ids]).max() < 1e-6  # decimal offsets: to within a rounding
+
+
+def test_tiles_of_one_survey_each_at_its_own_scale_are_one_cloud(client, tmp_path):
+    """Scale factors that are whole multiples of the finest (tiles written by different software, 0.01 and
+    0.001): the records are written at the finest scale with the first file's offsets, their coordinates
+    those of the input, and the LOD that of the points together; as a COPC file too."""
+    p = bumpy_sphere(6000) * 10
+    steps = [2.0 ** -6, 2.0 ** -9, 2.0 ** -7]  # exact in binary, the finest not the first file's
+    parts = write_with_offsets(tmp_path / "a", p, steps, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
+    points = np.concatenate([f.xyz for f in parts])
+    dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
+                   threads=1)
+    index, xyz, ids = tiles_read(tmp_path / "lod")
+    assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
+    assert np.array_equal(xyz, points[ids])
+    header = laspy.read(str(tmp_path / "lod" / index["tiles"][0]["file"])).header
+    assert header.scales.tolist() == [2.0 ** -9] * 3 and header.offsets.tolist() == [0.0] * 3
+    copc = tmp_path / "lod.copc.laz"
+    copc_cluster.copc_file([str(tmp_path / "a")], copc, tile_points=2500, client=client, threads=1)
+    got = laspy.read(str(copc))
+    assert got.header.scales.tolist() == [2.0 ** -9] * 3
+    assert np.array_equal(got.xyz[np.argsort(got.gps_time)], points[np.sort(got.gps_time.astype(np.int64))])
 
 
 def test_points_given_again_are_one_point_on_a_cluster_as_on_one_machine(client, tmp_path):
@@ -375,10 +399,11 @@ def test_points_a_rounding_apart_are_one_point_on_a_cluster_as_on_one_machine(cl
 def test_files_that_cannot_go_together_are_named(client, tmp_path):
     p = bumpy_sphere(3000)
     a = write_parts(tmp_path / "a", p, parts=2)
-    write_parts(tmp_path / "b", p, scales=(1e-3,) * 3, parts=1)
+    write_parts(tmp_path / "b", p, scales=(2.5e-4,) * 3, parts=1)
     os.replace(tmp_path / "b" / "part0.laz", a / "part9.laz")
-    with pytest.raises(pf.PointFileError, match=r"part9.laz: its scale factors \(0.001, 0.001, 0.001\) differ "
-                                                r"from .*part0.laz's \(0.0001, 0.0001, 0.0001\)"):
+    with pytest.raises(pf.PointFileError, match=r"part9.laz: its scale factors \(0.00025, 0.00025, 0.00025\) are "
+                                                r"not whole multiples of the finest, .*part0.laz's \(0.0001, 0.0001, "
+                                                r"0.0001\)"):
         dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
     write_with_offsets(tmp_path / "c", p, 1e-4, [(0.00005, 0.0, 0.0)])
     os.replace(tmp_path / "c" / "part0.laz", a / "part9.laz")
