@@ -308,18 +308,26 @@ def tiles_read(out):
     return index, xyz[order], ids[order]
 
 
-def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_path):
-    """Offsets a whole number of steps of the common scale apart: the records are written with the first
-    file's header, their coordinates those of the input, and the LOD that of the points together."""
+def exact_one_cloud(client, tmp_path, scale):
+    """Bumpy-sphere tiles offset at their own corners and quantized at `scale` (one per file, or one for all)
+    in tmp_path/a, their LOD in tmp_path/lod: the LOD that of the points together, its coordinates theirs.
+    Returns (the points, the LOD's index, coordinates and ids)."""
     p = bumpy_sphere(6000) * 10
-    step = 2.0 ** -10  # coordinates exact in binary: the same cloud however each file is offset
-    parts = write_with_offsets(tmp_path / "a", p, step, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
+    parts = write_with_offsets(tmp_path / "a", p, scale, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
     points = np.concatenate([f.xyz for f in parts])
     dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
                    threads=1)
     index, xyz, ids = tiles_read(tmp_path / "lod")
     assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
     assert np.array_equal(xyz, points[ids])
+    return points, index, xyz, ids
+
+
+def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_path):
+    """Offsets a whole number of steps of the common scale apart: the records are written with the first
+    file's header, their coordinates those of the input, and the LOD that of the points together."""
+    p = bumpy_sphere(6000) * 10
+    _, index, xyz, _ = exact_one_cloud(client, tmp_path, 2.0 ** -10)  # exact in binary however each is offset
     assert index["bounds"] == [xyz.min(axis=0).tolist(), xyz.max(axis=0).tolist()]
 
     parts = write_with_offsets(tmp_path / "b", p, 0.01, [(0.0, 0.0, 0.0), (1000.37, -2000.11, 3.05)])
@@ -333,15 +341,8 @@ def test_tiles_of_one_survey_each_at_its_own_scale_are_one_cloud(client, tmp_pat
     """Scale factors that are whole multiples of the finest (tiles written by different software, 0.01 and
     0.001): the records are written at the finest scale with the first file's offsets, their coordinates
     those of the input, and the LOD that of the points together; as a COPC file too."""
-    p = bumpy_sphere(6000) * 10
-    steps = [2.0 ** -6, 2.0 ** -9, 2.0 ** -7]  # exact in binary, the finest not the first file's
-    parts = write_with_offsets(tmp_path / "a", p, steps, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
-    points = np.concatenate([f.xyz for f in parts])
-    dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
-                   threads=1)
-    index, xyz, ids = tiles_read(tmp_path / "lod")
-    assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
-    assert np.array_equal(xyz, points[ids])
+    steps = [2.0 ** -6, 2.0 ** -9, 2.0 ** -7]  # the finest not the first file's
+    points, index, _, _ = exact_one_cloud(client, tmp_path, steps)
     header = laspy.read(str(tmp_path / "lod" / index["tiles"][0]["file"])).header
     assert header.scales.tolist() == [2.0 ** -9] * 3 and header.offsets.tolist() == [0.0] * 3
     copc = tmp_path / "lod.copc.laz"
