@@ -66,7 +66,8 @@ class GeodesicDomain {
     double cleanExponent = -1;
     /// A cloud's points within this distance of an earlier one are one point
     /// with it (NearPoints) where a caller measured it (a cluster, on the
-    /// whole cloud); < 0: MergeDistanceOf the subsample measured here.
+    /// whole cloud, on the points one machine measures it on); < 0:
+    /// NearPoints::DistanceOf the subsample measured here.
     double mergeDistance = -1;
   };
 
@@ -175,7 +176,7 @@ class GeodesicDomain {
     if (!sub.empty()) d.cellSide = CellGrid<Scalar>::SurfaceCellSideOf(sub, ps.size(), 1);
     d.metric = ChosenMetric(p.metric, d.Scatters());
     if (!d.hasFaces) d.cleanExponent = measureClean ? CleanSurface<Scalar>::OfSubsample(sub) : p.cleanExponent;
-    const double merge = measureMerge ? MergeDistanceOf(sub) : std::max(p.mergeDistance, 0.0);  // 0: copies alone
+    const double merge = measureMerge ? NearPoints<Scalar>::DistanceOf(sub) : std::max(p.mergeDistance, 0.0);  // 0: copies alone
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a
@@ -286,12 +287,6 @@ class GeodesicDomain {
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
-  /// How near a cloud's point must lie to an earlier one to be one point with
-  /// it, from the cloud's subsample (BallShare::SubsampleById; a cluster's
-  /// tiles take the value it measured on the same points).
-  static double MergeDistanceOf(const std::vector<Coord>& sub) {
-    return NearPoints<Scalar>::DistanceOf(sub);
-  }
   /// BallShare::CellSide of the points as given (before repeats were
   /// dropped): the spacing key orders scale their balls by.
   double CellSide() const {
@@ -315,7 +310,6 @@ class GeodesicDomain {
   /// The positions of the points as given: the points', then each repeat's.
   std::vector<Coord> GivenPositions() const {
     std::vector<Coord> pos = points.pos;
-    const std::vector<int> point = PointOfVertex(vertexCount);
     pos.insert(pos.end(), repeatPos.begin(), repeatPos.end());
     return pos;
   }

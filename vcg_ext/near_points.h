@@ -20,16 +20,18 @@ namespace vcg_ext {
 template <class Scalar>
 struct NearPoints {
   typedef vcg::Point3<Scalar> Coord;
-  /// Points closer than this share of the cloud's CoreDiagonal are one point:
-  /// far below the spacing of any scan (a billion points on a square are a
-  /// thirty-thousandth of its side apart), above the few roundings by which
-  /// a position written twice, once through floats, may differ.
+  /// Points closer than this share of the cloud's size (MiddleDiagonal: the
+  /// box of its middle half, which stray points far away do not stretch) are
+  /// one point: far below the spacing of any scan (a billion points on a
+  /// square are a thirty-thousandth of its side apart), above the few
+  /// roundings by which a position written twice, once through floats, may
+  /// differ.
   static constexpr double kDiagonalShare = 1e-6;
 
   /// The merge distance of a cloud, from its subsample (BallShare::
   /// SubsampleById, or CellGrid's subsample in id order): a cluster measures
   /// it on the same points.
-  static double DistanceOf(const std::vector<Coord>& sub) { return kDiagonalShare * CoreDiagonal(sub); }
+  static double DistanceOf(const std::vector<Coord>& sub) { return kDiagonalShare * MiddleDiagonal(sub); }
 
   /// Per point of `pos`, the point it is one with, or -1 for a point kept:
   /// the points `take` lists (the others are kept), in that order, each one

@@ -297,8 +297,10 @@ inline nb::ndarray<nb::numpy, uint64_t> CellSideSubsample(uint64_t n) {
 
 // SurfaceCellSide(pos, 1) of n points from the points of CellSideSubsample(n), in order.
 // The distance within which the points' later ones are one point with an earlier one, from their
-// CellSideSubsample(n), in order (GeodesicDomain::MergeDistanceOf).
-inline double MergeDistanceOf(const Array2& sub) { return Domain::MergeDistanceOf(ReadPoints(sub, nullptr).pos); }
+// CellSideSubsample(n), in order.
+inline double MergeDistanceOf(const Array2& sub) {
+  return vcg_ext::NearPoints<double>::DistanceOf(ReadPoints(sub, nullptr).pos);
+}
 
 inline double CellSideOf(const Array2& sub, uint64_t n) {
   const size_t m = sub.shape(0);

@@ -378,13 +378,15 @@ def test_points_given_again_are_one_point_on_a_cluster_as_on_one_machine(client,
 
 
 def test_points_a_rounding_apart_are_one_point_on_a_cluster_as_on_one_machine(client, tmp_path):
-    """Copies moved by 3e-5 (below a millionth of the cloud's size, 3.4e-5, and above a tile's; 11 to 15 at
-    a third of the positions, in later files): one point with the first on the cluster's tiles as on one
-    machine: the tiles take the merge distance of the whole cloud."""
+    """Copies moved by 0.8 of the whole cloud's merge distance (a millionth of its size; a tile's is smaller),
+    11 to 15 at a third of the positions, in later files: one point with the first on the cluster's tiles as
+    on one machine: the tiles take the merge distance of the whole cloud."""
     p = bumpy_sphere(5000) * 10
     again = np.repeat(np.arange(0, len(p), 3), 10 + np.arange(0, len(p), 3) % 5)
     away = np.random.default_rng(5).normal(size=(len(again), 3))
-    moved = p[again] + 3e-5 * away / np.linalg.norm(away, axis=1)[:, None]
+    whole = np.vstack([p, p[again]])
+    merge = gl._core.merge_distance(np.ascontiguousarray(whole[gl._core.cell_side_subsample(len(whole))]))
+    moved = p[again] + 0.8 * merge * away / np.linalg.norm(away, axis=1)[:, None]
     folder = write_parts(tmp_path / "parts", np.vstack([p, moved]), scales=(1e-6,) * 3)
     records = np.concatenate([laspy.read(str(folder / f"part{k}.laz")).points.array for k in range(PARTS)])
     points = np.column_stack([records["X"], records["Y"], records["Z"]]) * 1e-6

@@ -1,5 +1,6 @@
 // vcg_ext/core_diagonal.h: the diagonal of the 1st to 99th percentiles, the
-// whole box below 100 points or where that core is flat.
+// whole box below 100 points or where that core is flat; of the middle half,
+// which a quarter of the points anywhere else on a side leave alone.
 #include <gtest/gtest.h>
 #include <cmath>
 #include <vector>
@@ -34,6 +35,26 @@ TEST(CoreDiagonal, LeavesOutAFewStrayPoints) {
   pile.emplace_back(1, 2, 3);
   pile.emplace_back(2, 0, 1);
   EXPECT_DOUBLE_EQ(vcg_ext::CoreDiagonal(pile), std::sqrt(17.0));
+}
+
+TEST(CoreDiagonal, TheMiddleHalfLeavesOutAQuarterOnEachSide) {
+  typedef std::vector<vcg::Point3d> Points;
+  // 1000 points spread evenly on [0, 4]^3's diagonal, then 40% more far away on both sides.
+  Points pos;
+  for (int i = 0; i < 1000; ++i) pos.emplace_back(i * 0.004, i * 0.004, i * 0.004);
+  const double middle = vcg_ext::MiddleDiagonal(pos);
+  EXPECT_NEAR(middle, 2 * std::sqrt(3.0), 0.01);
+  for (int i = 0; i < 200; ++i) {
+    pos.emplace_back(-1e6 - i, 0, 0);
+    pos.emplace_back(1e6 + i, 5, 5);
+  }
+  EXPECT_LT(vcg_ext::MiddleDiagonal(pos), 2 * middle);
+  EXPECT_GT(vcg_ext::CoreDiagonal(pos), 1e6);
+  // Flat: the core box.
+  Points pile(500, vcg::Point3d(1, 1, 1));
+  pile.emplace_back(0, 0, 0);
+  pile.emplace_back(1, 2, 3);
+  EXPECT_DOUBLE_EQ(vcg_ext::MiddleDiagonal(pile), vcg_ext::CoreDiagonal(pile));
 }
 
 }  // namespace core_diagonal_test

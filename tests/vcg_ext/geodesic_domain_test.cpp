@@ -66,7 +66,7 @@ double MergeDistance(const test::TMesh& m) {
   const std::vector<test::P3> pos = test::Positions(m);
   std::vector<int> id(pos.size());
   for (size_t i = 0; i < id.size(); ++i) id[i] = int(i);
-  return Domain::MergeDistanceOf(vcg_ext::BallShare<float>::SubsampleById(pos, id));
+  return vcg_ext::NearPoints<float>::DistanceOf(vcg_ext::BallShare<float>::SubsampleById(pos, id));
 }
 
 // The InputError `f` throws: its field and problem ("no error" when none).

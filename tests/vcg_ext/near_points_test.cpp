@@ -1,7 +1,8 @@
 // vcg_ext/near_points.h: the points kept are further apart than the merge
 // distance, every other lies within it of the earliest kept point it is
 // near, across the faces of the hash's cells too; at distance 0 only equal
-// positions are one; the merge distance scales with the cloud.
+// positions are one; the merge distance scales with the cloud, not with
+// stray points far from it.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
@@ -78,6 +79,12 @@ TEST(NearPoints, TheDistanceIsAShareOfTheCloudsSize) {
   EXPECT_NEAR(Near::DistanceOf(pos), 1000 * d, 1e-9 * d * 1000);
   EXPECT_GT(d, 0);
   EXPECT_LT(d, 1e-3);
+  // Stray points far away (a tenth of them, spread a million times wider) do not stretch it: a cloud
+  // merged at their scale would lose its own points.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1e9, 1e9);
+  for (int i = 0; i < 100; ++i) pos.emplace_back(u(rng), u(rng), u(rng));
+  EXPECT_LT(Near::DistanceOf(pos), 1.5 * 1000 * d);
 }
 
 }  // namespace near_points_test
