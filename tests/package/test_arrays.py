@@ -199,6 +199,13 @@ def test_points_a_rounding_apart_are_one_point_with_the_first(cloud):
     assert gl.poisson_lod(q, count=300).indices.max() < len(cloud)
 
 
+def test_stray_points_far_away_merge_no_points_of_the_cloud(cloud):
+    """A twentieth of the points strewn ten thousand times wider than the cloud: the distance within which
+    points are one is the cloud's, and none of its points is one with another."""
+    far = np.random.default_rng(1).uniform(-1e4, 1e4, (len(cloud) // 20, 3))
+    assert gl.poisson_lod(np.vstack([cloud, far]), radius=0.12, visit_order="random").repeated == 0
+
+
 @pytest.mark.parametrize("rate, warned", [(0.1, True), ("0.5", True), ("0.5%", False), (1, False)])
 def test_a_rate_below_one_is_a_percentage_and_warned_of_unless_it_says_so(cloud, rate, warned):
     """Rates are percentages: 0.1 asks for a thousandth, though a numpy user may mean a tenth."""
