@@ -138,14 +138,13 @@ def _common_scales(paths: Sequence[str], surveys: Sequence[dict]) -> Optional[tu
     las = [(path, s["signature"][3]) for path, s in zip(paths, surveys) if s["count"] and s.get("offsets")]
     if not las:
         return None
-    finest = np.min([scales for _, scales in las], axis=0)
+    finest = np.array([min(axis, key=abs) for axis in zip(*(scales for _, scales in las))])
     for path, scales in las:
         ratio = np.asarray(scales) / finest
-        if np.any(np.abs(ratio - np.round(ratio)) > 1e-6 * ratio):
-            owner = next(p for p, sc in las if np.array_equal(sc, finest)) if any(
-                np.array_equal(sc, finest) for _, sc in las) else None
-            finer = f"{owner}'s {_shown(tuple(float(v) for v in finest))}" if owner else \
-                _shown(tuple(float(v) for v in finest))
+        if np.any(np.abs(ratio - np.round(ratio)) > 1e-6 * np.abs(ratio)):
+            owner = next((p for p, sc in las if np.array_equal(sc, finest)), None)  # none where axes differ
+            shown = _shown(tuple(float(v) for v in finest))
+            finer = f"{owner}'s {shown}" if owner else shown
             raise point_files.PointFileError(path, f"its scale factors {_shown(scales)} are not whole multiples of "
                                                    f"the finest, {finer}: the files cannot be sampled as one cloud")
     return tuple(float(v) for v in finest)
