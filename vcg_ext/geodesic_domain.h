@@ -66,8 +66,8 @@ class GeodesicDomain {
     double cleanExponent = -1;
     /// A cloud's points within this distance of an earlier one are one point
     /// with it (NearPoints) where a caller measured it (a cluster, on the
-    /// whole cloud, on the points one machine measures it on); < 0:
-    /// NearPoints::DistanceOf the subsample measured here.
+    /// whole cloud, on the points one machine measures it on); < 0 (or not
+    /// finite): NearPoints::DistanceOf the subsample measured here.
     double mergeDistance = -1;
   };
 
@@ -167,7 +167,7 @@ class GeodesicDomain {
     }
     // Both measures read one subsample, taken once (O(n)).
     const bool measureClean = !d.hasFaces && !(p.cleanExponent >= 0);
-    const bool measureMerge = !d.hasFaces && !(p.mergeDistance >= 0);
+    const bool measureMerge = !d.hasFaces && !(p.mergeDistance >= 0 && std::isfinite(p.mergeDistance));
     const std::vector<Coord> sub = !(p.scatterShare >= 0) || measureClean || measureMerge
                                        ? BallShare<Scalar>::SubsampleById(ps.pos, ps.vertIndex)
                                        : std::vector<Coord>();
@@ -176,7 +176,7 @@ class GeodesicDomain {
     if (!sub.empty()) d.cellSide = CellGrid<Scalar>::SurfaceCellSideOf(sub, ps.size(), 1);
     d.metric = ChosenMetric(p.metric, d.Scatters());
     if (!d.hasFaces) d.cleanExponent = measureClean ? CleanSurface<Scalar>::OfSubsample(sub) : p.cleanExponent;
-    const double merge = measureMerge ? NearPoints<Scalar>::DistanceOf(sub) : std::max(p.mergeDistance, 0.0);  // 0: copies alone
+    const double merge = measureMerge ? NearPoints<Scalar>::DistanceOf(sub) : d.hasFaces ? 0 : p.mergeDistance;  // 0: copies alone
     d.triangles = std::move(tris.tri);
     d.points = std::move(ps);
     // Input normals that will not be kept need no copy through the build (a

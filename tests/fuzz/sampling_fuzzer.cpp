@@ -103,7 +103,7 @@ void Check(const vcg_ext::LodResult<float>& r, const test::TMesh& m) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider f(data, size);
   test::TMesh m;
-  // free, collinear, coincident runs, grid, a noisy surface of over a thousand points
+  // free, collinear, coincident or near runs, grid, a noisy surface of over a thousand points
   const int layout = f.ConsumeIntegralInRange<int>(0, 4);
   const int n = layout == 4 ? f.ConsumeIntegralInRange<int>(1100, 3000) : f.ConsumeIntegralInRange<int>(0, 200);
   std::mt19937 rng(f.ConsumeIntegral<uint32_t>());
@@ -115,7 +115,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const float x = u(rng), y = u(rng);
       p = test::P3(x, y, 0.1f * std::sin(9 * x) * std::cos(7 * y) + 0.003f * u(rng));
     } else if (layout == 1) p = test::P3(Coordinate(f), 0, 0);
-    else if (layout == 2 && i > 0 && f.ConsumeBool()) p = m.vert[i - 1].P();
+    else if (layout == 2 && i > 0 && f.ConsumeBool())  // a copy, or one a rounding away
+      p = m.vert[i - 1].P() + (f.ConsumeBool() ? test::P3(0, 0, 0) : test::P3(u(rng), u(rng), u(rng)) * 1e-7f);
     else if (layout == 3) p = test::P3(float(i % 15), float(i / 15), f.ConsumeBool() ? Coordinate(f) : 0.f);
     else p = test::P3(Coordinate(f), Coordinate(f), Coordinate(f));
     m.vert[i].N() = f.ConsumeBool() ? test::P3(Coordinate(f), Coordinate(f), Coordinate(f)) : test::P3(0, 0, 0);
@@ -135,6 +136,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   d.curvatureExponent = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0.01, 4);
   d.adaptivity = f.ConsumeBool() ? Special(f) : f.ConsumeFloatingPointInRange<double>(0, 50);
   d.useInputNormals = f.ConsumeBool();
+  if (f.ConsumeBool()) d.mergeDistance = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 0.1);
   const bool meshOutput = f.ConsumeBool();
   const uint64_t seed = f.ConsumeIntegral<uint64_t>();
   const double radius = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
