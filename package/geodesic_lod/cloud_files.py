@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import os
 import pathlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional, Sequence
 
 import numpy as np
@@ -34,10 +34,11 @@ class Source:
         What must match across files to write them together (a LAS file's point format, extra dimensions,
         scales and CRS; other formats' fields).
     offsets : tuple of 3 floats or None
-        The offsets its X, Y, Z integers are written with: the first file's (LAS; None for other formats).
+        The offsets its X, Y, Z integers are written with: the first file's, or on an axis where the files
+        lie too far apart for them, whole steps from them to the files' middle (LAS; None for other formats).
     shift : tuple of 3 ints
-        Steps of the common scale added to its X, Y, Z integers to write them with the first file's offsets
-        (a survey's tiles each offset at its own corner).
+        Steps of the common scale added to its X, Y, Z integers to write them with those offsets (a
+        survey's tiles each offset at its own corner).
     scales : tuple of 3 floats or None
         The scale its rebased integers are written at: the finest of all the files' on each axis (LAS).
     factor : tuple of 3 ints
@@ -60,7 +61,7 @@ class Source:
         return None if self.offsets is None else (self.scales, self.offsets)
 
     def rebased(self, ints: np.ndarray) -> np.ndarray:
-        """Its X, Y, Z integers (n, 3) as they are written: at the common scale, from the first file's offsets."""
+        """Its X, Y, Z integers (n, 3) as they are written: at the common scale, from the output's offsets."""
         if self.factor == (1, 1, 1) and not any(self.shift):
             return ints
         return ints.astype(np.int64) * np.asarray(self.factor, np.int64) + np.asarray(self.shift, np.int64)
@@ -163,15 +164,15 @@ def _shift(path: str, offsets: tuple, first: Source, scales: tuple) -> tuple:
 
 def rebase(records: np.ndarray, s: Source, srcs: Sequence[Source]) -> None:
     """A LAS file's records' X, Y, Z (in place) as ``Source.rebased`` gives them: the integers of the common
-    scale and the first file's offsets. Refuses points that lie beyond those integers' range."""
+    scale and the output's offsets. Refuses points that lie beyond those integers' range."""
     for a, (axis, d, k) in enumerate(zip("XYZ", s.shift, s.factor)):
         if (not d and k == 1) or not len(records):
             continue
         v = records[axis].astype(np.int64) * k + d
         if v.min() < -2 ** 31 or v.max() >= 2 ** 31:
             raise point_files.PointFileError(
-                s.path, f"its points lie too far from {srcs[0].path}'s offsets to be written with its header at a "
-                        f"scale of {s.scales[a]:g}: give files offset alike")
+                s.path, f"its points lie too far from the other files' to be written as 32-bit integers at a scale "
+                        f"of {s.scales[a]:g} with {srcs[0].path}'s header")
         records[axis] = v
 
 
@@ -196,7 +197,40 @@ def sources(paths: Sequence[str], surveys: Sequence[dict]) -> list:
         raise point_files.PointFileError(paths[0] if paths else "(no input)", arrays.too_few_points(0))
     if first >= 2 ** 63:
         raise point_files.PointFileError(paths[0], "too many points for 63-bit ids")
-    return out
+    return _centred(out) if out[0].offsets is not None else out
+
+
+INT32_ROOM = 0.99 * 2 ** 31  # of a LAS integer's range, the rest for points a little beyond their header's bounds
+
+
+def _centred(srcs: list) -> list:
+    """The files with the output's offsets moved, on each axis where the files' bounds lie too far from the
+    first file's offsets for 32-bit integers at the common scale, by whole steps to the middle of the bounds
+    (files offset far apart, or a coarse file's integers multiplied to a fine scale); elsewhere the first
+    file's."""
+    scales, offsets = np.asarray(srcs[0].scales), np.asarray(srcs[0].offsets)
+
+    def steps(files):  # the lowest and highest integers of their bounds, per axis
+        ends = (np.stack([np.min([s.lo for s in files], axis=0), np.max([s.hi for s in files], axis=0)])
+                - offsets) / scales
+        return ends.min(axis=0), ends.max(axis=0)  # a negative scale counts down
+    rebased = [s for s in srcs if any(s.shift) or s.factor != (1, 1, 1)]  # the others' integers stay theirs
+    if not rebased:
+        return srcs
+    lo, hi = steps(rebased)
+    over = (lo < -INT32_ROOM) | (hi >= INT32_ROOM)
+    if not over.any():
+        return srcs
+    lo, hi = steps(srcs)
+    move = np.where(over, np.round((lo + hi) / 2), 0).astype(np.int64)
+    if np.any(over & (hi - lo >= 2 * INT32_ROOM)):  # no offsets hold them all: name the farthest file
+        centre = (srcs[0].lo + srcs[0].hi) / 2
+        far = max(srcs[1:] or srcs, key=lambda s: np.max(np.abs(np.stack([s.lo, s.hi]) - centre) / np.abs(scales)))
+        axis = int(np.argmax(hi - lo))
+        raise point_files.PointFileError(far.path, f"its points lie too far from {srcs[0].path}'s to be written as "
+                                                   f"32-bit integers at a scale of {scales[axis]:g}")
+    moved = tuple(float(v) for v in offsets + move * scales)
+    return [replace(s, offsets=moved, shift=tuple(int(d - m) for d, m in zip(s.shift, move))) for s in srcs]
 
 
 def _overlapping(srcs, lo, hi):
@@ -240,10 +274,11 @@ def records_source(srcs: Sequence[Source], records: np.ndarray):
 
 
 def output_source(srcs: Sequence[Source]) -> las_files.LasSource:
-    """The first LAS file's header and records, its scales the files' common ones: what the output is written
-    with."""
+    """The first LAS file's header and records, its scales the files' common ones and its offsets the output's
+    (``_centred``): what the output is written with."""
     first = las_files.open_source(srcs[0].path)
     first.header.scales = np.asarray(srcs[0].scales, dtype=np.float64)
+    first.header.offsets = np.asarray(srcs[0].offsets, dtype=np.float64)
     return first
 
 

@@ -337,6 +337,23 @@ def test_tiles_of_one_survey_each_at_its_own_offsets_are_one_cloud(client, tmp_p
     assert len(ids) > 100 and np.abs(xyz - points[ids]).max() < 1e-6  # decimal offsets: to within a rounding
 
 
+def test_tiles_too_far_apart_for_the_first_files_offsets_are_written_from_their_middle(client, tmp_path):
+    """Two tiles 300 km apart at a scale of 0.0001 (3e9 steps: beyond a 32-bit integer from the first file's
+    offsets): the output's X offset moves by whole steps to their middle; Y and Z keep the first file's; the
+    LOD is that of the points together, their coordinates the input's."""
+    p = bumpy_sphere(6000) * 10
+    parts = write_with_offsets(tmp_path / "a", np.vstack([p[:3000], p[3000:] + [3e5, 0, 0]]), 2.0 ** -13,
+                               [(0.0, 1.0, 2.0), (3e5, 1.0, 2.0)])
+    points = np.concatenate([f.xyz for f in parts])
+    dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
+                   threads=1)
+    index, xyz, ids = tiles_read(tmp_path / "lod")
+    assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
+    assert np.array_equal(xyz, points[ids])
+    offsets = laspy.read(str(tmp_path / "lod" / index["tiles"][0]["file"])).header.offsets.tolist()
+    assert abs(offsets[0] - 1.5e5) < 20 and offsets[1:] == [1.0, 2.0]
+
+
 def test_tiles_of_one_survey_each_at_its_own_scale_are_one_cloud(client, tmp_path):
     """Scale factors that are whole multiples of the finest (tiles written by different software, 0.01 and
     0.001): the records are written at the finest scale with the first file's offsets, their coordinates
@@ -413,10 +430,10 @@ def test_files_that_cannot_go_together_are_named(client, tmp_path):
     with pytest.raises(pf.PointFileError, match=r"part9.laz: its offsets \(5e-05, 0, 0\) are not a whole number "
                                                 r"of steps of the scale from .*part0.laz's \(0, 0, 0\)"):
         dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
-    write_with_offsets(tmp_path / "d", p + [3e5, 0, 0], 1e-4, [(3e5, 0.0, 0.0)])  # X beyond 2^31 at part0's
+    write_with_offsets(tmp_path / "d", p + [5e5, 0, 0], 1e-4, [(5e5, 0.0, 0.0)])  # 5e9 steps from part0's points
     os.replace(tmp_path / "d" / "part0.laz", a / "part9.laz")
-    with pytest.raises(pf.PointFileError, match=r"part9.laz: its points lie too far from .*part0.laz's offsets "
-                                                r"to be written with its header at a scale of 0.0001: give files offset alike"):
+    with pytest.raises(pf.PointFileError, match=r"part9.laz: its points lie too far from .*part0.laz's to be "
+                                                r"written as 32-bit integers at a scale of 0.0001$"):
         dist.lod_files([str(a)], tmp_path / "lod", radius=RADIUS, client=client)
     (a / "part9.laz").write_bytes(b"LASF truncated")
     with pytest.raises(pf.PointFileError, match="part9.laz: cannot be read as LAS"):
