@@ -308,12 +308,12 @@ def tiles_read(out):
     return index, xyz[order], ids[order]
 
 
-def exact_one_cloud(client, tmp_path, scale):
-    """Bumpy-sphere tiles offset at their own corners and quantized at `scale` (one per file, or one for all)
+def exact_one_cloud(client, tmp_path, scale, p=None, offsets=((0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5))):
+    """Tiles of p (a bumpy sphere) each at its offsets and quantized at `scale` (one per file, or one for all)
     in tmp_path/a, their LOD in tmp_path/lod: the LOD that of the points together, its coordinates theirs.
     Returns (the points, the LOD's index, coordinates and ids)."""
-    p = bumpy_sphere(6000) * 10
-    parts = write_with_offsets(tmp_path / "a", p, scale, [(0.0, 0.0, 0.0), (7.5, -3.25, 1.0), (-12.0, 4.0, 0.5)])
+    p = bumpy_sphere(6000) * 10 if p is None else p
+    parts = write_with_offsets(tmp_path / "a", p, scale, list(offsets))
     points = np.concatenate([f.xyz for f in parts])
     dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
                    threads=1)
@@ -342,14 +342,8 @@ def test_tiles_too_far_apart_for_the_first_files_offsets_are_written_from_their_
     offsets): the output's X offset moves by whole steps to their middle; Y and Z keep the first file's; the
     LOD is that of the points together, their coordinates the input's."""
     p = bumpy_sphere(6000) * 10
-    parts = write_with_offsets(tmp_path / "a", np.vstack([p[:3000], p[3000:] + [3e5, 0, 0]]), 2.0 ** -13,
-                               [(0.0, 1.0, 2.0), (3e5, 1.0, 2.0)])
-    points = np.concatenate([f.xyz for f in parts])
-    dist.lod_files([str(tmp_path / "a")], tmp_path / "lod", radius=RADIUS, tile_points=2500, client=client,
-                   threads=1)
-    index, xyz, ids = tiles_read(tmp_path / "lod")
-    assert ids.tolist() == sorted(gl.poisson_lod(points, radius=RADIUS).indices)
-    assert np.array_equal(xyz, points[ids])
+    _, index, _, _ = exact_one_cloud(client, tmp_path, 2.0 ** -13, np.vstack([p[:3000], p[3000:] + [3e5, 0, 0]]),
+                                     [(0.0, 1.0, 2.0), (3e5, 1.0, 2.0)])
     offsets = laspy.read(str(tmp_path / "lod" / index["tiles"][0]["file"])).header.offsets.tolist()
     assert abs(offsets[0] - 1.5e5) < 20 and offsets[1:] == [1.0, 2.0]
 
