@@ -1,5 +1,6 @@
 #include "samplers.h"
 
+#include <cmath>
 #include <utility>
 #include <vcg_ext/mesh_lod.h>
 
@@ -40,7 +41,7 @@ Domain BuildDomain(vcg_ext::PointSet<double> ps, vcg_ext::MeshTriangles tris, co
 Domain TileDomain(vcg_ext::PointSet<double> ps, const Domain::Param& domain, vcg_ext::Progress progress) {
   if (domain.metric == vcg_ext::Metric::Automatic)
     throw std::invalid_argument("a tile takes a chosen metric: the cluster chooses for the whole cloud");
-  if (!(domain.mergeDistance >= 0))
+  if (!(domain.mergeDistance >= 0 && std::isfinite(domain.mergeDistance)))
     throw std::invalid_argument("a tile takes the merge distance the cluster measured on the whole cloud");
   Domain::Param dp = domain;
   dp.scatterShare = 0;  // the metric is chosen: nothing here reads the share
