@@ -41,23 +41,22 @@ struct NearPoints {
   static std::vector<int> FirstOf(const std::vector<Coord>& pos, const std::vector<int>& take, double merge) {
     // The kept points by cells of side kCellMerges merge, in an open-address
     // table of the cells' hashes (cells that share a hash share a list: the
-    // test is on the distance). A point's ball of radius merge meets its own
-    // cell and, on an axis where it lies within merge of a face, the cell
-    // beyond: most points look up one cell.
+    // test is on the distance), each by its place in `take`. A point's ball
+    // of radius merge meets its own cell and, on an axis where it lies within
+    // merge of a face, the cell beyond: most points look up one cell.
     const double side = kCellMerges * merge;
     size_t tableSize = 16;
     while (tableSize < 2 * take.size()) tableSize *= 2;
     std::vector<uint64_t> slotKey(tableSize);
-    std::vector<int> slotHead(tableSize, -1), next(pos.size(), -1), first(pos.size(), -1), rank(pos.size(), -1);
-    for (size_t t = 0; t < take.size(); ++t) rank[size_t(take[t])] = int(t);
+    std::vector<int> slotHead(tableSize, -1), next(take.size(), -1), first(pos.size(), -1);
     auto slotOf = [&](uint64_t h) {
       size_t s = size_t(h) & (tableSize - 1);
       while (slotHead[s] >= 0 && slotKey[s] != h) s = (s + 1) & (tableSize - 1);
       return s;
     };
     const double merge2 = merge * merge;
-    for (int i : take) {
-      const Coord& p = pos[size_t(i)];
+    for (size_t t = 0; t < take.size(); ++t) {
+      const Coord& p = pos[size_t(take[t])];
       std::array<double, 3> c;
       std::array<int, 3> beyond{{0, 0, 0}};  // per axis: the cell beyond the face within merge (-1, +1) or none
       for (int a = 0; a < 3; ++a) {
@@ -75,18 +74,18 @@ struct NearPoints {
         if (((cell & 1) && !beyond[0]) || ((cell & 2) && !beyond[1]) || ((cell & 4) && !beyond[2])) continue;
         const size_t s = slotOf(Hash(c[0] + ((cell & 1) ? beyond[0] : 0), c[1] + ((cell & 2) ? beyond[1] : 0),
                                      c[2] + ((cell & 4) ? beyond[2] : 0)));
-        for (int j = slotHead[s]; j >= 0; j = next[size_t(j)])
-          if (Distance2(p, pos[size_t(j)]) <= merge2 && (best < 0 || rank[size_t(j)] < rank[size_t(best)])) best = j;
+        for (int u = slotHead[s]; u >= 0; u = next[size_t(u)])
+          if (Distance2(p, pos[size_t(take[size_t(u)])]) <= merge2 && (best < 0 || u < best)) best = u;
       }
       if (best >= 0) {
-        first[size_t(i)] = best;
+        first[size_t(take[t])] = take[size_t(best)];
         continue;
       }
       const uint64_t h = Hash(c[0], c[1], c[2]);
       const size_t s = slotOf(h);
       slotKey[s] = h;
-      next[size_t(i)] = slotHead[s];
-      slotHead[s] = i;
+      next[t] = slotHead[s];
+      slotHead[s] = int(t);
     }
     return first;
   }
