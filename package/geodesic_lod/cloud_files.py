@@ -31,8 +31,8 @@ class Source:
     lo, hi : (3,) ndarray of float64
         Its points' bounds, in the input's units (a LAS file's header bounds).
     signature : tuple
-        What must match across files to write them together (a LAS file's point format, extra dimensions,
-        scales and CRS; other formats' fields).
+        What must match across files to write them together (a LAS file's point format, extra dimensions
+        and CRS, and its scales, which need only be whole multiples of the finest; other formats' fields).
     offsets : tuple of 3 floats or None
         The offsets its X, Y, Z integers are written with: the first file's, or on an axis where the files
         lie too far apart for them, whole steps from them to the files' middle (LAS; None for other formats).
