@@ -3,10 +3,12 @@ ground, vegetation and buildings, as a LiDAR user judges it. Each method keeps n
 the error of an input point is its distance to the least-squares plane through its nearest LOD points
 (the quality benchmark's plane-fit error, in metres); each class gets its share of the samples, its
 mean error and its share of the summed error, each the mean over SEEDS runs (ours: the seed; MeshLab's:
-the input's order, its only randomness), with the range of the mean error over them.
+the input's order, its only randomness), with the range of the mean error over them. Beside it, the
+quality benchmark's reconstruction error (a screened Poisson surface from the LOD, the input points'
+normal-projection deviation from it), of all points and of each class.
 
 usage: PYTHONPATH=build/python .venv/bin/python bench/airborne_classes.py [--plugin PATH]
-       (writes docs/airborne_classes.json)
+       (writes docs/airborne_classes.json and docs/airborne_reconstruction.json)
 """
 import argparse
 import time
@@ -17,8 +19,10 @@ from scipy.spatial import cKDTree
 
 import doc_tables
 import radius_search
+import results
 from host import SHARED_DATA, add_plugin_option, load_plugin
 from quality import plane_fit_error
+from quality_config import RECONSTRUCTION
 
 FILES = {"urban tile": "lidar/file_with_both_wkt_and_geotiff_vlrs.las", "Autzen": "lidar/autzen_trim.laz"}
 # ASPRS classes, grouped as a user reads them.
@@ -93,6 +97,37 @@ METHODS = {"ours (defaults)": ours,
 EVERY_POINT = "every point (the input itself)"
 
 
+class Reconstruction:
+    """The quality benchmark's reconstruction error on a tile: every method's LOD keeps input points, and
+    each takes the normals every point gets here (MeshLab's estimate from 10 neighbours, as the quality
+    benchmark gives its scans), so the surfaces differ by the points kept alone."""
+
+    def __init__(self, pymeshlab, xyz, classes):
+        self.pymeshlab, self.xyz = pymeshlab, xyz
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz))
+        ms.compute_normal_for_point_clouds(k=10)
+        self.normals = ms.current_mesh().vertex_normal_matrix()
+        self.diag = float(np.linalg.norm(np.ptp(xyz, axis=0)))
+        self.groups = {g: np.flatnonzero(np.isin(classes, codes)) for g, codes in GROUPS.items()}
+        self.groups = {"all": np.arange(len(xyz)), **{g: m for g, m in self.groups.items() if len(m)}}
+
+    def error(self, kept):
+        """{group: the mean normal-projection deviation (m) of its points from the surface of `kept`}."""
+        pm = self.pymeshlab
+        ms = pm.MeshSet()
+        ms.add_mesh(pm.Mesh(vertex_matrix=self.xyz[kept], v_normals_matrix=self.normals[kept]))
+        ms.generate_surface_reconstruction_screened_poisson(**RECONSTRUCTION)
+        surface = ms.current_mesh_id()
+        out = {}
+        for group, idx in self.groups.items():
+            ms.add_mesh(pm.Mesh(vertex_matrix=self.xyz[idx], v_normals_matrix=self.normals[idx]))
+            res = ms.apply_filter("get_normal_projection_deviation", referencemesh=ms.current_mesh_id(),
+                                  surfacemesh=surface, maxdist=pm.PureValue(0.5 * self.diag))
+            out[group] = float(res["mean"])
+        return out
+
+
 def by_class(classes, kept, error):
     """Per group present: its points, the share of them kept, its mean error, its share of the error sum."""
     out = {}
@@ -123,19 +158,38 @@ def over_seeds(rows) -> list:
     return out
 
 
+def reconstruction_over_seeds(rows) -> list:
+    """One row per tile, rate and method: each group's reconstruction error, the mean over the seeds, and
+    the lowest and highest of all points' over them."""
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["tile"], r["rate"], r["method"]), []).append(r)
+    out = []
+    for (tile, rate, method), rs in groups.items():
+        every = [r["error"]["all"] for r in rs]
+        out.append(dict(tile=tile, rate=rate, method=method, seeds=len(rs),
+                        samples=float(np.mean([r["samples"] for r in rs])),
+                        error={g: float(np.mean([r["error"][g] for r in rs])) for g in rs[0]["error"]},
+                        lowest_error=min(every), highest_error=max(every)))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_plugin_option(ap)
     args = ap.parse_args()
     pymeshlab = load_plugin(args.plugin)
-    rows = []
+    rows, surfaces = [], []
     for tile, name in FILES.items():
         xyz, classes = load(name)
+        reconstruction = Reconstruction(pymeshlab, xyz, classes)
         # The floor: every point kept, each point's error is the scatter of its 8 nearest about their plane.
         every = np.arange(len(xyz))
         for group, g in by_class(classes, every, plane_fit_error(xyz, xyz)).items():
             rows.append(dict(tile=tile, rate=1.0, method=EVERY_POINT, seed=0, samples=len(xyz), group=group,
                              seconds=0.0, **g))
+        surfaces.append(dict(tile=tile, rate=1.0, method=EVERY_POINT, seed=0, samples=len(xyz),
+                             error=reconstruction.error(every)))
         for rate in RATES:
             n = int(round(rate * len(xyz)))
             for method, run in METHODS.items():
@@ -147,6 +201,9 @@ def main():
                     for group, g in by_class(classes, kept, error).items():
                         rows.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(kept),
                                          group=group, seconds=seconds, **g))
+                    surfaces.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(kept),
+                                         error=reconstruction.error(kept)))
+    results.save("airborne_reconstruction", reconstruction_over_seeds(surfaces))  # the page holds both
     doc_tables.publish("airborne_classes", over_seeds(rows))
 
 

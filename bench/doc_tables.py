@@ -101,6 +101,25 @@ def separation_tuning(rows):
     return markdown(["method"] + [f"{100 * q:g}% RMS / max" for q in rates] + ["chosen"], lines)
 
 
+AIRBORNE_REFERENCE = "MeshLab point cloud simplification"
+
+
+def airborne_reconstruction(rows):
+    """One line per tile, rate and method: the reconstruction error of all points (and its range over the
+    seeds), its ratio to MeshLab's simplification's at the same tile and rate, and each class's."""
+    groups = [g for g in dict.fromkeys(g for r in rows for g in r["error"]) if g not in ("all", "noise")]
+    reference = {(r["tile"], r["rate"]): r["error"]["all"] for r in rows if r["method"] == AIRBORNE_REFERENCE}
+    lines = []
+    for r in rows:
+        ref = reference.get((r["tile"], r["rate"]))
+        lines.append([r["tile"], _rate(r), r["method"], f"{r['samples']:.0f}", f"{r['error']['all']:.3f}",
+                      f"{r['lowest_error']:.3f}-{r['highest_error']:.3f}",
+                      f"{r['error']['all'] / ref:.2f}" if ref else "-"] +
+                     [f"{r['error'][g]:.3f}" if g in r["error"] else "-" for g in groups])
+    return markdown(["tile", "rate", "method", "samples", "all points (m)", "lowest-highest (m)",
+                     f"over {AIRBORNE_REFERENCE}'s"] + [f"{g} (m)" for g in groups], lines)
+
+
 def gap(rows):
     mean = {(r["model"], r["rate"], r["method"]): r["mean"] for r in rows}
     lines = []
@@ -222,6 +241,8 @@ SAVED = {
     "airborne_classes": ("airborne_classes.md", lambda rows: {
         "results": table(rows, AIRBORNE),
         "time": table(rows, AIRBORNE_TIME, lambda r: r["group"] == "ground" and r["rate"] < 1)}),
+    "airborne_reconstruction": ("airborne_classes.md",
+                                lambda rows: {"reconstruction": airborne_reconstruction(rows)}),
     "scatter_share": ("airborne_classes.md", lambda rows: {"scatter share": table(rows, SCATTER)}),
 }
 

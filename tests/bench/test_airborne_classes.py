@@ -50,3 +50,36 @@ def test_the_rims_first_method_keeps_exactly_n_input_points_and_puts_a_roofs_edg
     near_edge = np.minimum.reduce([xyz[:, 0], 1 - xyz[:, 0], xyz[:, 1], 1 - xyz[:, 1], abs(xyz[:, 0] - 0.5)]) < 0.03
     from airborne_classes import ours  # noqa: E402
     assert near_edge[kept].sum() > near_edge[np.asarray(ours(None, xyz, 60, 0, metric="euclidean"))].sum()
+
+
+def test_reconstruction_over_seeds_gives_each_group_the_mean_of_its_runs_and_all_points_their_range():
+    from airborne_classes import reconstruction_over_seeds  # noqa: E402
+    rows = [dict(tile="t", rate=0.1, method=m, seed=s, samples=100 + s,
+                 error={"all": e, "ground": 2 * e, "buildings": 3 * e})
+            for m in ("a", "b") for s, e in enumerate([0.3, 0.1, 0.2])]
+    got = reconstruction_over_seeds(rows)
+    assert [r["method"] for r in got] == ["a", "b"] and all(r["seeds"] == 3 for r in got)
+    for r in got:
+        assert set(r["error"]) == {"all", "ground", "buildings"}
+        assert np.isclose(r["error"]["all"], 0.2) and np.isclose(r["error"]["ground"], 0.4)
+        assert np.isclose(r["error"]["buildings"], 0.6) and np.isclose(r["samples"], 101)
+        assert (r["lowest_error"], r["highest_error"]) == (0.1, 0.3)
+
+
+def test_the_reconstruction_error_is_of_all_points_and_of_each_class_and_grows_where_points_are_left_out():
+    from airborne_classes import Reconstruction  # noqa: E402
+    from host import load_plugin  # noqa: E402
+    rng = np.random.default_rng(3)
+    xy = rng.random((6000, 2)) * 100
+    z = 5 * np.sin(xy[:, 0] / 8) * np.cos(xy[:, 1] / 9)  # rolling ground, metres
+    xyz = np.column_stack([xy, z])
+    classes = np.where(xy[:, 0] < 50, 2, 6)  # the west half "ground", the east half "buildings"
+    measure = Reconstruction(load_plugin(), xyz, classes)
+    every = measure.error(np.arange(len(xyz)))
+    assert set(every) == {"all", "ground", "buildings"}
+    assert all(np.isfinite(e) and 0 <= e < 0.5 for e in every.values())
+    # A LOD dense in the west and thin in the east: the east's error grows far more than the west's.
+    west, east = np.flatnonzero(classes == 2), np.flatnonzero(classes == 6)
+    lod = measure.error(np.concatenate([west, east[::40]]))
+    assert lod["buildings"] > 3 * every["buildings"] and lod["buildings"] > 2 * lod["ground"]
+    assert min(lod["ground"], lod["buildings"]) <= lod["all"] <= max(lod["ground"], lod["buildings"])
