@@ -7,7 +7,7 @@ the input's order, its only randomness), with the range of the mean error over t
 quality benchmark's reconstruction error (a screened Poisson surface from the LOD, the input points'
 normal-projection deviation from it), of all points and of each class.
 
-usage: PYTHONPATH=build/python .venv/bin/python bench/airborne_classes.py [--plugin PATH]
+usage: PYTHONPATH=build/python .venv/bin/python bench/airborne_classes.py [--plugin PATH] [--peer-tool PATH]
        (writes docs/airborne_classes.json and docs/airborne_reconstruction.json)
 """
 import argparse
@@ -20,9 +20,10 @@ from scipy.spatial import cKDTree
 import doc_tables
 import radius_search
 import results
-from host import SHARED_DATA, add_plugin_option, load_plugin
-from quality import plane_fit_error
-from quality_config import RECONSTRUCTION
+from host import PEER_TOOL, SHARED_DATA, add_plugin_option, load_plugin
+from quality import plane_fit_error, run_peer
+from quality_config import METHODS as QUALITY_METHODS
+from quality_config import OUT, RECONSTRUCTION, WLOP_MAX_SAMPLES
 
 FILES = {"urban tile": "lidar/file_with_both_wkt_and_geotiff_vlrs.las", "Autzen": "lidar/autzen_trim.laz"}
 # ASPRS classes, grouped as a user reads them.
@@ -94,7 +95,29 @@ METHODS = {"ours (defaults)": ours,
            "MeshLab point cloud simplification": meshlab_simplification, "uniform random": uniform_random}
 
 
+# The quality benchmark's CGAL and Open3D samplers (bench/peers/peer_simplify), by their names there.
+PEERS = ["cgal_hierarchy", "cgal_grid", "cgal_wlop", "open3d_fps", "open3d_voxel"]
 EVERY_POINT = "every point (the input itself)"
+
+
+def peer_lod(peer_tool, tile, xyz, normals, n, seed, name):
+    """A peer's LOD of the points in a seeded order (seed 0: the file's), as MeshLab's simplification is
+    run: its points, their normals (the nearest input point's where it makes none), the nearest input
+    point of each and its time to the count; None for WLOP above WLOP_MAX_SAMPLES samples."""
+    if name == "cgal_wlop" and n > WLOP_MAX_SAMPLES:
+        return None
+    order = np.arange(len(xyz)) if seed == 0 else np.random.default_rng(seed).permutation(len(xyz))
+    stem = OUT / "tmp" / f"airborne_{tile.replace(' ', '_')}_{seed}"
+    ply = stem.with_suffix(".ply")
+    ply.parent.mkdir(parents=True, exist_ok=True)
+    if not ply.is_file():
+        import pymeshlab
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz[order], v_normals_matrix=normals[order]))
+        ms.save_current_mesh(str(ply), binary=True, save_vertex_normal=True)
+    points, made, info = run_peer(peer_tool, ply, stem.with_name(f"{stem.name}_{name}.ply"), name, n)
+    nearest = cKDTree(xyz).query(points)[1]
+    return points, normals[nearest] if made is None else made, nearest, info["search_seconds"]
 
 
 class Reconstruction:
@@ -114,9 +137,13 @@ class Reconstruction:
 
     def error(self, kept):
         """{group: the mean normal-projection deviation (m) of its points from the surface of `kept`}."""
+        return self.error_of(self.xyz[kept], self.normals[kept])
+
+    def error_of(self, points, normals):
+        """The same from a LOD of any points and their normals."""
         pm = self.pymeshlab
         ms = pm.MeshSet()
-        ms.add_mesh(pm.Mesh(vertex_matrix=self.xyz[kept], v_normals_matrix=self.normals[kept]))
+        ms.add_mesh(pm.Mesh(vertex_matrix=points, v_normals_matrix=normals))
         ms.generate_surface_reconstruction_screened_poisson(**RECONSTRUCTION)
         surface = ms.current_mesh_id()
         out = {}
@@ -177,6 +204,7 @@ def reconstruction_over_seeds(rows) -> list:
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_plugin_option(ap)
+    ap.add_argument("--peer-tool", default=str(PEER_TOOL), help="bench/peers/peer_simplify (bench/build_peers)")
     args = ap.parse_args()
     pymeshlab = load_plugin(args.plugin)
     rows, surfaces = [], []
@@ -203,6 +231,21 @@ def main():
                                          group=group, seconds=seconds, **g))
                     surfaces.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(kept),
                                          error=reconstruction.error(kept)))
+            # The peers may make new points (voxel means, WLOP): each takes its nearest input point's
+            # class for the kept shares, and the error is measured from the points they make.
+            for name in PEERS:
+                method = QUALITY_METHODS[name].label
+                for seed in SEEDS:
+                    lod = peer_lod(args.peer_tool, tile, xyz, reconstruction.normals, n, seed, name)
+                    if lod is None:
+                        continue
+                    points, normals, nearest, seconds = lod
+                    error = plane_fit_error(xyz, points)
+                    for group, g in by_class(classes, np.unique(nearest), error).items():
+                        rows.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(points),
+                                         group=group, seconds=seconds, **g))
+                    surfaces.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(points),
+                                         error=reconstruction.error_of(points, normals)))
     results.save("airborne_reconstruction", reconstruction_over_seeds(surfaces))  # the page holds both
     doc_tables.publish("airborne_classes", over_seeds(rows))
 

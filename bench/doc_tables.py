@@ -209,8 +209,8 @@ def plot_classes(rows, path, reference="MeshLab point cloud simplification"):
         ax.set_title(f"{tile}, {100 * rate:g}%", fontsize=9)
     axes[0][0].set_ylabel(f"mean error / {reference}'s", fontsize=8)
     handles, labels = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8)
-    fig.tight_layout(rect=(0, 0.16, 1, 1))
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
+    fig.tight_layout(rect=(0, 0.06 + 0.05 * math.ceil(len(labels) / 4), 1, 1))  # room for the legend's rows
     fig.savefig(path, dpi=80)
     plt.close(fig)
 

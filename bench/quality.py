@@ -146,15 +146,9 @@ class Model:
         if method == "cgal_wlop" and target > WLOP_MAX_SAMPLES:
             return None
         out = OUT / "tmp" / f"{self.path.stem}_{method}.ply"  # one file per model and method
-        out.parent.mkdir(parents=True, exist_ok=True)
-        proc = subprocess.run([str(self.peer_tool), str(self.path), str(out), method, str(target),
-                               "--tolerance", str(COUNT_TOLERANCE)], capture_output=True, text=True, check=True)
-        info = json.loads(proc.stdout.strip().splitlines()[-1])
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(out))
-        m = ms.current_mesh()
-        points = m.vertex_matrix()
-        normals = m.vertex_normal_matrix() if info["normals"] else self.nearest_normals(points)
+        points, normals, info = run_peer(self.peer_tool, self.path, out, method, target)
+        if normals is None:
+            normals = self.nearest_normals(points)
         param = info["parameter"] + ("" if info["normals"] else "; normals of the nearest input points")
         return dict(points=points, normals=normals, seconds=info["seconds"], search_seconds=info["search_seconds"],
                     parameter=param)
@@ -169,6 +163,20 @@ class Model:
         if self._tree is None:
             self._tree = cKDTree(self.points)
         return self.normals[self._tree.query(points)[1]]
+
+
+def run_peer(peer_tool, ply, out, method, target):
+    """bench/peers/peer_simplify's `method` on the points (with normals) of `ply`, to `target` points
+    within COUNT_TOLERANCE, written to `out`: its points, its normals (None where it makes none) and the
+    tool's JSON line."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    proc = subprocess.run([str(peer_tool), str(ply), str(out), method, str(target),
+                           "--tolerance", str(COUNT_TOLERANCE)], capture_output=True, text=True, check=True)
+    info = json.loads(proc.stdout.strip().splitlines()[-1])
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(out))
+    m = ms.current_mesh()
+    return m.vertex_matrix(), m.vertex_normal_matrix() if info["normals"] else None, info
 
 
 def grid_crop(mesh, row, col, size):
