@@ -110,20 +110,20 @@ def peer_lod(peer_tool, tile, xyz, normals, n, seed, name):
     stem = OUT / "tmp" / f"airborne_{tile.replace(' ', '_')}_{seed}"
     ply = stem.with_suffix(".ply")
     ply.parent.mkdir(parents=True, exist_ok=True)
-    if not ply.is_file():
-        import pymeshlab
-        ms = pymeshlab.MeshSet()
-        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz[order], v_normals_matrix=normals[order]))
-        ms.save_current_mesh(str(ply), binary=True, save_vertex_normal=True)
+    import pymeshlab
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz[order], v_normals_matrix=normals[order]))
+    ms.save_current_mesh(str(ply), binary=True, save_vertex_normal=True)
     points, made, info = run_peer(peer_tool, ply, stem.with_name(f"{stem.name}_{name}.ply"), name, n)
     nearest = cKDTree(xyz).query(points)[1]
     return points, normals[nearest] if made is None else made, nearest, info["search_seconds"]
 
 
 class Reconstruction:
-    """The quality benchmark's reconstruction error on a tile: every method's LOD keeps input points, and
-    each takes the normals every point gets here (MeshLab's estimate from 10 neighbours, as the quality
-    benchmark gives its scans), so the surfaces differ by the points kept alone."""
+    """The quality benchmark's reconstruction error on a tile. Every point gets a normal here (MeshLab's
+    estimate from 10 neighbours, as the quality benchmark gives its scans), and a LOD of input points
+    takes theirs, so those surfaces differ by the points kept alone; a LOD of new points (voxel means,
+    WLOP) brings its own or its nearest input point's (peer_lod)."""
 
     def __init__(self, pymeshlab, xyz, classes):
         self.pymeshlab, self.xyz = pymeshlab, xyz

@@ -189,7 +189,7 @@ def plot_against_vertices(rows, panels, measures, path, title):
     plt.close(fig)
 
 
-def plot_classes(rows, path, reference="MeshLab point cloud simplification"):
+def plot_classes(rows, path, reference=AIRBORNE_REFERENCE):
     """Each class's mean error over the reference method's, per tile and rate, a bar per method."""
     panels = list(dict.fromkeys((r["tile"], r["rate"]) for r in rows if r["method"] == reference))
     methods = [m for m in dict.fromkeys(r["method"] for r in rows if (r["tile"], r["rate"]) in panels)
