@@ -38,6 +38,8 @@ class UnionFind {
     }
   }
 
+  size_t size() const { return parent_.size(); }
+
   /// How many sets there are, once every Unite has returned. O(n), one thread.
   size_t Count() const {
     size_t c = 0;
