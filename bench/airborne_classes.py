@@ -9,6 +9,8 @@ normal-projection deviation from it), of all points and of each class.
 
 usage: PYTHONPATH=build/python .venv/bin/python bench/airborne_classes.py [--plugin PATH] [--peer-tool PATH]
        (writes docs/airborne_classes.json and docs/airborne_reconstruction.json)
+       ... bench/airborne_classes.py --tune   (the surface-density metric's adaptivity on the unclassified
+       tiles only, by the reconstruction error: docs/airborne_tuning.json)
 """
 import argparse
 import time
@@ -28,6 +30,10 @@ from quality_config import OUT, RECONSTRUCTION, WLOP_MAX_SAMPLES
 FILES = {"urban tile": "lidar/file_with_both_wkt_and_geotiff_vlrs.las", "Autzen": "lidar/autzen_trim.laz"}
 # ASPRS classes, grouped as a user reads them.
 GROUPS = {"ground": (2,), "vegetation": (3, 4, 5), "buildings": (6,), "unclassified": (0, 1), "noise": (7,)}
+# Tuning tiles: the shared airborne files the tables above do not report, unclassified (so measured by
+# the reconstruction error of all their points alone).
+TUNING_FILES = {"lone-star": "lidar/lone-star.laz", "vegetation_1_3": "lidar/vegetation_1_3.las"}
+TUNE_ADAPTIVITY = [0.5, 1.0, 2.0]  # beside the default, 3
 RATES = [0.10, 0.02]
 COUNT_TOLERANCE = 0.02
 SEEDS = [0, 1, 2]  # at 2% a class holds a few dozen samples: one run's error moves by up to a fifth
@@ -201,12 +207,40 @@ def reconstruction_over_seeds(rows) -> list:
     return out
 
 
+def tuning_methods():
+    """The defaults, MeshLab's simplification, and the surface-density metric (rims first) at each swept a."""
+    swept = {f"ours, surface-density metric, a = {a:g}, rims first":
+             lambda pm, xyz, n, seed, a=a: ours(pm, xyz, n, seed, metric="surface-density", adaptivity=a,
+                                                 visit_order="rims") for a in TUNE_ADAPTIVITY}
+    return {"ours (defaults)": ours, **swept, "MeshLab point cloud simplification": meshlab_simplification}
+
+
+def tune(pymeshlab):
+    """The reconstruction error of each tuning method on the tuning tiles, over the seeds."""
+    surfaces = []
+    for tile, name in TUNING_FILES.items():
+        xyz, classes = load(name)
+        reconstruction = Reconstruction(pymeshlab, xyz, classes)
+        for rate in RATES:
+            n = int(round(rate * len(xyz)))
+            for method, run in tuning_methods().items():
+                for seed in SEEDS:
+                    kept = np.asarray(run(pymeshlab, xyz, n, seed))
+                    surfaces.append(dict(tile=tile, rate=rate, method=method, seed=seed, samples=len(kept),
+                                         error=reconstruction.error(kept)))
+    doc_tables.publish("airborne_tuning", reconstruction_over_seeds(surfaces))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_plugin_option(ap)
     ap.add_argument("--peer-tool", default=str(PEER_TOOL), help="bench/peers/peer_simplify (bench/build_peers)")
+    ap.add_argument("--tune", action="store_true", help="the surface-density metric's adaptivity on the tuning "
+                                                         "tiles (docs/airborne_tuning.json)")
     args = ap.parse_args()
     pymeshlab = load_plugin(args.plugin)
+    if args.tune:
+        return tune(pymeshlab)
     rows, surfaces = [], []
     for tile, name in FILES.items():
         xyz, classes = load(name)

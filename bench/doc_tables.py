@@ -243,6 +243,7 @@ SAVED = {
         "time": table(rows, AIRBORNE_TIME, lambda r: r["group"] == "ground" and r["rate"] < 1)}),
     "airborne_reconstruction": ("airborne_classes.md",
                                 lambda rows: {"reconstruction": airborne_reconstruction(rows)}),
+    "airborne_tuning": ("airborne_classes.md", lambda rows: {"tuning": airborne_reconstruction(rows)}),
     "scatter_share": ("airborne_classes.md", lambda rows: {"scatter share": table(rows, SCATTER)}),
 }
 

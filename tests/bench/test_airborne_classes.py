@@ -83,3 +83,23 @@ def test_the_reconstruction_error_is_of_all_points_and_of_each_class_and_grows_w
     lod = measure.error(np.concatenate([west, east[::40]]))
     assert lod["buildings"] > 3 * every["buildings"] and lod["buildings"] > 2 * lod["ground"]
     assert min(lod["ground"], lod["buildings"]) <= lod["all"] <= max(lod["ground"], lod["buildings"])
+
+
+def test_the_tuning_sweep_runs_the_surface_density_metric_at_each_adaptivity_beside_the_defaults():
+    from airborne_classes import TUNE_ADAPTIVITY, tuning_methods  # noqa: E402
+    methods = tuning_methods()
+    assert "ours (defaults)" in methods and "MeshLab point cloud simplification" in methods
+    swept = [m for m in methods if m.startswith("ours, surface-density")]
+    assert len(swept) == len(TUNE_ADAPTIVITY) and 3.0 not in TUNE_ADAPTIVITY  # 3 is the defaults' row
+    g = np.linspace(0, 1, 41)
+    x, y = np.meshgrid(g, g)
+    # flat ground beside a scatter (a canopy): the weight on flat surfaces is what a changes
+    xyz = np.column_stack([x.ravel(), y.ravel(), np.zeros(x.size)])
+    rng = np.random.default_rng(4)
+    xyz[x.ravel() > 0.5, 2] = rng.random(int((x.ravel() > 0.5).sum())) * 0.3
+    kept = {m: np.asarray(methods[m](None, xyz, 150, 0)) for m in swept + ["ours (defaults)"]}
+    for m, k in kept.items():
+        assert len(k) == 150 == len(np.unique(k))
+    flat = x.ravel() <= 0.5
+    on_flat = [flat[kept[m]].sum() for m in swept + ["ours (defaults)"]]  # a rising: more on the flat half
+    assert on_flat == sorted(on_flat) and on_flat[0] < on_flat[-1]
