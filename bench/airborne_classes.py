@@ -106,30 +106,44 @@ PEERS = ["cgal_hierarchy", "cgal_grid", "cgal_wlop", "open3d_fps", "open3d_voxel
 EVERY_POINT = "every point (the input itself)"
 
 
-def peer_lod(peer_tool, tile, xyz, normals, n, seed, name):
-    """A peer's LOD of the points in a seeded order (seed 0: the file's), as MeshLab's simplification is
-    run: its points, their normals (the nearest input point's where it makes none), the nearest input
-    point of each and its time to the count; None for WLOP above WLOP_MAX_SAMPLES samples."""
-    if name == "cgal_wlop" and n > WLOP_MAX_SAMPLES:
-        return None
-    order = np.arange(len(xyz)) if seed == 0 else np.random.default_rng(seed).permutation(len(xyz))
-    stem = OUT / "tmp" / f"airborne_{tile.replace(' ', '_')}_{seed}"
-    ply = stem.with_suffix(".ply")
-    ply.parent.mkdir(parents=True, exist_ok=True)
-    import pymeshlab
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=xyz[order], v_normals_matrix=normals[order]))
-    ms.save_current_mesh(str(ply), binary=True, save_vertex_normal=True)
-    points, made, info = run_peer(peer_tool, ply, stem.with_name(f"{stem.name}_{name}.ply"), name, n)
-    nearest = cKDTree(xyz).query(points)[1]
-    return points, normals[nearest] if made is None else made, nearest, info["search_seconds"]
+class Peers:
+    """The CGAL and Open3D peers on one tile: each seed's input (the points in a seeded order, seed 0 the
+    file's, as MeshLab's simplification is run) written once for all the peers and rates of this run."""
+
+    def __init__(self, pymeshlab, peer_tool, tile, xyz, normals):
+        self.pymeshlab, self.peer_tool, self.xyz, self.normals = pymeshlab, peer_tool, xyz, normals
+        self.stem = OUT / "tmp" / f"airborne_{tile.replace(' ', '_')}"
+        self.tree = cKDTree(xyz)
+        self.inputs = {}
+
+    def _input(self, seed):
+        if seed not in self.inputs:
+            order = np.arange(len(self.xyz)) if seed == 0 else np.random.default_rng(seed).permutation(len(self.xyz))
+            ply = self.stem.with_name(f"{self.stem.name}_{seed}.ply")
+            ply.parent.mkdir(parents=True, exist_ok=True)
+            ms = self.pymeshlab.MeshSet()
+            ms.add_mesh(self.pymeshlab.Mesh(vertex_matrix=self.xyz[order], v_normals_matrix=self.normals[order]))
+            ms.save_current_mesh(str(ply), binary=True, save_vertex_normal=True)
+            self.inputs[seed] = ply
+        return self.inputs[seed]
+
+    def lod(self, name, n, seed):
+        """A peer's LOD of n points: its points, their normals (the nearest input point's where it makes
+        none), the nearest input point of each and its time to the count; None for WLOP above
+        WLOP_MAX_SAMPLES samples."""
+        if name == "cgal_wlop" and n > WLOP_MAX_SAMPLES:
+            return None
+        ply = self._input(seed)
+        points, made, info = run_peer(self.peer_tool, ply, ply.with_name(f"{ply.stem}_{name}.ply"), name, n)
+        nearest = self.tree.query(points)[1]
+        return points, self.normals[nearest] if made is None else made, nearest, info["search_seconds"]
 
 
 class Reconstruction:
     """The quality benchmark's reconstruction error on a tile. Every point gets a normal here (MeshLab's
     estimate from 10 neighbours, as the quality benchmark gives its scans), and a LOD of input points
     takes theirs, so those surfaces differ by the points kept alone; a LOD of new points (voxel means,
-    WLOP) brings its own or its nearest input point's (peer_lod)."""
+    WLOP) brings its own or its nearest input point's (Peers.lod)."""
 
     def __init__(self, pymeshlab, xyz, classes):
         self.pymeshlab, self.xyz = pymeshlab, xyz
@@ -245,6 +259,7 @@ def main():
     for tile, name in FILES.items():
         xyz, classes = load(name)
         reconstruction = Reconstruction(pymeshlab, xyz, classes)
+        peers = Peers(pymeshlab, args.peer_tool, tile, xyz, reconstruction.normals)
         # The floor: every point kept, each point's error is the scatter of its 8 nearest about their plane.
         every = np.arange(len(xyz))
         for group, g in by_class(classes, every, plane_fit_error(xyz, xyz)).items():
@@ -270,7 +285,7 @@ def main():
             for name in PEERS:
                 method = QUALITY_METHODS[name].label
                 for seed in SEEDS:
-                    lod = peer_lod(args.peer_tool, tile, xyz, reconstruction.normals, n, seed, name)
+                    lod = peers.lod(name, n, seed)
                     if lod is None:
                         continue
                     points, normals, nearest, seconds = lod
