@@ -57,6 +57,7 @@ class OutputFolder:
         where = out if out.exists() else out.parent
         if not os.access(where, os.W_OK | os.X_OK):
             raise PointFileError(out, f"the folder {where} is not writable")
+        point_files.check_creatable(out, where)
         self.index: Optional[dict] = None
         self.owned: list = []
         self.swept: list = []

@@ -125,6 +125,7 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
             raise PointFileError(out, no_folder(folder))
         if not os.access(folder, os.W_OK | os.X_OK):
             raise PointFileError(out, f"the folder {folder} is not writable")
+        check_creatable(out, folder)
         if len(os.fsencode(out.name)) > _name_max(folder):
             raise PointFileError(out, f"the name is longer than its folder allows ({_name_max(folder)} bytes)")
         if out.is_dir():
@@ -283,17 +284,27 @@ def is_partial(name: str) -> bool:
     return name.startswith(PARTIAL_PREFIX) and name.endswith(PARTIAL_SUFFIX)
 
 
-def _partial(path: pathlib.Path) -> pathlib.Path:
-    """A new, empty temporary file beside path: a short name whatever path's length, and the
-    permissions any new file gets."""
+def _partial(path: pathlib.Path, folder: Optional[pathlib.Path] = None) -> pathlib.Path:
+    """A new, empty temporary file in `folder` (path's own by default): a short name whatever path's
+    length, and the permissions any new file gets."""
     import secrets
+    folder = path.parent if folder is None else folder
     while True:
-        tmp = path.with_name(f"{PARTIAL_PREFIX}{secrets.token_hex(6)}{PARTIAL_SUFFIX}")
+        tmp = folder / f"{PARTIAL_PREFIX}{secrets.token_hex(6)}{PARTIAL_SUFFIX}"
         try:
             with open(tmp, "xb"):
                 return tmp
         except FileExistsError:
             continue
+
+
+def check_creatable(path, folder) -> None:
+    """Refuses `path` where `folder` takes no new file whatever its permissions say (/proc; root's
+    permissions on a read-only mount): a temporary file made there and removed at once."""
+    try:
+        _partial(pathlib.Path(path), pathlib.Path(folder)).unlink()
+    except OSError as e:
+        raise PointFileError(path, f"the folder {folder} takes no new file: {e.strerror or e}") from None
 
 
 def write_all(source: PointFile, outputs: Sequence[tuple], overwrite: bool = False) -> None:
@@ -349,7 +360,11 @@ def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
     try:
         for path, write in items:
             path = pathlib.Path(path)
-            tmp = _partial(path)
+            try:
+                tmp = _partial(path)
+            except OSError as e:  # the folder gone since the outputs were checked: the user's name, not ours
+                e.filename = str(path)
+                raise
             done.append((tmp, path))
             try:
                 with open(tmp, "r+b") as f:

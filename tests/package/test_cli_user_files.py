@@ -94,6 +94,16 @@ def test_output_problems_are_found_before_reading(tmp_path, output, problem):
     assert r.returncode == 2 and problem in r.stderr and "cannot be read" not in r.stderr, r.stderr
 
 
+def test_a_folder_that_takes_no_new_file_is_found_before_reading(tmp_path):
+    # /proc takes no new file from anyone, root too, whatever its permissions say: the output's own
+    # name is in the one-line error, not a temporary one.
+    (tmp_path / "in.ply").write_bytes(b"not a PLY file")
+    r = run(tmp_path / "in.ply", "-o", "/proc/lod.ply", "--rate", "10%", "-q")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert "/proc/lod.ply: the folder /proc takes no new file" in r.stderr, r.stderr
+    assert "partial" not in r.stderr and "cannot be read" not in r.stderr, r.stderr
+
+
 @pytest.mark.parametrize("output", ["out", "out/", "new/"])
 def test_a_folder_as_the_output_of_one_file_is_named_as_such(tmp_path, output):
     (tmp_path / "out").mkdir()

@@ -5,6 +5,7 @@ recognised as the tool's; remove_own deletes only the names a run writes and nev
 (Whole runs on a cluster, failing and rerun: test_distributed_user_files.py.)"""
 import json
 import os
+import pathlib
 
 import pytest
 
@@ -97,6 +98,13 @@ def test_a_path_that_cannot_be_a_folder_is_refused(tmp_path, what, problem):
     before = snapshot(tmp_path)
     assert problem in refused(out)
     assert snapshot(tmp_path) == before
+
+
+def test_a_folder_in_one_that_takes_no_new_file_is_refused():
+    # /proc takes no new file from anyone, root too, whatever its permissions say.
+    out = pathlib.Path("/proc/lod")
+    assert refused(out).startswith("the folder /proc takes no new file")
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("through_a_link", [False, True])

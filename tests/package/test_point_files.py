@@ -82,8 +82,9 @@ def test_las_and_ply_rows_as_npy(tmp_path):
 
 def test_all_files_or_none(tmp_path):
     src = pf.read(ply_cloud(tmp_path / "in.ply"))
-    with pytest.raises(OSError):
+    with pytest.raises(OSError) as e:
         pf.write_all(src, [(tmp_path / "a.ply", PICK), (tmp_path / "missing" / "b.ply", PICK)])
+    assert e.value.filename == str(tmp_path / "missing" / "b.ply")  # the user's name, not a temporary one
     assert not (tmp_path / "a.ply").exists() and leftovers(tmp_path) == []
 
 
