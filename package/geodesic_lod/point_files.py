@@ -302,7 +302,8 @@ def check_creatable(path, folder) -> None:
     """Refuses `path` where `folder` takes no new file whatever its permissions say (/proc; root's
     permissions on a read-only mount): a temporary file made there and removed at once."""
     try:
-        _partial(pathlib.Path(path), pathlib.Path(folder)).unlink()
+        with stop_signals.held():  # a Ctrl-C between the two leaves no file behind
+            _partial(pathlib.Path(path), pathlib.Path(folder)).unlink()
     except OSError as e:
         raise PointFileError(path, f"the folder {folder} takes no new file: {e.strerror or e}") from None
 
