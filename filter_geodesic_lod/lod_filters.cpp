@@ -152,8 +152,8 @@ void AddDomainParams(std::vector<ParamSpec>& p, const Choices<OutputKind>& outpu
                kDomainDefaults.curvatureExponent});
   p.push_back({ParamKind::Float, kAdaptivity, "Adaptivity a",
                "Strength a of the curvature-density metric (g_ij = (1 + a (v_i + v_j)/2) |p_i - p_j|) and of the "
-               "surface-density one (v_i replaced by s_i, a point's flatness inside its surfaces, up to twice "
-               "that at their rims, 0 in an even scatter such as leaves); used only by those. 0 gives the "
+               "surface-density one (v_i replaced by s_i, a/3 times a point's flatness inside its surfaces, up "
+               "to twice that at their rims, 0 in an even scatter such as leaves); used only by those. 0 gives the "
                "unweighted geodesic; 3 did best in the quality benchmark, 10 and more over-sample noisy scans.",
                kDomainDefaults.adaptivity});
   p.push_back(NormalNeighboursParam());

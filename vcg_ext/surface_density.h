@@ -30,12 +30,18 @@ class SurfaceDensity {
   /// The standard errors of the mean discounted from that offset, as
   /// BorderOrder's: an evenly scattered neighbourhood is no rim.
   static constexpr double kRimNoise = 4.0;
+  /// A plane's s per unit of a: at a = 3, the default the curvature-density
+  /// metric shares, a flat point's edges weigh twice a scattered point's
+  /// (three times at a rim): on the airborne tiles the lowest weight keeping
+  /// ground and roofs at MeshLab's error or below; lower ones lower the error
+  /// of all points, the canopy's (docs/airborne_classes.md).
+  static constexpr double kPerAdaptivity = 1.0 / 3;
 
   /// f = 1 - l0 / l1 of a neighbourhood's covariance eigenvalues l
   /// (ascending, l1 > 0): 1 on a plane, 0 where the points scatter evenly.
   static double Flatness(const Eigen::Vector3d& l) { return 1 - l(0) / l(1); }
 
-  /// s_i = a f_i (1 + rim_i), over the point and its k - 1 nearest (k <= knn.k + 1):
+  /// s_i = a kPerAdaptivity f_i (1 + rim_i), over the point and its k - 1 nearest (k <= knn.k + 1):
   /// f_i = 1 - l0 / l1 of the neighbourhood's covariance (eigenvalues
   /// l0 <= l1 <= l2), 1 on a plane, 0 where the points scatter evenly (and
   /// on a line); rim_i in [0, 1], the offset of the neighbourhood's mean from the
@@ -64,7 +70,7 @@ class SurfaceDensity {
         const double spread = (l(1) + l(2)) / 2;
         const double offset = std::max(0.0, along.norm() - kRimNoise * std::sqrt(spread / double(k)));
         const double rim = std::min(1.0, offset / (kRimOffset * std::sqrt(far2)));
-        s[i] = float(a * flat * (1 + rim));
+        s[i] = float(a * kPerAdaptivity * flat * (1 + rim));
       }
     });
     return s;

@@ -21,7 +21,7 @@ METRIC = f"""metric : {{'automatic', 'curvature-density', 'eq3', 'geodesic', 'eu
         The distance the samples are spread in: ``'curvature-density'``, (1 + a (v_i + v_j) / 2) |p_i - p_j|;
         ``'eq3'``, the method's exp(|v_i - v_j|^c) |p_i - p_j|; ``'geodesic'``, unweighted;
         ``'euclidean'``, straight lines; ``'surface-density'``, (1 + (s_i + s_j) / 2) |p_i - p_j| with s_i
-        = a times a point's flatness (1 on a plane, 0 in an even scatter such as leaves), up to twice
+        = a / 3 times a point's flatness (1 on a plane, 0 in an even scatter such as leaves), up to twice
         that at a surface's rim: for airborne LiDAR, where it gives ground and roofs the samples the
         curvature-density metric spends on vegetation (best with ``visit_order='rims'``).
         ``'automatic'`` (the default): ``'surface-density'`` where more than {_SCATTERED:.0%} of the points'
