@@ -284,11 +284,10 @@ def is_partial(name: str) -> bool:
     return name.startswith(PARTIAL_PREFIX) and name.endswith(PARTIAL_SUFFIX)
 
 
-def _partial(path: pathlib.Path, folder: Optional[pathlib.Path] = None) -> pathlib.Path:
-    """A new, empty temporary file in `folder` (path's own by default): a short name whatever path's
-    length, and the permissions any new file gets."""
+def _partial(folder: pathlib.Path) -> pathlib.Path:
+    """A new, empty temporary file in `folder`: a short name whatever the output's length, and the
+    permissions any new file gets."""
     import secrets
-    folder = path.parent if folder is None else folder
     while True:
         tmp = folder / f"{PARTIAL_PREFIX}{secrets.token_hex(6)}{PARTIAL_SUFFIX}"
         try:
@@ -303,7 +302,7 @@ def check_creatable(path, folder) -> None:
     permissions on a read-only mount): a temporary file made there and removed at once."""
     try:
         with stop_signals.held():  # a Ctrl-C between the two leaves no file behind
-            _partial(pathlib.Path(path), pathlib.Path(folder)).unlink()
+            _partial(pathlib.Path(folder)).unlink()
     except OSError as e:
         raise PointFileError(path, f"the folder {folder} takes no new file: {e.strerror or e}") from None
 
@@ -362,7 +361,7 @@ def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
         for path, write in items:
             path = pathlib.Path(path)
             try:
-                tmp = _partial(path)
+                tmp = _partial(path.parent)
             except OSError as e:  # the folder gone since the outputs were checked: the user's name, not ours
                 e.filename = str(path)
                 raise
