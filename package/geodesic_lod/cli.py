@@ -66,7 +66,8 @@ def parser() -> argparse.ArgumentParser:
                 "samples spread uniformly in a curvature-weighted geodesic metric.",
                 epilog="Formats: PLY (every vertex property kept), LAS/LAZ (every point record kept bit for bit, "
                 "with the header, scales, offsets, CRS and VLRs), NumPy .npy ((n, 3), (n, 6) with normals, or a "
-                "table with fields x, y, z). A LAS/PLY input may also be written as .npy.")
+                "table with fields x, y, z). A PLY input may also be written as .npy; a LAS/LAZ input as .ply or .npy, "
+                "a table of x, y, z (scaled, as doubles) and its dimensions, without the LAS header.")
     p.add_argument("input", nargs="+", help="the point file (.ply, .las, .laz or .npy); several files, a folder "
                    "or a glob are sampled as one cloud on a Dask cluster")
     p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "
@@ -480,6 +481,8 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)
+            for note in point_files.header_notes(args.input, paths):
+                say(note)
             with _sampling_bar(args) as bar:
                 try:
                     chosen, lod = _run(args, request, source, bar)

@@ -378,6 +378,27 @@ def xyz(records, header) -> np.ndarray:
     return scaled(integers(getattr(records, "array", records)), header.scales, header.offsets)
 
 
+def table(array: np.ndarray, header) -> np.ndarray:
+    """Records (a structured array of the header's point format) as a table a reader of .npy or PLY takes
+    without the header: x, y, z scaled and offset (float64), then every other dimension by laspy's name,
+    its value as laspy gives it (bit fields unpacked, scaled extra dimensions scaled)."""
+    import laspy
+    records = laspy.PackedPointRecord(array, header.point_format)
+    names = [n for n in header.point_format.dimension_names if n not in ("X", "Y", "Z")]
+    taken = [n for n in names if n in ("x", "y", "z")]
+    if taken:
+        raise ValueError(f"its extra dimension {taken[0]} has the name of a coordinate")
+    columns = [np.asarray(records[n]) for n in names]
+    out = np.empty(len(array), dtype=[("x", "f8"), ("y", "f8"), ("z", "f8")]
+                   + [(n, c.dtype, c.shape[1:]) for n, c in zip(names, columns)])
+    coordinates = xyz(array, header)
+    for a, c in enumerate("xyz"):
+        out[c] = coordinates[:, a]
+    for n, c in zip(names, columns):
+        out[n] = c
+    return out
+
+
 def write(f: BinaryIO, source: LasSource, array: np.ndarray, compress: bool) -> None:
     """Writes records (a structured array of the source's point format) as a LAS or LAZ file with the
     source's header and own records."""

@@ -2,7 +2,8 @@
 
 A LOD is written as the chosen rows of the input, whatever they hold: every PLY vertex property,
 comment and the text/binary encoding; every LAS point record bit for bit, with the header's point
-format, scales, offsets, VLRs (the CRS among them) and EVLRs. Files are written under a temporary
+format, scales, offsets, VLRs (the CRS among them) and EVLRs; a LAS input's as PLY or .npy, a table of its
+coordinates and dimensions without the header (las_files.table). Files are written under a temporary
 name in the destination folder and renamed once complete, so no half-written file ever carries
 the name asked for.
 """
@@ -22,14 +23,20 @@ from .errors import InputError, PointFileError
 
 COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
 FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
-# The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table).
-WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".npy"), "npy": (".npy",)}
+# The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table); a
+# LAS input's also as PLY, for MeshLab (its rows as a table: las_files.table).
+WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".ply", ".npy"), "npy": (".npy",)}
+
+
+def _a(kind: str) -> str:
+    """'a PLY', 'an NPY'."""
+    return f"{'an' if kind == 'npy' else 'a'} {kind.upper()}"
 
 
 def _writable(kind: str) -> str:
     """'a PLY input can be written as .ply or .npy', 'an NPY input can be written as .npy only'."""
     *first, last = WRITABLE[kind]
-    return (f"{'an' if kind == 'npy' else 'a'} {kind.upper()} input can be written as "
+    return (f"{_a(kind)} input can be written as "
             + (f"{', '.join(first)} or {last}" if first else f"{last} only"))
 
 
@@ -426,10 +433,56 @@ class _OwnWrite:
         self.write = f.write
 
 
+def header_notes(inputs: Sequence, outputs: Sequence) -> list:
+    """A note for each output that keeps less than its LAS input: a table holds no LAS header."""
+    if "las" not in {format_of(p) for p in inputs}:
+        return []
+    return [f"note: {out}: {_a(format_of(out, 'output'))} file holds no LAS header: x, y, z are written scaled "
+            f"and offset, the CRS and the other VLRs and EVLRs are not (.las or .laz keeps them)"
+            for out in outputs if format_of(out, "output") != "las"]
+
+
+PLY_TYPES = {"i1", "u1", "i2", "u2", "i4", "u4", "f4", "f8"}  # plyfile's types, by numpy's names
+
+
+def _ply_table(source: PointFile, idx: np.ndarray) -> np.ndarray:
+    """A LAS input's rows at idx as PLY vertices (las_files.table): colours as the 8 bits MeshLab reads (the
+    top byte of LAS's 16, unless every value of the input fits in 8), 64-bit integers as doubles (PLY has no
+    64-bit integer), a dimension of several values as one property a value (name_0, name_1, ...), names
+    with spaces joined by underscores."""
+    t = las_files.table(source.rows.array[idx], source.source.header)
+    colours = [c for c in ("red", "green", "blue") if c in t.dtype.names]
+    shift = 8 if colours and any(int(np.max(source.rows[c], initial=0)) > 255 for c in colours) else 0
+    fields, columns = [], []
+    for name in t.dtype.names:
+        column = t[name]
+        if name in colours:
+            column = (column >> shift).astype(np.uint8)
+        parts = [column] if column.ndim == 1 else [column[:, k] for k in range(column.shape[1])]
+        for k, part in enumerate(parts):
+            if part.dtype.str[1:] not in PLY_TYPES:  # 64-bit integers: PLY has none, a double holds 53 bits
+                if part.dtype.kind not in "iu" or np.any((part > 2 ** 53) | (part < -2 ** 53)):
+                    raise ValueError(f"its dimension {name} holds {part.dtype} values, which no PLY type "
+                                     "holds exactly")
+                part = part.astype(np.float64)
+            fields.append(("_".join(name.split()) + (f"_{k}" if len(parts) > 1 else ""), part.dtype))
+            columns.append(part)
+    names = [n for n, _ in fields]
+    if len(set(names)) < len(names):
+        raise ValueError("two of its dimensions take the same PLY property name")
+    out = np.empty(len(t), dtype=fields)
+    for (n, _), c in zip(fields, columns):
+        out[n] = c
+    return out
+
+
 def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
     if ext == ".npy":
-        rows = source.rows.array if source.kind == "las" else source.rows
-        save_npy(f, np.asarray(rows[idx]))
+        save_npy(f, las_files.table(source.rows.array[idx], source.source.header) if source.kind == "las"
+                 else np.asarray(source.rows[idx]))
+    elif ext == ".ply" and source.kind == "las":
+        import plyfile
+        plyfile.PlyData([plyfile.PlyElement.describe(_ply_table(source, idx), "vertex")]).write(f)
     elif source.kind == "ply":
         import plyfile
         ply = source.source

@@ -44,6 +44,18 @@ def test_laz_lod_equals_the_array_api_and_leaves_the_input(tmp_path):
     assert laspy.read(str(tmp_path / "lod.laz")).points.array.tobytes() == records[expected].tobytes()
 
 
+@pytest.mark.parametrize("ext, kind", [(".ply", "a PLY"), (".npy", "an NPY")])
+def test_a_las_input_written_as_a_table_is_noted_and_reads_back(tmp_path, ext, kind):
+    src = las_cloud(tmp_path / "in.laz")
+    out = tmp_path / f"lod{ext}"
+    r = run(src, "-o", out, "--count", 300, "-q")
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == (f"geodesic-lod: note: {out}: {kind} file holds no LAS header: x, y, z are written scaled "
+                        "and offset, the CRS and the other VLRs and EVLRs are not (.las or .laz keeps them)\n")
+    points = pf.read(src).points
+    assert np.array_equal(pf.read(out).points, points[np.sort(gl.poisson_lod(points, count=300).indices)])
+
+
 def test_ply_mesh_samples_over_its_faces(tmp_path):
     path, pts, tris = ply_mesh(tmp_path / "mesh.ply")
     assert run(path, "-o", tmp_path / "lod.ply", "--rate", "10%", "--quiet").returncode == 0

@@ -51,22 +51,35 @@ def corpus_file(name):
     return path
 
 
-@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
-@pytest.mark.parametrize("ext", [".laz", ".las"])
-def test_every_shared_lidar_file_is_sampled_with_its_own_bytes(tmp_path, name, ext):
+def corpus_lod(tmp_path, name, ext):
+    """The command's 10% LOD of a shared file as `ext`: its stderr, the file, the input, the expected rows."""
     src = corpus_file(name)
     out = tmp_path / f"lod{ext}"
     r = run(src, "-o", out, "--rate", "10%", "-q")
     assert r.returncode == 0, r.stderr
     las = laspy.read(str(src))
     points = np.column_stack([las.x, las.y, las.z])
-    expected = np.sort(gl.poisson_lod(points, rate=10).indices)
+    return r.stderr, out, las, np.sort(gl.poisson_lod(points, rate=10).indices)
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+@pytest.mark.parametrize("ext", [".laz", ".las"])
+def test_every_shared_lidar_file_is_sampled_with_its_own_bytes(tmp_path, name, ext):
+    _, out, las, expected = corpus_lod(tmp_path, name, ext)
     got = laspy.read(str(out))
     assert got.points.array.tobytes() == las.points.array[expected].tobytes()
-    assert own_records(out) == own_records(src)
+    assert own_records(out) == own_records(LIDAR / name)
     assert np.array_equal(got.header.scales, las.header.scales)
     assert np.array_equal(got.header.offsets, las.header.offsets)
     assert got.header.version == las.header.version and got.header.point_format.id == las.header.point_format.id
+
+
+@pytest.mark.parametrize("name", CORPUS or ["(the shared LiDAR folder)"])
+@pytest.mark.parametrize("ext", [".ply", ".npy"])
+def test_every_shared_lidar_file_is_sampled_into_a_table_with_its_coordinates(tmp_path, name, ext):
+    said, out, las, expected = corpus_lod(tmp_path, name, ext)
+    assert said.startswith(f"geodesic-lod: note: {out}: ") and "holds no LAS header" in said
+    assert np.array_equal(point_files.read(out).points, np.column_stack([las.x, las.y, las.z])[expected])
 
 
 def test_the_corpus_is_there_in_ci():

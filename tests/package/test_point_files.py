@@ -74,10 +74,88 @@ def test_npy_layouts(tmp_path):
         assert np.load(tmp_path / f"{name}_lod.npy").tobytes() == a[PICK[PICK < 100]].tobytes()
 
 
-def test_las_and_ply_rows_as_npy(tmp_path):
-    src = pf.read(las_cloud(tmp_path / "in.las"))
+@pytest.mark.parametrize("fmt", [3, 7])
+def test_las_rows_as_npy_are_a_table_of_coordinates_and_dimensions(tmp_path, fmt):
+    # Raw records would hold X, Y, Z as integers without the header's scales and offsets.
+    src = pf.read(las_cloud(tmp_path / "in.las", version="1.4" if fmt == 7 else "1.2", point_format=fmt))
+    las = laspy.read(str(tmp_path / "in.las"))
     pf.write_all(src, [(tmp_path / "rows.npy", PICK)])
-    assert np.load(tmp_path / "rows.npy").tobytes() == laspy.read(str(tmp_path / "in.las")).points.array[PICK].tobytes()
+    t = np.load(tmp_path / "rows.npy")
+    assert t.dtype.names[:3] == ("x", "y", "z") and all(t.dtype[k] == np.float64 for k in range(3))
+    assert np.array_equal(np.column_stack([t["x"], t["y"], t["z"]]), src.points[PICK])
+    others = [n for n in las.point_format.dimension_names if n not in ("X", "Y", "Z")]
+    assert list(t.dtype.names[3:]) == others  # bit fields unpacked, by laspy's names
+    for name in others:
+        assert np.array_equal(t[name], np.asarray(las[name])[PICK]), name
+    again = pf.read(tmp_path / "rows.npy")  # the command reads its own output back
+    assert np.array_equal(again.points, src.points[PICK])
+
+
+@pytest.mark.parametrize("fmt", [3, 7])
+def test_las_rows_as_ply_for_meshlab(tmp_path, fmt):
+    src = pf.read(las_cloud(tmp_path / "in.las", version="1.4" if fmt == 7 else "1.2", point_format=fmt))
+    las = laspy.read(str(tmp_path / "in.las"))
+    pf.write_all(src, [(tmp_path / "rows.ply", PICK)])
+    v = plyfile.PlyData.read(str(tmp_path / "rows.ply"))["vertex"].data
+    assert np.array_equal(np.column_stack([v["x"], v["y"], v["z"]]), src.points[PICK])  # doubles: no rounding
+    for c in ("red", "green", "blue"):  # 8 bits, the PLY convention MeshLab reads: LAS's top byte
+        assert v[c].dtype == np.uint8 and np.array_equal(v[c], np.asarray(las[c])[PICK] >> 8)
+    for name in set(las.point_format.dimension_names) - {"X", "Y", "Z", "red", "green", "blue"}:
+        assert np.array_equal(v[name], np.asarray(las[name])[PICK]), name
+    assert np.array_equal(pf.read(tmp_path / "rows.ply").points, src.points[PICK])
+
+
+def test_las_colours_of_eight_bits_stay_as_they_are_in_ply(tmp_path):
+    path = las_cloud(tmp_path / "in.las", version="1.2", point_format=3)
+    las = laspy.read(str(path))
+    n = len(las.x)
+    las.red, las.green, las.blue = np.arange(n) % 256, np.full(n, 255), np.zeros(n)  # as many files keep them
+    las.write(str(path))
+    pf.write_all(pf.read(path), [(tmp_path / "rows.ply", PICK)])
+    v = plyfile.PlyData.read(str(tmp_path / "rows.ply"))["vertex"].data
+    assert np.array_equal(v["red"], PICK % 256) and set(v["green"]) == {255} and set(v["blue"]) == {0}
+
+
+def las_with_counts(path, values):
+    """A LAS 1.4 file whose extra dimension 'count' holds 64-bit integers."""
+    header = laspy.LasHeader(point_format=6, version="1.4")
+    header.add_extra_dim(laspy.ExtraBytesParams(name="count", type=np.uint64))
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = np.arange(len(values)), np.zeros(len(values)), np.zeros(len(values))
+    las["count"] = np.asarray(values, dtype=np.uint64)
+    las.write(str(path))
+    return path
+
+
+def test_64_bit_integers_go_to_ply_as_doubles_where_those_hold_them_exactly(tmp_path):
+    exact = [0, 2 ** 53, 7] * 2000
+    src = pf.read(las_with_counts(tmp_path / "in.las", exact))
+    pf.write_all(src, [(tmp_path / "rows.ply", PICK)])
+    v = plyfile.PlyData.read(str(tmp_path / "rows.ply"))["vertex"].data
+    assert v["count"].dtype == np.float64 and v["count"].tolist() == [exact[i] for i in PICK]
+    src = pf.read(las_with_counts(tmp_path / "big.las", [2 ** 53 + 1] * 6000))
+    with pytest.raises(pf.PointFileError, match=r"big\.las: cannot be written as \.ply: its dimension count holds "
+                                                 r"uint64 values, which no PLY type holds exactly"):
+        pf.check_writable(src, [tmp_path / "rows.ply"])
+    pf.check_writable(src, [tmp_path / "rows.npy"])  # .npy holds them as they are
+
+
+def test_meshlab_reads_a_las_lod_written_as_ply_with_its_colours(tmp_path):
+    import pymeshlab
+    src = pf.read(las_cloud(tmp_path / "in.las"))
+    pf.write_all(src, [(tmp_path / "rows.ply", PICK)])
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(tmp_path / "rows.ply"))
+    m = ms.current_mesh()
+    assert np.array_equal(m.vertex_matrix(), src.points[PICK])
+    red = laspy.read(str(tmp_path / "in.las")).red[PICK] >> 8
+    assert np.allclose(m.vertex_color_matrix()[:, 0] * 255, red)
+
+
+def test_ply_rows_as_npy_are_its_vertex_table(tmp_path):
+    src = pf.read(ply_cloud(tmp_path / "in.ply"))
+    pf.write_all(src, [(tmp_path / "rows.npy", PICK)])
+    assert np.load(tmp_path / "rows.npy").tobytes() == src.rows[PICK].tobytes()
 
 
 def test_all_files_or_none(tmp_path):
@@ -128,8 +206,7 @@ def test_an_npy_input_is_told_its_one_output_format(tmp_path):
 def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
     src = las_cloud(tmp_path / "in.laz")
     (tmp_path / "notes").write_text("the user's file")
-    for out, problem in [(tmp_path / "out.ply", "can be written as .las, .laz or .npy"),
-                         (tmp_path / "out.txt", "unknown output format"),
+    for out, problem in [(tmp_path / "out.txt", "unknown output format"),
                          (tmp_path / "no" / "out.laz", "does not exist"),
                          (tmp_path / "notes" / "out.laz", "notes is a file, not a folder"),
                          (tmp_path / "in.laz", "is an input")]:
