@@ -453,7 +453,7 @@ def _ply_table(source: PointFile, idx: np.ndarray) -> np.ndarray:
     t = las_files.table(source.rows.array[idx], source.source.header)
     colours = [c for c in ("red", "green", "blue") if c in t.dtype.names]
     shift = 8 if colours and any(int(np.max(source.rows[c], initial=0)) > 255 for c in colours) else 0
-    fields, columns = [], []
+    fields, columns, taken = [], [], {}  # taken: the dimension each PLY name came from
     for name in t.dtype.names:
         column = t[name]
         if name in colours:
@@ -465,11 +465,13 @@ def _ply_table(source: PointFile, idx: np.ndarray) -> np.ndarray:
                     raise ValueError(f"its dimension {name} holds {part.dtype} values, which no PLY type "
                                      "holds exactly")
                 part = part.astype(np.float64)
-            fields.append(("_".join(name.split()) + (f"_{k}" if len(parts) > 1 else ""), part.dtype))
+            ply_name = "_".join(name.split()) + (f"_{k}" if len(parts) > 1 else "")
+            if ply_name in taken:
+                raise ValueError(f"its dimensions '{taken[ply_name]}' and '{name}' would both be the PLY property "
+                                 f"{ply_name}")
+            taken[ply_name] = name
+            fields.append((ply_name, part.dtype))
             columns.append(part)
-    names = [n for n, _ in fields]
-    if len(set(names)) < len(names):
-        raise ValueError("two of its dimensions take the same PLY property name")
     out = np.empty(len(t), dtype=fields)
     for (n, _), c in zip(fields, columns):
         out[n] = c

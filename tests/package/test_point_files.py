@@ -140,6 +140,18 @@ def test_64_bit_integers_go_to_ply_as_doubles_where_those_hold_them_exactly(tmp_
     pf.check_writable(src, [tmp_path / "rows.npy"])  # .npy holds them as they are
 
 
+def test_dimensions_that_would_share_a_ply_name_are_named(tmp_path):
+    header = laspy.LasHeader(point_format=3, version="1.4")
+    for name in ("my value", "my_value"):
+        header.add_extra_dim(laspy.ExtraBytesParams(name=name, type=np.float32))
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = np.arange(3000), np.zeros(3000), np.zeros(3000)
+    las.write(str(tmp_path / "in.las"))
+    with pytest.raises(pf.PointFileError, match=r"in\.las: cannot be written as \.ply: its dimensions 'my value' "
+                                                 r"and 'my_value' would both be the PLY property my_value$"):
+        pf.check_writable(pf.read(tmp_path / "in.las"), [tmp_path / "rows.ply"])
+
+
 def test_meshlab_reads_a_las_lod_written_as_ply_with_its_colours(tmp_path):
     import pymeshlab
     src = pf.read(las_cloud(tmp_path / "in.las"))
