@@ -66,8 +66,9 @@ def parser() -> argparse.ArgumentParser:
                 "samples spread uniformly in a curvature-weighted geodesic metric.",
                 epilog="Formats: PLY (every vertex property kept), LAS/LAZ (every point record kept bit for bit, "
                 "with the header, scales, offsets, CRS and VLRs), NumPy .npy ((n, 3), (n, 6) with normals, or a "
-                "table with fields x, y, z). A PLY input may also be written as .npy; a LAS/LAZ input as .ply or .npy, "
-                "a table of x, y, z (scaled, as doubles) and its dimensions, without the LAS header.")
+                "table with fields x, y, z). A PLY input may also be written as .npy, an .npy input as .ply (its columns "
+                "or fields as vertex properties), a LAS/LAZ input as .ply or .npy: a table of x, y, z (scaled, as "
+                "doubles) and its dimensions, without the LAS header.")
     p.add_argument("input", nargs="+", help="the point file (.ply, .las, .laz or .npy); several files, a folder "
                    "or a glob are sampled as one cloud on a Dask cluster")
     p.add_argument("-o", "--output", required=True, help="the LOD file; with --levels, the name each level's "

@@ -2,10 +2,10 @@
 
 A LOD is written as the chosen rows of the input, whatever they hold: every PLY vertex property,
 comment and the text/binary encoding; every LAS point record bit for bit, with the header's point
-format, scales, offsets, VLRs (the CRS among them) and EVLRs; a LAS input's as PLY or .npy, a table of its
-coordinates and dimensions without the header (las_files.table). Files are written under a temporary
-name in the destination folder and renamed once complete, so no half-written file ever carries
-the name asked for.
+format, scales, offsets, VLRs (the CRS among them) and EVLRs; a LAS input's as PLY or .npy, a table of
+its coordinates and dimensions without the header (las_files.table); an .npy input's as PLY vertices.
+Files are written under a temporary name in the destination folder and renamed once complete, so no
+half-written file ever carries the name asked for.
 """
 from __future__ import annotations
 
@@ -23,9 +23,9 @@ from .errors import InputError, PointFileError
 
 COPC_SUFFIX = ".copc.laz"  # a COPC file: every record, in octree nodes whose depths are nested LODs
 FORMATS = {".ply": "ply", ".las": "las", ".laz": "las", ".npy": "npy"}
-# The formats a LOD of each input format can be written in: its own, and .npy (its rows as a table); a
-# LAS input's also as PLY, for MeshLab (its rows as a table: las_files.table).
-WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".ply", ".npy"), "npy": (".npy",)}
+# The formats a LOD of each input format can be written in: its own, .npy (its rows as a table) and PLY
+# (its rows as vertices with properties: _ply_vertices).
+WRITABLE = {"ply": (".ply", ".npy"), "las": (".las", ".laz", ".ply", ".npy"), "npy": (".ply", ".npy")}
 
 
 def _a(kind: str) -> str:
@@ -445,29 +445,55 @@ def header_notes(inputs: Sequence, outputs: Sequence) -> list:
 PLY_TYPES = {"i1", "u1", "i2", "u2", "i4", "u4", "f4", "f8"}  # plyfile's types, by numpy's names
 
 
-def _ply_table(source: PointFile, idx: np.ndarray) -> np.ndarray:
-    """A LAS input's rows at idx as PLY vertices (las_files.table): colours as the 8 bits MeshLab reads (the
-    top byte of LAS's 16, unless every value of the input fits in 8), 64-bit integers as doubles (PLY has no
-    64-bit integer), a dimension of several values as one property a value (name_0, name_1, ...), names
+def _table(source: PointFile, idx: np.ndarray) -> np.ndarray:
+    """The rows at idx with named fields: a LAS input's by las_files.table, an .npy array's columns as x, y,
+    z (and nx, ny, nz), an .npy table as it is."""
+    if source.kind == "las":
+        return las_files.table(source.rows.array[idx], source.source.header)
+    rows = np.asarray(source.rows[idx])
+    if rows.dtype.names:
+        return rows
+    names = ("x", "y", "z", "nx", "ny", "nz")[:rows.shape[1]]
+    out = np.empty(len(rows), dtype=[(n, rows.dtype) for n in names])
+    for k, n in enumerate(names):
+        out[n] = rows[:, k]
+    return out
+
+
+def _ply_exact(part: np.ndarray, what: str) -> np.ndarray:
+    """A column in a PLY type that holds its values exactly: booleans as bytes, half floats as floats, 64-bit
+    integers as doubles where they fit in 53 bits; ValueError for any other."""
+    if part.dtype.str[1:] in PLY_TYPES:
+        return part
+    if part.dtype == np.bool_:
+        return part.astype(np.uint8)
+    if part.dtype == np.float16:
+        return part.astype(np.float32)
+    if part.dtype.kind in "iu" and not np.any((part > 2 ** 53) | (part < -2 ** 53)):
+        return part.astype(np.float64)
+    raise ValueError(f"its {what} holds {part.dtype} values, which no PLY type holds exactly")
+
+
+def _ply_vertices(source: PointFile, idx: np.ndarray) -> np.ndarray:
+    """A LAS or .npy input's rows at idx as PLY vertices (_table): colours as the 8 bits MeshLab reads (the
+    top byte of 16, unless every value of the input fits in 8), every field in a PLY type that holds it
+    exactly (_ply_exact), a field of several values as one property a value (name_0, name_1, ...), names
     with spaces joined by underscores."""
-    t = las_files.table(source.rows.array[idx], source.source.header)
-    colours = [c for c in ("red", "green", "blue") if c in t.dtype.names]
+    t = _table(source, idx)
+    what = "dimension" if source.kind == "las" else "field"
+    colours = [c for c in ("red", "green", "blue") if c in t.dtype.names and t.dtype[c].kind in "iu"]
     shift = 8 if colours and any(int(np.max(source.rows[c], initial=0)) > 255 for c in colours) else 0
-    fields, columns, taken = [], [], {}  # taken: the dimension each PLY name came from
+    fields, columns, taken = [], [], {}  # taken: the field each PLY name came from
     for name in t.dtype.names:
         column = t[name]
         if name in colours:
             column = (column >> shift).astype(np.uint8)
         parts = [column] if column.ndim == 1 else [column[:, k] for k in range(column.shape[1])]
         for k, part in enumerate(parts):
-            if part.dtype.str[1:] not in PLY_TYPES:  # 64-bit integers: PLY has none, a double holds 53 bits
-                if part.dtype.kind not in "iu" or np.any((part > 2 ** 53) | (part < -2 ** 53)):
-                    raise ValueError(f"its dimension {name} holds {part.dtype} values, which no PLY type "
-                                     "holds exactly")
-                part = part.astype(np.float64)
+            part = _ply_exact(part, f"{what} {name}")
             ply_name = "_".join(name.split()) + (f"_{k}" if len(parts) > 1 else "")
             if ply_name in taken:
-                raise ValueError(f"its dimensions '{taken[ply_name]}' and '{name}' would both be the PLY property "
+                raise ValueError(f"its {what}s '{taken[ply_name]}' and '{name}' would both be the PLY property "
                                  f"{ply_name}")
             taken[ply_name] = name
             fields.append((ply_name, part.dtype))
@@ -482,9 +508,9 @@ def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
     if ext == ".npy":
         save_npy(f, las_files.table(source.rows.array[idx], source.source.header) if source.kind == "las"
                  else np.asarray(source.rows[idx]))
-    elif ext == ".ply" and source.kind == "las":
+    elif ext == ".ply" and source.kind != "ply":
         import plyfile
-        plyfile.PlyData([plyfile.PlyElement.describe(_ply_table(source, idx), "vertex")]).write(f)
+        plyfile.PlyData([plyfile.PlyElement.describe(_ply_vertices(source, idx), "vertex")]).write(f)
     elif source.kind == "ply":
         import plyfile
         ply = source.source

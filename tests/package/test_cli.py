@@ -56,6 +56,14 @@ def test_a_las_input_written_as_a_table_is_noted_and_reads_back(tmp_path, ext, k
     assert np.array_equal(pf.read(out).points, points[np.sort(gl.poisson_lod(points, count=300).indices)])
 
 
+def test_an_npy_input_written_as_ply(tmp_path):
+    p = bumpy_sphere(3000)
+    np.save(tmp_path / "in.npy", p)
+    r = run(tmp_path / "in.npy", "-o", tmp_path / "lod.ply", "--count", 300, "-q")
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert np.array_equal(pf.read(tmp_path / "lod.ply").points, p[np.sort(gl.poisson_lod(p, count=300).indices)])
+
+
 def test_ply_mesh_samples_over_its_faces(tmp_path):
     path, pts, tris = ply_mesh(tmp_path / "mesh.ply")
     assert run(path, "-o", tmp_path / "lod.ply", "--rate", "10%", "--quiet").returncode == 0

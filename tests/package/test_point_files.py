@@ -208,11 +208,45 @@ def test_unreadable_files_are_named(tmp_path, make, problem):
     assert str(e.value).startswith(str(path)) and problem in str(e.value)
 
 
-def test_an_npy_input_is_told_its_one_output_format(tmp_path):
+def test_an_npy_input_is_told_its_output_formats(tmp_path):
     np.save(tmp_path / "in.npy", np.random.default_rng(0).random((50, 3)))
-    for out in ("out.ply", "out.laz", "out.copc.laz"):
-        with pytest.raises(pf.PointFileError, match=r"an NPY input can be written as \.npy only$"):
+    for out in ("out.laz", "out.copc.laz"):
+        with pytest.raises(pf.PointFileError, match=r"an NPY input can be written as \.ply or \.npy$"):
             pf.check_outputs([tmp_path / "in.npy"], [tmp_path / out])
+
+
+@pytest.mark.parametrize("columns", [3, 6])
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_npy_arrays_as_ply_for_meshlab(tmp_path, columns, dtype):
+    import pymeshlab
+    a = np.random.default_rng(0).normal(size=(3000, columns)).astype(dtype)
+    np.save(tmp_path / "in.npy", a)
+    pf.write_all(pf.read(tmp_path / "in.npy"), [(tmp_path / "rows.ply", PICK)])
+    v = plyfile.PlyData.read(str(tmp_path / "rows.ply"))["vertex"].data
+    assert v.dtype.names == ("x", "y", "z", "nx", "ny", "nz")[:columns] and v.dtype[0] == dtype
+    assert np.array_equal(np.column_stack([v[n] for n in v.dtype.names]), a[PICK])
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(tmp_path / "rows.ply"))
+    assert np.array_equal(ms.current_mesh().vertex_matrix(), a[PICK, :3].astype(np.float64))
+
+
+def test_npy_tables_as_ply_keep_every_field_a_ply_type_holds_exactly(tmp_path):
+    t = np.zeros(3000, dtype=[("x", "f8"), ("y", "f8"), ("z", "f8"), ("red", "u2"), ("green", "u2"), ("blue", "u2"),
+                              ("flag", "?"), ("half", "f2"), ("big", "i8"), ("pair", "i2", (2,))])
+    t["x"], t["red"], t["green"], t["blue"] = np.arange(3000), np.arange(3000) * 20, 256, 0
+    t["flag"], t["half"], t["big"], t["pair"] = np.arange(3000) % 2, 0.5, -2 ** 40, [[1, -1]]
+    np.save(tmp_path / "in.npy", t)
+    pf.write_all(pf.read(tmp_path / "in.npy"), [(tmp_path / "rows.ply", PICK)])
+    v = plyfile.PlyData.read(str(tmp_path / "rows.ply"))["vertex"].data
+    assert v.dtype.names == ("x", "y", "z", "red", "green", "blue", "flag", "half", "big", "pair_0", "pair_1")
+    assert np.array_equal(v["red"], (t["red"][PICK] >> 8).astype(np.uint8)) and set(v["green"]) == {1}
+    assert np.array_equal(v["flag"], t["flag"][PICK]) and set(v["half"]) == {0.5} and set(v["big"]) == {-2 ** 40}
+    assert set(v["pair_0"]) == {1} and set(v["pair_1"]) == {-1}
+    odd = np.zeros(3000, dtype=[("x", "f8"), ("y", "f8"), ("z", "f8"), ("name", "U4")])
+    np.save(tmp_path / "odd.npy", odd)
+    with pytest.raises(pf.PointFileError, match=r"odd\.npy: cannot be written as \.ply: its field name holds <U4 "
+                                                 r"values, which no PLY type holds exactly$"):
+        pf.check_writable(pf.read(tmp_path / "odd.npy"), [tmp_path / "rows.ply"])
 
 
 def test_outputs_that_cannot_be_written_are_refused_first(tmp_path):
