@@ -74,7 +74,7 @@ class GeodesicPoissonLod {
     double borderNoise = 4.0;
   };
   struct Result : LodResult<Scalar> {
-    double radius = 0;        ///< the radius of the Poisson set (0: trimmed from all points)
+    double radius = 0;        ///< the radius of the Poisson set (0: every point asked for, or trimmed from all points)
     size_t poissonCount = 0;  ///< samples of the Poisson set before trimming
     int iterations = 1;       ///< Poisson runs
     bool trimmed = false;     ///< thinned to sampleNum (PoissonTargetCount)

@@ -206,6 +206,21 @@ class PoissonTargetCount {
       throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + Counted(candidates) +
                                              "), got " + std::to_string(p.sampleNum));
     CheckTolerance(p.tolerance);
+    Result out;
+    if (p.sampleNum == candidates && p.tolerance == 0) {
+      // Every point: the Poisson set at radius 0, each point its own disk, in one run (the search would
+      // halve its radius run after run where neighbours lie closer than any radius it reaches, then
+      // order every point by farthest points). Points at distance 0 (a mesh's repeated seam vertices)
+      // share a disk: the search then goes on. A tolerance searches as a cluster does, which steps alike.
+      Trial every = Run(n, search, 0.0, *p.order, progress.Sub(0, 80.0 / std::max(1, p.maxIterations)));
+      ++out.iterations;
+      if (every.count == p.sampleNum) {
+        out.samples = std::move(every.samples);
+        out.diskOwner = std::move(every.owner);
+        out.poissonCount = every.count;
+        return out;  // radius 0, covering radius 0
+      }
+    }
     const size_t reckoned = p.reckoned ? p.reckoned : candidates;
     RadiusSearch steps(p.sampleNum, p.tolerance, reckoned, p.initialRadius, p.maxIterations);
     const double pilot = p.pilotIds ? Pilot(n, search, p) : 0;
@@ -216,7 +231,6 @@ class PoissonTargetCount {
     typename DiskCache<Scalar>::template Cached<Search> disks(search, cache);
     Trial above, accepted;     // above: the run with count >= target at the largest radius
     above.count = candidates;  // radius 0: every point is a sample
-    Result out;
     const int phase = std::max(1, p.maxIterations);
     for (int it = 0; !steps.Done(); ++it) {
       cache.Keeping(it > 0 || pilot > 0);  // a guess's disks are seldom read again; the pilot's radius errs large

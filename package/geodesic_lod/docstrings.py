@@ -633,7 +633,8 @@ TEXTS = {
     {LOD_ATTRIBUTES}
     radius : float
         The radius of the Poisson set the samples are (or were trimmed from), in the metric: the input's
-        units, stretched by the metric's weights. 0 when a count was trimmed from all the points.
+        units, stretched by the metric's weights. 0 when a count was trimmed from all the points, or every
+        point was asked for (each its own disk).
     covering_radius : float
         Every point lies within this distance in the metric (the input's units, weighted) of a sample: the
         exact largest one when trimmed, else ``radius``.

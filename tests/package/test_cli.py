@@ -56,6 +56,15 @@ def test_a_las_input_written_as_a_table_is_noted_and_reads_back(tmp_path, ext, k
     assert np.array_equal(pf.read(out).points, points[np.sort(gl.poisson_lod(points, count=300).indices)])
 
 
+def test_every_point_asked_is_every_record_in_the_input_s_order(tmp_path):
+    src = las_cloud(tmp_path / "in.laz")
+    r = run(src, "-o", tmp_path / "all.laz", "--rate", "100%", "-q")
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert laspy.read(str(tmp_path / "all.laz")).points.array.tobytes() == laspy.read(str(src)).points.array.tobytes()
+    lod = gl.poisson_lod(pf.read(src).points, rate=100)
+    assert sorted(lod.indices) == list(range(3000)) and lod.radius == 0
+
+
 def test_an_npy_input_written_as_ply(tmp_path):
     p = bumpy_sphere(3000)
     np.save(tmp_path / "in.npy", p)

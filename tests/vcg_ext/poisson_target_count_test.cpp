@@ -57,6 +57,22 @@ TEST(TargetCount, ExactCountsForARangeOfTargets) {
   }
 }
 
+TEST(TargetCount, EveryPointIsThePoissonSetAtRadiusZeroInOneRun) {
+  // Asked for every point, no radius gives fewer: each point is its own disk.
+  test::TMesh m;
+  test::HeightField(m, 40, [](float x, float y) { return test::HalfBumpy(x, y); });
+  LOD::Param p = Target(m.vert.size());
+  p.regions = vcg_ext::Regions::Disk;
+  const auto r = vcg_ext::MeshLod<LOD>(m, p);
+  EXPECT_EQ(std::set<int>(r.vertIndex.begin(), r.vertIndex.end()).size(), m.vert.size());
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_EQ(r.radius, 0);
+  EXPECT_EQ(r.coveringRadius, 0);
+  EXPECT_EQ(r.poissonCount, m.vert.size());
+  EXPECT_FALSE(r.trimmed);
+  for (size_t k = 0; k < r.vertIndex.size(); ++k) EXPECT_EQ(r.regionOf[size_t(r.vertIndex[k])], int(k));
+}
+
 TEST(TargetCount, ExactCountsOnMeshesToo) {
   test::TMesh m;
   test::GridMesh(m, 30, [](float x, float y) { return test::HalfBumpy(x, y); });
