@@ -3,6 +3,7 @@
 // separation kept, termination where the count jumps across the target, the
 // regions reported on the input, and a pilot's first radius near the target.
 #include <gtest/gtest.h>
+#include <random>
 #include <set>
 #include <vcg_ext/geodesic_fps_lod.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
@@ -71,6 +72,28 @@ TEST(TargetCount, EveryPointIsThePoissonSetAtRadiusZeroInOneRun) {
   EXPECT_EQ(r.poissonCount, m.vert.size());
   EXPECT_FALSE(r.trimmed);
   for (size_t k = 0; k < r.vertIndex.size(); ++k) EXPECT_EQ(r.regionOf[size_t(r.vertIndex[k])], int(k));
+}
+
+TEST(TargetCount, CountsNearEveryPointTakeFewRuns) {
+  // Near every point the count hardly moves with the radius (only the points within r of an earlier
+  // sample are left out, about r^2 of them): the search steps by those, not by the count itself.
+  test::TMesh m;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 20000);
+  std::mt19937 rng(1);
+  std::normal_distribution<float> g;
+  for (auto& v : m.vert) {
+    const test::P3 q(g(rng), g(rng), g(rng));
+    v.P() = q / q.Norm(), v.N() = test::P3(0, 0, 0);
+  }
+  for (double share : {0.6, 0.8, 0.95, 0.99, 0.999}) {
+    const size_t n = size_t(share * double(m.vert.size()));
+    const LOD::Param p = Target(n);
+    const auto r = vcg_ext::MeshLod<LOD>(m, p);
+    EXPECT_EQ(r.vertIndex.size(), n);
+    EXPECT_LE(r.iterations, 8) << share;
+    EXPECT_GT(r.radius, 0) << share << ": no run had enough samples";
+    ExpectSeparated(m, p, r);
+  }
 }
 
 TEST(TargetCount, ExactCountsOnMeshesToo) {
