@@ -293,7 +293,14 @@ LodRun RunPoissonLod(const CMeshO& in, const ParamSource& src, vcg::CallBackPos*
     p.meshOutput = output.mesh, p.placement = output.placement;
     p.regions = kPoissonRegions.Read(src, kRegions);
     p.order = kVisitOrders.Read(src, kVisitOrder);
-    const auto r = vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<Scalarm>>(in, p, cb);
+    const auto r = [&] {
+      try {
+        return vcg_ext::MeshLod<vcg_ext::GeodesicPoissonLod<Scalarm>>(in, p, cb);
+      } catch (const vcg_ext::InputError& e) {  // the count a percentage came to, named as it was given
+        if (e.field != vcg_ext::Field::SampleNum || !(rate > 0)) throw;
+        throw std::invalid_argument(std::string(kSampleRate) + " " + vcg_ext::Shown(rate) + "%: its count " + e.what());
+      }
+    }();
     LodRun run;
     run.result = r;
     run.useInputNormals = p.domain.useInputNormals;

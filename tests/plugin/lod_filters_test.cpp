@@ -617,6 +617,11 @@ TEST(LodFilters, TheLogNamesVerticesGivenAgainAndTheCountIsOfDistinctPositions) 
   EXPECT_NE(ErrorOf(in, p).find("samplenum must be at most the 900 distinct positions of the 1,200 points (300 "
                                 "repeat one and are not sampled), got 901"),
             std::string::npos) << ErrorOf(in, p);
+  MapSource rate(in);  // a percentage is named as given, with the count it came to
+  rate.set("samplerate", 100);
+  EXPECT_NE(ErrorOf(in, rate).find("samplerate 100%: its count must be at most the 900 distinct positions of the "
+                                   "1,200 points (300 repeat one and are not sampled), got 1200"),
+            std::string::npos) << ErrorOf(in, rate);
 }
 
 TEST(LodFilters, HeightFieldTellsWhenTheLayerIsNoHeightField) {
