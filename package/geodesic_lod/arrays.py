@@ -439,6 +439,17 @@ def call_core(fn, *args):
         raise InputError(str(e)) from None
 
 
+def rated(rate, call):
+    """call(), its count's error worded for the rate the count came from ("rate 100: its count must be ...");
+    subject and problem kept, for the command's own words."""
+    try:
+        return call()
+    except InputError as e:
+        if rate is None or e.subject != "count":
+            raise
+        raise InputError(f"rate {rate}: its count {e.problem}", e.subject, e.problem) from None
+
+
 def _indices(values, n: int, name: str) -> np.ndarray:
     """Point indices: a non-empty 1-D array of distinct integers in [0, n), sorted."""
     a = np.asarray(values)
@@ -484,7 +495,7 @@ def poisson_lod(points, normals=None, *, radius: Optional[float] = None, count: 
                                     seed, within, threads, progress, lambda: diagonal_of(p), visit_order)
     param.domain = domain
     param.placement = placement_of(placement, mesh_output, param.placement)
-    return result_of(PoissonLod, call_core(_core.poisson_lod, p, n, f, param, threads, progress))
+    return result_of(PoissonLod, rated(rate, lambda: call_core(_core.poisson_lod, p, n, f, param, threads, progress)))
 
 
 def diagonal_of(p: np.ndarray) -> float:

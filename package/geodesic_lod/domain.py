@@ -9,7 +9,7 @@ from .docstrings import documented
 from .arrays import (DEFAULT_GEODESICS, DEFAULT_LEVELS, DEFAULT_METRIC, DEFAULT_VISIT_ORDER, DOMAIN_DEFAULTS, DomainOptions, FpsLod,
                      LodPyramid, PoissonLod, Progress, call_core, diagonal_of, fps_param, input_arrays,
                      level_counts,
-                     poisson_param, pyramid_param, result_of, run_options,
+                     poisson_param, pyramid_param, rated, result_of, run_options,
                      placement_of)
 
 
@@ -55,7 +55,8 @@ class Domain:
                                         mesh_output, regions, seed, within, threads, progress,
                                         lambda: self._diagonal, visit_order)
         param.placement = placement_of(placement, mesh_output, param.placement)
-        return result_of(PoissonLod, call_core(_core.poisson_on, self._built, param, threads, progress))
+        return result_of(PoissonLod, rated(rate, lambda: call_core(_core.poisson_on, self._built, param, threads,
+                                                                   progress)))
 
     @functools.partial(documented, name="Domain.fps_lod")
     def fps_lod(self, *, count: int, mesh_output: bool = False, placement: Optional[str] = None,
