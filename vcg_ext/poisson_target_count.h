@@ -117,8 +117,8 @@ class RadiusSearch {
   static constexpr double kSlope = 1.7;
   /// Where the middle of the accepted counts and a run's count both exceed this share of the
   /// candidates, the steps follow the points a run leaves out (those within r of an earlier sample,
-  /// about r^2 of them on a surface), not its count, which then hardly moves with r (counts of 95%
-  /// took 15-17 runs, 99% all 24 and then the farthest-point order of every point).
+  /// about r^2 of them on a surface), not its count, which then hardly moves with r: steps by the
+  /// count would shrink r by about 1% a run.
   static constexpr double kSaturated = 0.75;
   static constexpr double kLeftOutSlope = 2.0;  ///< -d log(1 / left out) / d log r where no run has measured it
 
@@ -224,9 +224,8 @@ class PoissonTargetCount {
     CheckTolerance(p.tolerance);
     Result out;
     if (p.sampleNum == candidates && p.tolerance == 0) {
-      // Every point: the Poisson set at radius 0, each point its own disk, in one run (the search would
-      // halve its radius run after run where neighbours lie closer than any radius it reaches, then
-      // order every point by farthest points). Points at distance 0 (a mesh's repeated seam vertices)
+      // Every point: the Poisson set at radius 0, each point its own disk, in one run (no positive
+      // radius separates every point of a scan). Points at distance 0 (a mesh's repeated seam vertices)
       // share a disk: the search then goes on. A tolerance searches as a cluster does, which steps alike.
       Trial every = Run(n, search, 0.0, *p.order, progress.Sub(0, 80.0 / std::max(1, p.maxIterations)));
       ++out.iterations;
