@@ -506,8 +506,7 @@ def _ply_vertices(source: PointFile, idx: np.ndarray) -> np.ndarray:
 
 def _write(source: PointFile, idx: np.ndarray, ext: str, f) -> None:
     if ext == ".npy":
-        save_npy(f, las_files.table(source.rows.array[idx], source.source.header) if source.kind == "las"
-                 else np.asarray(source.rows[idx]))
+        save_npy(f, _table(source, idx) if source.kind == "las" else np.asarray(source.rows[idx]))
     elif ext == ".ply" and source.kind != "ply":
         import plyfile
         plyfile.PlyData([plyfile.PlyElement.describe(_ply_vertices(source, idx), "vertex")]).write(f)
