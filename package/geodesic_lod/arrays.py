@@ -439,6 +439,20 @@ def call_core(fn, *args):
         raise InputError(str(e)) from None
 
 
+def exactly_one(**options) -> str:
+    """The name of the one option given (not None); an InputError naming them all otherwise."""
+    names, given = list(options), [k for k, v in options.items() if v is not None]
+    if len(given) != 1:
+        listed = ", ".join(names[:-1]) + " or " + names[-1]
+        raise InputError(f"give exactly one of {listed}" + (f" (got {' and '.join(given)})" if given else ""))
+    return given[0]
+
+
+def count_at(percentage: float, n: int) -> int:
+    """The samples a percentage of n points asks for: at least one."""
+    return int(max(1.0, _core.percent_of(percentage, n)))
+
+
 def rated(rate, call):
     """call(), its count's error worded for the rate the count came from ("rate 100: its count must be ...");
     subject and problem kept, for the command's own words."""
@@ -515,10 +529,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
                    progress, diagonal: Callable[[], float], visit_order: str = DEFAULT_VISIT_ORDER):
     """poisson_lod's sampling arguments checked, as a PoissonParam without its domain; and the threads."""
     param = _core.PoissonParam()
-    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate)) if v is not None]
-    if len(given) != 1:
-        raise InputError("give exactly one of radius, count or rate" +
-                         (f" (got {' and '.join(given)})" if given else ""))
+    exactly_one(radius=radius, count=count, rate=rate)
     pool = n_points
     if within is not None:
         chosen = _indices(within, n_points, "within")
@@ -532,8 +543,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
         param.sample_num = whole_number(count, "count", 1, pool,
                                     " (the number of points)" if within is None else " (the points in within)")
     else:
-        r = rate_percent(rate)
-        param.sample_num = int(max(1.0, _core.percent_of(r, n_points)))
+        param.sample_num = count_at(rate_percent(rate), n_points)
         if param.sample_num > pool:
             raise InputError(f"rate asks for {counted(param.sample_num, 'sample')}, more than the "
                              f"{counted(pool, 'point')} in within")
@@ -546,7 +556,7 @@ def poisson_param(n_points, has_faces, radius, count, rate, tolerance, mesh_outp
 
 
 @documented
-def fps_lod(points, normals=None, *, count: int, faces=None,
+def fps_lod(points, normals=None, *, count: Optional[int] = None, rate: Optional[float] = None, faces=None,
             metric: str = DEFAULT_METRIC, geodesics: str = DEFAULT_GEODESICS,
             adaptivity: float = DOMAIN_DEFAULTS.adaptivity, curvature_exponent: float = DOMAIN_DEFAULTS.curvature_exponent,
             normal_neighbors: int = DOMAIN_DEFAULTS.normal_neighbors, graph_neighbors: int = DOMAIN_DEFAULTS.graph_neighbors,
@@ -558,16 +568,19 @@ def fps_lod(points, normals=None, *, count: int, faces=None,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
     domain = options.param(p.shape[0], has_faces)
-    param, threads = fps_param(p.shape[0], has_faces, count, mesh_output, regions, seed, threads, progress)
+    param, threads = fps_param(p.shape[0], has_faces, count, rate, mesh_output, regions, seed, threads, progress)
     param.domain = domain
     param.placement = placement_of(placement, mesh_output, param.placement)
-    return result_of(FpsLod, call_core(_core.fps_lod, p, n, f, param, threads, progress))
+    return result_of(FpsLod, rated(rate, lambda: call_core(_core.fps_lod, p, n, f, param, threads, progress)))
 
 
-def fps_param(n_points, has_faces, count, mesh_output, regions, seed, threads, progress):
+def fps_param(n_points, has_faces, count, rate, mesh_output, regions, seed, threads, progress):
     """fps_lod's sampling arguments checked, as an FpsParam without its domain; and the threads."""
     param = _core.FpsParam()
-    param.sample_num = whole_number(count, "count", 1, n_points, " (the number of points)")
+    if exactly_one(count=count, rate=rate) == "count":
+        param.sample_num = whole_number(count, "count", 1, n_points, " (the number of points)")
+    else:
+        param.sample_num = count_at(rate_percent(rate), n_points)
     param.seed, threads = run_options(seed, threads, progress, mesh_output, has_faces)
     param.mesh_output = bool(mesh_output)
     if regions == "disk":

@@ -375,7 +375,7 @@ def _nested_levels(args, items, source: point_files.PointFile, progress) -> tupl
 
 def _count_of(request: dict, n: int) -> int:
     """The samples --count or --rate asks of n points."""
-    count = request.get("count") or max(1, int(_core.percent_of(request["rate"], n)))
+    count = request.get("count") or arrays.count_at(request["rate"], n)
     if count > n:
         raise ValueError(f"--count must be at most the number of points ({n:,}), got {count}")
     return count

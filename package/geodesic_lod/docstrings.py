@@ -87,6 +87,12 @@ POISSON_SIZE = """radius : float or str, optional
         With ``count`` or ``rate``: a Poisson set within this percentage of the count is kept untrimmed.
         Default 0 (an exact count)."""
 
+FPS_SIZE = """count : int, optional
+        The number of samples, 1 to the number of points.
+    rate : float or str, optional
+        A percentage of the points as a count, as in ``poisson_lod``. Give exactly one of ``count`` and
+        ``rate``."""
+
 POISSON_EXAMPLE = """Examples
     --------
     >>> import numpy as np, geodesic_lod as gl
@@ -189,8 +195,7 @@ TEXTS = {
     Parameters
     ----------
     {INPUTS}
-    count : int
-        The number of samples, 1 to the number of points.
+    {FPS_SIZE}
     {FACES}
     {METRIC}
     {MESH_OUTPUT}
@@ -325,8 +330,7 @@ TEXTS = {
 
     Parameters
     ----------
-    count : int
-        The number of samples, 1 to the number of points.
+    {FPS_SIZE}
     {MESH_OUTPUT}
     {PLACEMENT}
     regions : {{None, 'voronoi'}}

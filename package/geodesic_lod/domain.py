@@ -59,13 +59,14 @@ class Domain:
                                                                    progress)))
 
     @functools.partial(documented, name="Domain.fps_lod")
-    def fps_lod(self, *, count: int, mesh_output: bool = False, placement: Optional[str] = None,
+    def fps_lod(self, *, count: Optional[int] = None, rate: Optional[float] = None, mesh_output: bool = False, placement: Optional[str] = None,
                 regions: Optional[str] = None, seed: int = 0, threads: Optional[int] = None,
                 progress: Progress = None) -> FpsLod:
-        param, threads = fps_param(self.point_count, self._built.has_faces, count, mesh_output, regions, seed,
-                                    threads, progress)
+        param, threads = fps_param(self.point_count, self._built.has_faces, count, rate, mesh_output, regions,
+                                    seed, threads, progress)
         param.placement = placement_of(placement, mesh_output, param.placement)
-        return result_of(FpsLod, call_core(_core.fps_on, self._built, param, threads, progress))
+        return result_of(FpsLod, rated(rate, lambda: call_core(_core.fps_on, self._built, param, threads,
+                                                                 progress)))
 
     @functools.partial(documented, name="Domain.lod_pyramid")
     def lod_pyramid(self, *, levels: Sequence[Union[int, str]] = DEFAULT_LEVELS,

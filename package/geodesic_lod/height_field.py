@@ -9,7 +9,8 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from .arrays import GRID_HINT, Progress, call_core, point_arrays, rate_percent, real_number, whole_number
+from .arrays import (GRID_HINT, Progress, call_core, count_at, exactly_one, point_arrays, rate_percent, real_number,
+                     whole_number)
 from .docstrings import documented
 from .errors import InputError
 
@@ -48,13 +49,11 @@ def height_field_lod(points, *, count: Optional[int] = None, rate=None,
         if np.ndim(points) == 2 and np.shape(points)[1] != 3:  # rows by columns of heights, as GIS tools hold a DEM
             raise InputError(f"{e}. {GRID_HINT}") from None
         raise
-    if (count is None) == (rate is None):
-        raise InputError("give exactly one of count or rate" + (" (got both)" if count is not None else ""))
     param = _core.HeightFieldParam()
-    if count is not None:
+    if exactly_one(count=count, rate=rate) == "count":
         param.sample_num = whole_number(count, "count", 1, p.shape[0], " (the number of points)")
     else:
-        param.sample_num = int(max(1.0, _core.percent_of(rate_percent(rate), p.shape[0])))
+        param.sample_num = count_at(rate_percent(rate), p.shape[0])
     param.separation = real_number(separation, "separation", positive=False)
     if separation_in not in SEPARATION_SPACES:
         raise InputError(f"separation_in must be 'xyz' or 'xy', got {separation_in!r}")

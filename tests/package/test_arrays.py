@@ -213,12 +213,15 @@ def test_a_rate_below_one_is_a_percentage_and_warned_of_unless_it_says_so(cloud,
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         lod = gl.poisson_lod(cloud, rate=rate)
+        fps = gl.fps_lod(cloud, rate=rate)
         with pytest.raises(gl.InputError, match="points on the hull"):  # a TIN of a sphere's few points
             gl.height_field_lod(cloud, rate=rate)
     r = float(str(rate).rstrip("%"))
-    assert len(lod.indices) == max(1, int(gl._core.percent_of(r, len(cloud))))
+    count = max(1, int(gl._core.percent_of(r, len(cloud))))
+    assert len(lod.indices) == count
+    assert fps.indices.tolist() == gl.fps_lod(cloud, count=count).indices.tolist()
     said = [w for w in caught if "of the points (a tenth is rate=10)" in str(w.message)]
-    assert len(said) == (2 if warned else 0), [str(w.message) for w in caught]
+    assert len(said) == (3 if warned else 0), [str(w.message) for w in caught]
     for w in said:  # at the user's line, in the user's words
         assert w.filename == __file__ and str(w.message) == (f"rate={rate!r} is {r:g}% of the points (a tenth is "
                                                              f"rate=10); give rate='{r:g}%' to mean it")

@@ -36,6 +36,7 @@ def test_every_lod_of_a_domain_is_the_one_call_lod(kind):
     calls = [  # (Domain method, function, sampling arguments), run one after the other on one domain
         ("poisson_lod", gl.poisson_lod, dict(count=150, regions="voronoi", **mesh)),
         ("fps_lod", gl.fps_lod, dict(count=40, seed=3, **mesh)),
+        ("fps_lod", gl.fps_lod, dict(rate="2%", **mesh)),
         ("poisson_lod", gl.poisson_lod, dict(radius=0.2, regions="disk")),
         ("lod_pyramid", gl.lod_pyramid, dict(levels=["20%", 50, 10], **mesh)),
         ("lod_pyramid", gl.lod_pyramid, dict(levels=[90, 30], visit_order="random", seed=4, **mesh)),
@@ -72,6 +73,8 @@ def test_a_domain_gives_the_same_lod_on_any_number_of_threads():
     (lambda d: d.poisson_lod(count=10, mesh_output=True), "mesh_output"),
     (lambda d: d.poisson_lod(count=10, within=[5000]), "within"),
     (lambda d: d.fps_lod(count=3001), "count"),
+    (lambda d: d.fps_lod(), "give exactly one of count or rate"),
+    (lambda d: d.fps_lod(rate=101), "rate"),
     (lambda d: d.fps_lod(count=5, regions="disk"), "regions"),
     (lambda d: d.lod_pyramid(levels=["10%", "20%"]), "levels"),
     (lambda d: d.lod_pyramid(visit_order="rim"), "visit_order"),
