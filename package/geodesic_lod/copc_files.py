@@ -3,8 +3,8 @@ grouped in the nodes of an octree, with the hierarchy that tells a viewer where 
 
 The writer is given each record's depth; a record goes to the node of that depth that contains it, and
 each node is one LASzip chunk (variable-size chunks, lazrs). The records of point formats 6 to 8 are
-written bit for bit; those of formats 0 to 5 are converted to 6 or 7 (COPC allows only 6 to 8; the
-scan angle is rescaled, waveform packets are dropped). The header's fields, and the input's own VLR and
+written bit for bit; those of the others are converted to 6, 7 or 8 (COPC allows only 6 to 8; formats 0
+to 5's scan angle is rescaled, waveform packets are dropped). The header's fields, and the input's own VLR and
 EVLR bytes (CRS, extra bytes), are kept; the COPC info VLR comes first, as readers expect; a CRS given
 only as GeoTIFF keys naming an EPSG code is written as WKT too.
 """
@@ -19,8 +19,9 @@ import numpy as np
 
 from .las_files import LasSource
 
-# COPC allows point formats 6 to 8: the format each input format is written in.
-COPC_FORMAT = {0: 6, 1: 6, 2: 7, 3: 7, 4: 6, 5: 7, 6: 6, 7: 7, 8: 8}
+# COPC allows point formats 6 to 8: the format each input format is written in (4, 5, 9 and 10 are 1, 3, 6
+# and 8 with waveform packets).
+COPC_FORMAT = {0: 6, 1: 6, 2: 7, 3: 7, 4: 6, 5: 7, 6: 6, 7: 7, 8: 8, 9: 6, 10: 8}
 CELLS = 128  # the root node's side over its spacing (PDAL's and untwine's convention, which viewers assume)
 MAX_DEPTH = 14  # the deepest depth; its cells, CELLS 2^14 = 2^21 across, make keys of three 21-bit parts
 FINEST_BITS = (CELLS << MAX_DEPTH).bit_length() - 1
@@ -90,8 +91,8 @@ def copc_records(records):
     if COPC_FORMAT[records.point_format.id] == records.point_format.id:
         return records
     out = laspy.PackedPointRecord.from_point_record(records, copc_format(records.point_format))
-    # Formats 0 to 5 keep the scan angle in whole degrees, 6 to 10 in steps of 0.006 degrees.
-    out["scan_angle"] = np.round(np.asarray(records["scan_angle_rank"], np.float64) / 0.006).astype(np.int16)
+    if records.point_format.id < 6:  # formats 0 to 5 keep the scan angle in whole degrees, 6 to 10 in 0.006 degrees
+        out["scan_angle"] = np.round(np.asarray(records["scan_angle_rank"], np.float64) / 0.006).astype(np.int16)
     return out
 
 

@@ -173,17 +173,32 @@ def test_a_crs_given_as_geotiff_keys_naming_an_epsg_code_is_written_as_wkt_too(t
             assert added == [] and wkt_crs(out) is None  # a CRS defined key by key: no WKT to give
 
 
-def test_formats_0_to_5_are_converted_with_their_values(tmp_path):
-    src = las_cloud(tmp_path / "in.las", version="1.2", point_format=3)
+@pytest.mark.parametrize("version, point_format, written", [("1.2", 3, 7), ("1.4", 4, 6), ("1.4", 5, 7),
+                                                              ("1.4", 9, 6), ("1.4", 10, 8)])
+def test_formats_outside_6_to_8_are_converted_with_their_values(tmp_path, version, point_format, written):
+    """Formats 0 to 5 to 6 or 7 (the scan angle from whole degrees to steps of 0.006 degrees); 9 and 10, 6 and 8
+    with waveform packets, to 6 and 8: every value but the packets kept."""
+    src = las_cloud(tmp_path / "in.las", version=version, point_format=point_format)
+    las = laspy.read(str(src))
+    wide = point_format >= 6
+    angles = np.arange(len(las.points)) % 181 - 90
+    if wide:
+        las.scan_angle = (angles / 0.006).astype(np.int16)
+    else:
+        las.scan_angle_rank = angles
+    las.write(str(src))
     out = tmp_path / "lod.copc.laz"
     r = run(src, "-o", out, "-q")
     assert r.returncode == 0, r.stderr
-    las = laspy.read(str(src))
     got = laspy.read(str(out))
-    assert got.header.point_format.id == 7
-    order = np.lexsort((np.asarray(got.gps_time),))
-    for dim in ("X", "Y", "Z", "intensity", "classification", "red", "green", "blue"):
+    assert got.header.point_format.id == written
+    order = np.argsort(np.asarray(got.gps_time))
+    kept = [d for d in ("X", "Y", "Z", "intensity", "classification", "red", "green", "blue", "nir")
+            if d in las.point_format.dimension_names]
+    for dim in kept:
         assert np.array_equal(np.asarray(got[dim])[order], np.asarray(las[dim])[np.argsort(las.gps_time)]), dim
+    steps = np.asarray(las.scan_angle) if wide else np.round(angles / 0.006)  # 0.006 degrees each
+    assert np.array_equal(np.asarray(got.scan_angle)[order], steps[np.argsort(las.gps_time)])
 
 
 REFUSED = [
