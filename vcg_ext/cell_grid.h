@@ -11,8 +11,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -171,6 +171,13 @@ class CellGrid {
         const Coord p = pos[size_t(pts_[size_t(r)])];
         f(size_t(r), [&](double r2, auto&& g) {
           const Scalar px = p[0], py = p[1], pz = p[2];
+          if (r2 < kSquaresExactFrom) {  // squares this small lose their digits in Scalar: tested in double
+            for (size_t t = 0; t < candidates; ++t) {
+              const vcg::Point3d q(bx[t] - px, by[t] - py, bz[t] - pz);
+              if (q.SquaredNorm() <= r2) g(q);
+            }
+            return;
+          }
           for (size_t t = 0; t < candidates; ++t) {
             const Scalar qx = bx[t] - px, qy = by[t] - py, qz = bz[t] - pz;
             d2[t] = qx * qx + qy * qy + qz * qz;  // Point3::SquaredNorm's sum, in its order
@@ -268,6 +275,11 @@ class CellGrid {
   // no such index. 4 bytes a column and 8 a cell; O(cells + columns), one thread.
   static constexpr size_t kColumnsPerCell = 8;
   static constexpr size_t kNoCell = ~size_t(0);
+  // Balls of squared radius below this are tested in double: in Scalar, squares
+  // of their offsets would fall among the subnormals, where they lose their
+  // digits (and then become 0, taking far points for the ball's own).
+  static constexpr double kSquaresExactFrom =
+      double(std::numeric_limits<Scalar>::min()) / double(std::numeric_limits<Scalar>::epsilon());
   void IndexColumns(const Cell& last) {
     constexpr int64_t kLimit = (int64_t(1) << kBits) - 4;  // KnnTable's rings reach 3 cells beyond
     std::array<int64_t, 3> cells;

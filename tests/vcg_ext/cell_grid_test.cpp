@@ -3,11 +3,13 @@
 // also with a far outlier (whose cell shares keys modulo 2^21); a block is
 // exactly the non-empty cells within its ring, in x, y, z order, whether cells
 // are found by column or by their keys; a ball holds the points, or a subset's
-// points, within its radius; repeated points count as points spread over
+// points, within its radius (also where its squared radius underflows in
+// float); repeated points count as points spread over
 // the surface in its spacing.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -149,6 +151,24 @@ TEST(CellGrid, ABallHoldsThePointsOrTheSubsetsPointsWithinItsRadius) {
       }
     }
   }
+}
+
+// Float points 1e-30 apart (their squared distances underflow to 0 in float),
+// in balls of a radius far below that, in a grid whose cells share their
+// keys: each ball holds its point alone.
+TEST(CellGrid, ABallWhoseSquaredRadiusUnderflowsHoldsOnlyThePointsWithinIt) {
+  std::vector<vcg::Point3f> pos;
+  for (int k = 0; k < 3000; ++k) pos.emplace_back(float(k) * 1e-30f, float(k % 7) * 1e-30f, 0.f);
+  const double h = double(std::numeric_limits<float>::min());
+  const vcg_ext::CellGrid<float> grid(pos, h);
+  std::vector<int> found(pos.size(), 0);
+  grid.ForEachBall(pos, [&](size_t r, auto&& ball) {
+    ball(h * h, [&, i = grid.Point(r)](const vcg::Point3d& q) {
+      ++found[size_t(i)];
+      EXPECT_LE(q.SquaredNorm(), h * h);
+    });
+  });
+  EXPECT_TRUE(std::all_of(found.begin(), found.end(), [](int c) { return c == 1; }));
 }
 }  // namespace
 

@@ -179,6 +179,33 @@ TEST(Prominence, UnsmoothedAPointsKeyIsItsOffsetFromItsBallsMean) {
   EXPECT_TRUE(std::all_of(share.begin(), share.end(), [](float v) { return std::isfinite(v); }));
 }
 
+// A scale whose square no float holds (a radius far below the coordinates'
+// precision) has balls holding each point alone: nothing stands out, though
+// points 1e-30 apart have float squared distances of 0 (and many cells of
+// the grid share their keys).
+TEST(Prominence, AtAScaleWhoseSquareUnderflowsEachBallHoldsItsPointAlone) {
+  std::vector<vcg::Point3f> pos, normal;
+  std::vector<int> id;
+  for (int k = 0; k < 3000; ++k) {
+    pos.emplace_back(float(k) * 1e-30f, float(k % 7) * 1e-30f, 0.f);
+    normal.emplace_back(0.6f, 0.8f, 0.f);
+    id.push_back(k);
+  }
+  pos.emplace_back(1e-6f, 1e-6f, 1e-6f);  // the box's size
+  normal.emplace_back(0.f, 0.f, 1.f);
+  id.push_back(3000);
+  Prominence::Scale scale;
+  scale.R = double(std::numeric_limits<float>::min());
+  for (const double s : {0.0, 0.3 * scale.R}) {
+    scale.s = s;
+    for (const double offSurface : {0.0, 1.0}) {
+      const std::vector<float> key = Prominence::Compute(pos, normal, id, scale, 2, offSurface);
+      for (size_t i = 0; i < pos.size(); ++i)
+        EXPECT_EQ(key[i], offSurface > 0 ? 1.f : 0.f) << i << " s " << s << " off-surface " << offSurface;
+    }
+  }
+}
+
 // On a clean curved surface the smoothed position's offset is what curvature
 // explains: the off-surface weight leaves the keys 1 + the prominence, nearly.
 TEST(Prominence, ACleanSurfacesCurvatureIsNoOffset) {
