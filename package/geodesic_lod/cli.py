@@ -190,10 +190,15 @@ def _run_on_cluster(args, request: dict) -> int:
                                  f"tcp://10.0.0.5:8786 ({e})") from None
         else:
             import os
-            workers = args.workers or max(1, min(4, os.cpu_count() or 1))
-            args.threads = args.threads or max(1, (os.cpu_count() or 1) // workers)
+            cores = os.cpu_count() or 1
+            workers = args.workers or max(1, min(4, cores))
+            distributed.check_room_for(workers, "--workers")  # before the note: a refusal is one line
+            if workers > cores:
+                say(f"note: --workers {workers} on {arrays.counted(cores, 'core')}: the workers share the cores, "
+                    f"one task at a time each (a worker a core is fastest)")
+            args.threads = args.threads or max(1, cores // workers)
             las_files.size_decoder_pool(args.threads)  # the workers inherit it
-            cluster = distributed.local_cluster(workers, args.worker_memory)
+            cluster = distributed.local_cluster(workers, args.worker_memory, "--workers")
             client = Client(cluster)
         link = None if args.quiet else distributed.dashboard_link(client)
         if link:

@@ -241,16 +241,38 @@ def memory_limit_of(value, name: str = "memory_limit"):
     return size
 
 
-def local_cluster(workers: int, memory_limit="auto"):
+def available_memory() -> int:
+    """The bytes this machine can give new processes without swapping (the kernel's MemAvailable)."""
+    import psutil
+    return psutil.virtual_memory().available
+
+
+def check_room_for(workers: int, name: str = "workers") -> None:
+    """Refuses, before any starts, more workers than this machine's available memory holds past Dask's pause
+    threshold at their size before any task (this process's, once it holds what a worker and its tasks
+    import): starting them would push the machine out of memory. InputError naming `name`."""
+    import dask
+    from distributed import Worker  # noqa: F401 (held by every worker)
+    each = worker_check.task_footprint()
+    room = (dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0) * available_memory()
+    if workers * each > room:
+        raise InputError(f"{name} {workers}: this machine's available memory ({available_memory() / 1e9:.1f} GB) "
+                         f"holds at most {max(1, int(room // each)):,} workers of about {each / 1e6:.0f} MB each "
+                         f"before any task")
+
+
+def local_cluster(workers: int, memory_limit="auto", name: str = "workers"):
     """A Dask cluster of `workers` processes on this machine, one task at a time each, listening on
     127.0.0.1 only (its dashboard too, which shows no profile), without Dask's MALLOC_TRIM_THRESHOLD_ unless
     the environment sets it (``task_memory``). Its processes do not see Ctrl-C: a terminal signals them with the caller, which stops
     the job and closes the cluster. Ctrl-C while it starts stops it once started. `memory_limit` per worker:
-    see ``memory_limit_of``. InputError for a bad size, before anything starts."""
+    see ``memory_limit_of``. InputError for a bad size or more workers than the memory holds (``check_room_for``,
+    naming them `name`), before anything starts."""
     import dask
     from dask.distributed import LocalCluster
-    workers = arrays.whole_number(workers, "workers", 1)
+    workers = arrays.whole_number(workers, name, 1)
     memory_limit = memory_limit_of(memory_limit)
+    check_room_for(workers, name)
     if USERS_TRIM is None:
         os.environ.pop(TRIM, None)  # left by an earlier cluster's nanny: the workers would inherit it
     cluster = None
@@ -275,11 +297,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
               threads: Optional[int] = None, progress=None, visit_order: str = arrays.DEFAULT_VISIT_ORDER) -> dict:
     paths = cloud_files.expand_inputs(inputs)
     out = OutputFolder(out_dir, paths)
-    given = [k for k, v in (("radius", radius), ("count", count), ("rate", rate), ("levels", levels))
-             if v is not None]
-    if len(given) != 1:
-        raise InputError("give exactly one of radius, count, rate or levels" +
-                         (f" (got {' and '.join(given)})" if given else ""))
+    arrays.exactly_one(radius=radius, count=count, rate=rate, levels=levels)
     tolerance = cluster_tolerance(tolerance)
     max_runs = arrays.whole_number(_core.PoissonParam().max_iterations if max_runs is None else max_runs,
                                "max_runs", 1)

@@ -539,6 +539,7 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
     (["--count", "100", "--fps", "--workers", "2"], "--fps and --height-field run on one machine"),
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count, --rate or --levels"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
+    (["--radius", "0.5", "--workers", "1000000"], "--workers 1000000: this machine's available memory"),
     (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
     (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: no Dask scheduler "
                                                              "answered within"),
@@ -577,11 +578,36 @@ def test_workers_too_small_for_the_command_are_one_line_naming_its_memory_option
     assert not (tmp_path / "lod").exists()
 
 
+def test_more_workers_than_cores_are_noted_and_run(cloud, tmp_path):
+    """Each worker runs one task at a time: more of them than cores only share the cores. Said, whatever
+    --quiet says (as a fraction-like --rate is), and the run goes on (here on a machine taken as 1 core)."""
+    code = ("import os, sys; os.cpu_count = lambda: 1; from geodesic_lod.cli import main; "
+            f"sys.exit(main([{str(cloud[0])!r}, '-o', {str(tmp_path / 'lod')!r}, '--radius', '0.5', '--workers', '2', "
+            "'-q']))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ("geodesic-lod: note: --workers 2 on 1 core: the workers share the cores, one task at a time "
+                        "each (a worker a core is fastest)\n"), r.stderr
+    assert (tmp_path / "lod" / "index.json").is_file()
+
+
 def test_a_cluster_run_without_dask_names_the_extra_to_install(cloud, tmp_path):
     code = ("import sys; sys.modules['dask'] = None; from geodesic_lod.cli import main; "
             f"sys.exit(main([{str(cloud[0])!r}, '-o', {str(tmp_path / 'lod')!r}, '--radius', '0.5', '--workers', '1']))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "pip install 'geodesic-lod[dask]'" in r.stderr, r.stderr
+
+
+def test_more_workers_than_the_memory_holds_are_refused_before_any_starts(monkeypatch):
+    """Each worker process takes tens of MB before any task: more of them than the available memory holds
+    would push the machine out of memory as they start. Refused first, naming the most it holds."""
+    import psutil
+    monkeypatch.setattr(dist, "available_memory", lambda: 20 * worker_check.task_footprint())
+    before = psutil.Process().children(recursive=True)
+    with pytest.raises(gl.InputError, match=r"^workers 40: this machine's available memory \(.* GB\) holds at most "
+                                            r"1[0-9] workers"):
+        dist.local_cluster(40)
+    assert psutil.Process().children(recursive=True) == before
 
 
 def test_a_worker_memory_below_a_workers_footprint_is_named_at_once(cloud, tmp_path):
