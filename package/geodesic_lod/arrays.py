@@ -118,6 +118,10 @@ def _float_array(a, name: str, allow_none: bool = False):
     if a is None and allow_none:
         return None
     a = np.asarray(a)
+    if a.dtype.names:  # a table, such as the command's .npy of a LAS file
+        what, fields = ("normals", ("nx", "ny", "nz")) if name == "normals" else ("coordinates", ("x", "y", "z"))
+        raise InputError(f"{name} is a table (fields {', '.join(a.dtype.names)}): give its {what} as an (n, 3) array, "
+                         f"such as np.column_stack([{', '.join(f'{name}[{f!r}]' for f in fields)}])")
     if a.dtype not in (np.float32, np.float64):
         raise InputError(f"{name} must hold float32 or float64 values, not {a.dtype} "
                         f"(convert with {name}.astype(np.float64))")

@@ -7,6 +7,9 @@ import geodesic_lod as gl
 from conftest import bumpy_sphere, grid_mesh
 
 P = bumpy_sphere(500, seed=1)
+# The command's .npy table of a LAS file: coordinates and normals are fields, not columns.
+TABLE = np.zeros(500, dtype=[("x", "f8"), ("y", "f8"), ("z", "f8"), ("nx", "f4"), ("ny", "f4"), ("nz", "f4"),
+                             ("intensity", "u2")])
 MESH_P, MESH_F = grid_mesh(10)
 NAN = P.copy()
 NAN[[3, 7]] = np.nan
@@ -33,6 +36,12 @@ CASES = {
     "height field 1e-200": (gl.height_field_lod, (P * 1e-200,), dict(count=10), gl.InputError,
                             "points holds coordinates too small for any distance"),
     "points coincide": (gl.poisson_lod, (np.ones((50, 3)),), dict(count=5), gl.InputError, "points holds 50 points at one position"),
+    "points a table": (gl.poisson_lod, (TABLE,), dict(count=5), gl.InputError,
+                       "points is a table (fields x, y, z, nx, ny, nz, intensity): give its coordinates as an (n, 3) "
+                       "array, such as np.column_stack([points['x'], points['y'], points['z']])"),
+    "normals a table": (gl.poisson_lod, (P, TABLE), dict(count=5), gl.InputError,
+                        "normals is a table (fields x, y, z, nx, ny, nz, intensity): give its normals as an (n, 3) "
+                        "array, such as np.column_stack([normals['nx'], normals['ny'], normals['nz']])"),
     "normals rows": (gl.poisson_lod, (P, P[:10]), dict(count=5), gl.InputError, "normals"),
     "normals int": (gl.poisson_lod, (P, P.astype(np.int32)), dict(count=5), gl.InputError, "normals"),
     "faces float": (gl.poisson_lod, (MESH_P,), dict(faces=MESH_F.astype(float), count=5), gl.InputError, "faces"),
