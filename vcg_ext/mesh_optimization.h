@@ -93,27 +93,45 @@ class MeshOptimization {
     } else if (d6 >= 0 && d5 <= d6) {
       w = {0, 0, 1};
     } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+      if (!(d1 - d3 > 0)) return NearestOnEdges(q, {&a, &b, &c}, bary);  // a = b: the tests took a point for an edge
       const double t = d1 / (d1 - d3);
       w = {1 - t, t, 0};
     } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+      if (!(d2 - d6 > 0)) return NearestOnEdges(q, {&a, &b, &c}, bary);  // a = c
       const double t = d2 / (d2 - d6);
       w = {1 - t, 0, t};
     } else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+      if (!((d4 - d3) + (d5 - d6) > 0)) return NearestOnEdges(q, {&a, &b, &c}, bary);  // b = c
       const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
       w = {0, 1 - t, t};
     } else {
       const double den = va + vb + vc;
-      if (!(den > 0)) {  // a degenerate triangle: its nearest corner
-        const double da = ap.squaredNorm(), db = bp.squaredNorm(), dc = cp.squaredNorm();
-        w = da <= db && da <= dc ? Eigen::Vector3d(1, 0, 0)
-            : db <= dc           ? Eigen::Vector3d(0, 1, 0)
-                                 : Eigen::Vector3d(0, 0, 1);
-      } else {
-        w = {va / den, vb / den, vc / den};
-      }
+      if (!(den > 0)) return NearestOnEdges(q, {&a, &b, &c}, bary);  // a triangle of no area
+      w = {va / den, vb / den, vc / den};
     }
     if (bary) *bary = w;
     return (q - (w[0] * a + w[1] * b + w[2] * c)).squaredNorm();
+  }
+
+  /// Nearest over the triangle's three edges as segments (one of length 0: its end).
+  static double NearestOnEdges(const Eigen::Vector3d& q, const std::array<const Eigen::Vector3d*, 3>& v,
+                               Eigen::Vector3d* bary) {
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d w(1, 0, 0);
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      const Eigen::Vector3d e = *v[size_t(j)] - *v[size_t(i)];
+      const double l2 = e.squaredNorm();
+      const double t = l2 > 0 ? std::clamp(e.dot(q - *v[size_t(i)]) / l2, 0.0, 1.0) : 0.0;
+      const double d = (q - (*v[size_t(i)] + t * e)).squaredNorm();
+      if (d < best) {
+        best = d;
+        w = Eigen::Vector3d::Zero();
+        w[i] = 1 - t, w[j] = t;
+      }
+    }
+    if (bary) *bary = w;
+    return (q - (w[0] * *v[0] + w[1] * *v[1] + w[2] * *v[2])).squaredNorm();
   }
 
  private:

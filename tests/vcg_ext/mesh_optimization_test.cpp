@@ -46,10 +46,22 @@ TEST(MeshOptimization, NearestIsTheTrianglesNearestPoint) {
         ASSERT_GE((q - p).squaredNorm(), d - 1e-12) << "trial " << trial;
       }
   }
-  // A degenerate triangle: its nearest corner or edge point, never a NaN.
-  V3 w;
-  EXPECT_NEAR(Optimization::Nearest(V3(0, 1, 0), V3(0, 0, 0), V3(1, 0, 0), V3(2, 0, 0), &w), 1, 1e-12);
-  EXPECT_TRUE(w.allFinite());
+  // A degenerate triangle (a segment, two corners at one place, a point): its nearest point, never a NaN.
+  struct Case {
+    V3 q, a, b, c;
+    double d;
+  };
+  const V3 o(0, 0, 0), x(1, 0, 0), far(2, 0, 0), mid(0.5, 0, 0);
+  for (const Case& k : {Case{V3(0, 1, 0), o, x, far, 1}, Case{V3(1e-3, 0, 0), x, x, o, 0},
+                        Case{V3(0.5, 2, 0), x, x, o, 4}, Case{V3(0.5, 2, 0), o, x, x, 4},
+                        Case{V3(0.5, 2, 0), x, o, x, 4}, Case{V3(3, 0, 0), mid, x, mid, 4},
+                        Case{V3(0, 0, 3), x, x, x, 10}}) {
+    V3 w;
+    const double d = Optimization::Nearest(k.q, k.a, k.b, k.c, &w);
+    EXPECT_NEAR(d, k.d, 1e-12) << k.q.transpose() << " | " << k.a.transpose() << " | " << k.b.transpose();
+    EXPECT_TRUE(w.allFinite());
+    EXPECT_NEAR(w.sum(), 1, 1e-12);
+  }
 }
 
 struct Lod {
