@@ -253,10 +253,10 @@ def check_room_for(workers: int, name: str = "workers") -> None:
     import): starting them would push the machine out of memory. InputError naming `name`."""
     import dask
     from distributed import Worker  # noqa: F401 (held by every worker)
-    each = worker_check.task_footprint()
-    room = (dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0) * available_memory()
+    each, available = worker_check.task_footprint(), available_memory()
+    room = (dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0) * available
     if workers * each > room:
-        raise InputError(f"{name} {workers}: this machine's available memory ({available_memory() / 1e9:.1f} GB) "
+        raise InputError(f"{name} {workers}: this machine's available memory ({available / 1e9:.1f} GB) "
                          f"holds at most {max(1, int(room // each)):,} workers of about {each / 1e6:.0f} MB each "
                          f"before any task")
 
