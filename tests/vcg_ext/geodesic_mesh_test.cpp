@@ -143,16 +143,33 @@ TEST(GeodesicMesh, RepeatedSeamVerticesAreCrossedAtNoCost) {
 
 TEST(GeodesicMesh, DelaunayFacesOnlyWhereSamplesReach) {
   // Regions from another metric (the point graph) need not follow the triangles: a triangle can
-  // have corners no sample reached (-1) beside reached ones. Such triangles give no face.
+  // have corners no sample reached (-1) beside reached ones. Such triangles give no face; each
+  // triangle of three regions gives that one face, once.
   test::TMesh m;
-  test::GridMesh(m, 8, [](float, float) { return 0.f; });
+  const int n = 8;
+  test::GridMesh(m, n, [](float, float) { return 0.f; });
   std::vector<int> owner(m.vert.size());
-  for (size_t i = 0; i < owner.size(); ++i) owner[i] = int(i % 4) - 1;  // regions 0..2 and unreached corners
+  for (size_t i = 0; i < owner.size(); ++i) owner[i] = int((i % n + 2 * (i / n)) % 4) - 1;  // regions 0..2, unreached
   std::vector<std::array<int, 3>> tri;
   for (const auto& f : m.face)
     tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
-  for (const auto& f : vcg_ext::GeodesicDelaunay<float>::Compute(tri, owner))
-    for (int c : f) EXPECT_TRUE(c >= 0 && c < 3);
+  std::set<std::array<int, 3>> expected;
+  size_t partlyReached = 0;
+  for (const auto& t : tri) {
+    std::array<int, 3> o = {owner[t[0]], owner[t[1]], owner[t[2]]};
+    std::sort(o.begin(), o.end());
+    if (o[0] < 0) partlyReached += o[2] >= 0;
+    else if (o[0] != o[1] && o[1] != o[2]) expected.insert(o);
+  }
+  ASSERT_GT(partlyReached, 0u);  // the case under test is there
+  ASSERT_FALSE(expected.empty());
+  std::vector<std::array<int, 3>> faces = vcg_ext::GeodesicDelaunay<float>::Compute(tri, owner);
+  std::set<std::array<int, 3>> got;
+  for (auto f : faces) {
+    std::sort(f.begin(), f.end());
+    EXPECT_TRUE(got.insert(f).second);  // once
+  }
+  EXPECT_EQ(got, expected);
 }
 
 }  // namespace geodesic_mesh_test
