@@ -88,7 +88,7 @@ def test_any_tiling_gives_the_single_machine_samples(cloud, client, tmp_path, ti
     folder, points, records = cloud
     index = dist.lod_files([str(folder)], tmp_path / "lod", radius=RADIUS, seed=seed, tile_points=tile_points,
                            client=client, threads=1)
-    assert len(index["tiles"]) >= min(8, 24000 // tile_points)
+    assert len(index["tiles"]) >= min(8, -(-24000 // tile_points))  # at least one, and more as tiles shrink
     check_equal(tmp_path / "lod", points, records, seed)
 
 

@@ -87,9 +87,10 @@ def test_a_failed_rerun_leaves_the_previous_lod_whole(cloud, client, tmp_path, e
     out = tmp_path / "lod"
     index = dist.lod_files([str(cloud[0])], out, radius=RADIUS, client=client, tile_points=6000, threads=1)
     before = snapshot(tmp_path)
-    with pytest.raises(type(error)):
+    with pytest.raises(type(error)) as raised:
         dist.lod_files([str(cloud[0])], out, levels=["10%", "2%"], tolerance=3.0, client=Failing(client, error),
                        tile_points=6000, threads=1)
+    assert raised.value is error  # the failure while writing, not an earlier one
     assert snapshot(tmp_path) == before
     assert json.loads((out / dist.INDEX).read_text()) == index
     again = dist.lod_files([str(cloud[0])], out, levels=["10%", "2%"], tolerance=3.0, client=client,
@@ -98,9 +99,10 @@ def test_a_failed_rerun_leaves_the_previous_lod_whole(cloud, client, tmp_path, e
 
 
 def test_a_first_run_that_fails_leaves_no_folder(cloud, client, tmp_path):
-    with pytest.raises(RuntimeError):
-        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=Failing(client, RuntimeError("x")),
-                       tile_points=6000)
+    error = RuntimeError("x")
+    with pytest.raises(RuntimeError) as raised:
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, client=Failing(client, error), tile_points=6000)
+    assert raised.value is error  # the failure while writing, not an earlier one
     assert not (tmp_path / "lod").exists()
 
 
