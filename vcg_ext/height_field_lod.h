@@ -228,8 +228,11 @@ class HeightFieldLod {
         const Point q = Pt(c.point);
         const double d2 = relaxed ? 0 : NearestSquared(c.point, f, beta2A / double(k + 1));
         if (!relaxed && d2 * double(k + 1) < beta2A) {
-          // Too near a sample for k + 1 disks; it fits once r(k') is at most its distance.
-          eligibleAt_[size_t(c.point)] = std::max(k + 1, size_t(std::ceil(beta2A / d2)) - 1);
+          // Too near a sample for k + 1 disks; it fits once r(k') is at most its distance. A rank
+          // past every point (or none: beta^2 A overflows, d^2 underflows to 0) is the same as
+          // never, until the disks are given up.
+          const double fits = std::ceil(beta2A / d2) - 1;
+          eligibleAt_[size_t(c.point)] = std::max(k + 1, fits < double(n_) ? size_t(fits) : n_);
           deferred_.push({eligibleAt_[size_t(c.point)], c.point});
           Recompute(c.record);
           continue;

@@ -4,7 +4,9 @@
 // down (what tells a height field from a closed surface).
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <vcg/complex/algorithms/create/platonic.h>
@@ -214,6 +216,35 @@ TEST(HeightFieldLod, PointsCoveringLittleOfTheirHullGoOnByErrorOnceTheDisksAreFu
   for (size_t j = res.hullSize; j < res.separatedPrefix; ++j)
     for (size_t i = 0; i < j; ++i)
       ASSERT_GE(DistXY(xyz, res.samples[i], res.samples[j]), beta * std::sqrt(res.area / (j + 1)) * (1 - 1e-12));
+}
+
+TEST(HeightFieldLod, DisksBeyondEveryRankGoByErrorAlone) {
+  // Disks so large that a point would fit only at a rank beyond any count (or beyond any number:
+  // beta^2 A overflows) hold every point from the start: after the hull's corners the samples go by
+  // error alone, as plain greedy insertion's do.
+  const auto xyz = Terrain(10);
+  const auto greedy = Lod(xyz, 60, 0);
+  for (double beta : {1e150, 1e300, DBL_MAX}) {
+    const auto r = Lod(xyz, 60, beta);
+    EXPECT_EQ(r.separatedPrefix, r.hullSize) << beta;
+    EXPECT_EQ(r.samples, greedy.samples) << beta;
+  }
+}
+
+TEST(HeightFieldLod, APointWhoseSquaredDistanceUnderflowsWaitsForTheDisksToBeGivenUp) {
+  // A point a subnormal step from a hull corner in x: its squared distance to the corner is 0 in
+  // double, though the two differ in x, y. Highest of all, it is the first candidate; too near
+  // the corner for any disk, it comes after the separated prefix, and the count is still exact.
+  auto xyz = Terrain(10);  // its corner (0, 0) first
+  xyz.insert(xyz.end(), {std::numeric_limits<double>::denorm_min(), 0.0, 1000.0});
+  const int near = int(xyz.size() / 3) - 1;
+  const auto r = Lod(xyz, xyz.size() / 3, 0.3);
+  ASSERT_EQ(r.samples.size(), xyz.size() / 3);
+  const size_t at = size_t(std::find(r.samples.begin(), r.samples.end(), near) - r.samples.begin());
+  EXPECT_GE(at, r.separatedPrefix);
+  for (size_t j = r.hullSize; j < r.separatedPrefix; ++j)
+    for (size_t i = 0; i < j; ++i)
+      ASSERT_GE(DistXY(xyz, r.samples[i], r.samples[j]), 0.3 * std::sqrt(r.area / (j + 1)) * (1 - 1e-12));
 }
 
 TEST(HeightFieldLod, RefusesBadInput) {
