@@ -4,6 +4,21 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include "in_ci.h"
+
+/// In a test comparing thread counts: a build without OpenMP has one thread only, so the test
+/// skips, but fails in CI, whose build has OpenMP.
+#ifdef _OPENMP
+#define SKIP_WITHOUT_OPENMP() \
+  do {                        \
+  } while (0)
+#else
+#define SKIP_WITHOUT_OPENMP()                                                   \
+  do {                                                                          \
+    if (test::InCi()) FAIL() << "CI=true but this build has no OpenMP";          \
+    GTEST_SKIP() << "built without OpenMP: one thread only";                    \
+  } while (0)
+#endif
 
 namespace test {
 

@@ -9,15 +9,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "in_ci.h"
 #include "test_mesh.h"
 
 namespace test {
-
-/// CI=true: every test must run there, so a missing scan fails instead of skipping.
-inline bool InCi() {
-  const char* ci = std::getenv("CI");
-  return ci && (std::string(ci) == "true" || std::string(ci) == "1");
-}
 
 /// The folder GEODESIC_LOD_SHARED_DATA names, else ../shared/data beside the
 /// clone: found from the test program's own path, not compiled in, so that

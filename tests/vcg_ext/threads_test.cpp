@@ -28,9 +28,7 @@ using test::OnThreads;
 }  // namespace
 
 TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP: one thread only";
-#endif
+  SKIP_WITHOUT_OPENMP();
   // Over 65536 points, so every parallel pass splits into several blocks and many chunks.
   test::TMesh m;
   test::HeightField(m, 300, [](float x, float y) { return test::HalfBumpy(x, y, 0.05f, 12.f); });
@@ -58,9 +56,7 @@ TEST(Threads, PoissonAndFpsLodsAreIdenticalOnOneAndTwoThreads) {
 }
 
 TEST(Threads, GeodesicDomainIsIdenticalOnOneAndTwoThreads) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP: one thread only";
-#endif
+  SKIP_WITHOUT_OPENMP();
   test::TMesh m;
   test::HeightField(m, 280, [](float x, float y) { return test::HalfBumpy(x, y); });
   Poisson::Domain::Param p;
@@ -78,9 +74,7 @@ TEST(Threads, GeodesicDomainIsIdenticalOnOneAndTwoThreads) {
 // per thread): the same samples and regions for all three searches, for small
 // disks (large batches) and for disks of a tenth of the points (batches of one).
 TEST(Threads, PoissonDisksAreIdenticalOnOneAndTwoThreadsForEverySearch) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP: one thread only";
-#endif
+  SKIP_WITHOUT_OPENMP();
   test::TMesh cloud, mesh;
   test::HeightField(cloud, 200, [](float x, float y) { return test::HalfBumpy(x, y); });
   test::GridMesh(mesh, 120, [](float x, float y) { return test::HalfBumpy(x, y); });
