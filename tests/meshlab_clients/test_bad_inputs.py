@@ -229,7 +229,7 @@ CASES = [
     ("deviation of points without normals", cloud_and_surface, DEVIATION,
      {"referencemesh": 0, "surfacemesh": 1}, "the reference layer holds no points with valid normals"),
     ("deviation with a missing layer", lambda: layer(*grid()), DEVIATION, {"referencemesh": 0, "surfacemesh": 5},
-     "surfacemesh"),
+     "surfacemesh: there is no such layer"),
     ("deviation onto a surface with a NaN vertex", lambda: with_surface(np.vstack([grid()[0], [[np.nan, 0, 0]]]),
                                                                          grid()[1]),
      DEVIATION, {"referencemesh": 0, "surfacemesh": 1}, "the surface layer holds 1 point with NaN or infinite coordinates"),

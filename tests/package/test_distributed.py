@@ -535,12 +535,13 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
 
 @pytest.mark.parametrize("args, problem", [
     (["--levels", "10%,50%", "--workers", "2"], "--levels must get strictly coarser"),
-    (["--levels", "50%,1e19", "--workers", "2"], "--levels"),
+    (["--levels", "50%,1e19", "--workers", "2"], "--levels: '1e19' is neither a whole number of samples"),
     (["--count", "100", "--fps", "--workers", "2"], "--fps and --height-field run on one machine"),
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count, --rate or --levels"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "1000000"], "--workers 1000000: this machine's available memory"),
-    (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
+    (["--radius", "0.5", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"],
+     "give --workers (a cluster on this machine) or --scheduler"),
     (["--radius", "0.5", "--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: no Dask scheduler "
                                                              "answered within"),
     (["--count", "100", "--tolerance", "0", "--workers", "1"], "tolerance 0, runs on one machine"),

@@ -68,16 +68,16 @@ def test_a_domain_gives_the_same_lod_on_any_number_of_threads():
 
 @pytest.mark.parametrize("call, words", [
     (lambda d: d.poisson_lod(), "give exactly one of radius, count or rate"),
-    (lambda d: d.poisson_lod(count=0), "count"),
-    (lambda d: d.poisson_lod(radius=-1.0), "radius"),
-    (lambda d: d.poisson_lod(count=10, mesh_output=True), "mesh_output"),
-    (lambda d: d.poisson_lod(count=10, within=[5000]), "within"),
-    (lambda d: d.fps_lod(count=3001), "count"),
+    (lambda d: d.poisson_lod(count=0), "count must be from 1 to 3,000"),
+    (lambda d: d.poisson_lod(radius=-1.0), "radius must be a positive finite number"),
+    (lambda d: d.poisson_lod(count=10, mesh_output=True), "mesh_output=True needs faces"),
+    (lambda d: d.poisson_lod(count=10, within=[5000]), "within holds an index outside 0 .. 2999"),
+    (lambda d: d.fps_lod(count=3001), "count must be from 1 to 3,000"),
     (lambda d: d.fps_lod(), "give exactly one of count or rate"),
-    (lambda d: d.fps_lod(rate=101), "rate"),
-    (lambda d: d.fps_lod(count=5, regions="disk"), "regions"),
-    (lambda d: d.lod_pyramid(levels=["10%", "20%"]), "levels"),
-    (lambda d: d.lod_pyramid(visit_order="rim"), "visit_order"),
+    (lambda d: d.fps_lod(rate=101), "rate must be a percentage from above 0 to 100"),
+    (lambda d: d.fps_lod(count=5, regions="disk"), "regions for fps_lod must be None or .voronoi."),
+    (lambda d: d.lod_pyramid(levels=["10%", "20%"]), "levels must get strictly coarser"),
+    (lambda d: d.lod_pyramid(visit_order="rim"), "visit_order must be one of"),
 ])
 def test_bad_sampling_arguments_on_a_domain_are_named(call, words):
     domain = gl.Domain(bumpy_sphere(3000))
@@ -86,7 +86,7 @@ def test_bad_sampling_arguments_on_a_domain_are_named(call, words):
 
 
 def test_bad_domain_arguments_are_named():
-    with pytest.raises(gl.InputError, match="adaptivity"):
+    with pytest.raises(gl.InputError, match="adaptivity must be a non-negative finite number"):
         gl.Domain(bumpy_sphere(500), adaptivity=-1)
     with pytest.raises(gl.InputError, match="geodesics='mesh' needs faces"):
         gl.Domain(bumpy_sphere(500), geodesics="mesh")

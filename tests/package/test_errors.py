@@ -51,13 +51,13 @@ def test_a_cluster_job_error_keeps_its_remedy_apart_and_survives_pickling():
 
 
 @pytest.mark.parametrize("call, words", [
-    (lambda: gl.poisson_lod(P, radius=0), "radius"),
-    (lambda: gl.fps_lod(P, count=0), "count"),
-    (lambda: gl.lod_pyramid(P, levels=[10, 50]), "levels"),
-    (lambda: gl.normal_variation(P, normal_neighbors=0), "normal_neighbors"),
+    (lambda: gl.poisson_lod(P, radius=0), "radius must be a positive finite number"),
+    (lambda: gl.fps_lod(P, count=0), "count must be from 1 to"),
+    (lambda: gl.lod_pyramid(P, levels=[10, 50]), "levels must get strictly coarser"),
+    (lambda: gl.normal_variation(P, normal_neighbors=0), "normal_neighbors must be from 1"),
     (lambda: gl.height_field_lod(P, count=5, rate=1), "exactly one of count or rate"),
-    (lambda: gl.Domain(P[:, :2]), "points"),
-    (lambda: gl.Domain(P).poisson_lod(count=len(P) + 1), "count"),
+    (lambda: gl.Domain(P[:, :2]), "points must be an (n, 3) array"),
+    (lambda: gl.Domain(P).poisson_lod(count=len(P) + 1), "count must be from 1 to"),
     # found by vcg_ext, not the Python checks: the core's error comes out as an InputError too
     (lambda: gl.fps_lod(np.ones((50, 3)), count=5), "points holds 50 points at one position"),
 ], ids=["poisson", "fps", "pyramid", "normal variation", "height field", "domain", "domain lod", "core"])
