@@ -77,6 +77,7 @@ def test_the_commands_levels_are_the_clusters_on_one_machine(parts, tmp_path):
     las.write(str(merged))
     r = run(merged, "-o", tmp_path / "one.laz", "--levels", "20%,5%,100", "--tolerance", "2", "-q")
     assert r.returncode == 0, r.stderr
+    assert len(index["levels"]) == 3
     for level, name in zip(index["levels"], ("20pct", "5pct", "100")):
         one = np.sort(laspy.read(str(tmp_path / f"one_{name}.laz")).points.array["gps_time"].astype(np.int64))
         assert np.array_equal(cluster_ids(tmp_path / "lod", level), one)

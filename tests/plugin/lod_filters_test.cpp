@@ -166,9 +166,11 @@ TEST(LodFilters, ValidInputNormalsAreKeptUnlessRecomputeIsAsked) {
   p.set("radius", 0.1);
   Mesh kept, recomputed;
   Fill(in, RunPoissonLod(in, p, nullptr), kept);
+  ASSERT_FALSE(kept.vert.empty());
   for (const auto& v : kept.vert) EXPECT_EQ(v.cN(), Point3m(0, 0, 3));
   p.set("recomputenormals", 1);
   Fill(in, RunPoissonLod(in, p, nullptr), recomputed);
+  ASSERT_FALSE(recomputed.vert.empty());
   for (const auto& v : recomputed.vert) EXPECT_NEAR(v.cN().Norm(), 1.0, 1e-6);
 }
 

@@ -75,6 +75,7 @@ TEST(GeodesicMesh, UnreferencedVerticesAreLeftOutAndCounted) {
   const auto mesh = vcg_ext::MeshLod<LOD>(m, p);
   EXPECT_EQ(mesh.leftOut, 3u);
   EXPECT_EQ(mesh.pointCount, 400u);
+  ASSERT_FALSE(mesh.vertIndex.empty());
   for (int v : mesh.vertIndex) EXPECT_LT(v, 400);
   p.domain.mode = GeodesicMode::PointGraph;  // the point graph keeps them
   EXPECT_EQ(vcg_ext::MeshLod<LOD>(m, p).leftOut, 0u);
