@@ -8,24 +8,19 @@
 #include <cmath>
 #include <random>
 #include <set>
-#include <vcg_ext/geodesic_poisson_lod.h>
-#include <vcg_ext/poisson_tile.h>
 #include "test_mesh.h"
+#include "tiled_poisson.h"
 
 namespace poisson_tile_test {
 
-// The whole-cloud sampler takes its scalar from a mesh type: one of doubles, as the tiles'. Outside
-// the anonymous namespace: vcglib's component chain would otherwise derive from its types.
-class DVertex;
-struct DTypes : vcg::UsedTypes<vcg::Use<DVertex>::AsVertexType> {};
-class DVertex : public vcg::Vertex<DTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::BitFlags> {};
-class DMesh : public vcg::tri::TriMesh<std::vector<DVertex>> {};
-
 namespace {
 
-typedef vcg_ext::PoissonTile<double> Tile;
-typedef vcg_ext::GeodesicDomain<double> Domain;
-typedef vcg_ext::GeodesicPoissonLod<DMesh::ScalarType> Whole;
+using test::Decide;
+using test::DomainOf;
+using test::Outside;
+using test::Tile;
+using test::TileRun;
+typedef test::TileDomain Domain;
 
 /// A bumpy 40 x 40 height field on [0,1]^2, jittered so no two distances tie.
 std::vector<vcg::Point3d> Cloud() {
@@ -40,124 +35,14 @@ std::vector<vcg::Point3d> Cloud() {
   return p;
 }
 
-Domain::Param Graph(bool keepReach) {
-  Domain::Param d;
-  d.mode = vcg_ext::GeodesicMode::PointGraph;
-  d.keepReach = keepReach;
-  return d;
-}
-
-Domain DomainOf(const std::vector<vcg::Point3d>& pos, const Domain::Param& d) {
-  vcg_ext::PointSet<double> ps;
-  ps.pos = pos;
-  for (size_t i = 0; i < pos.size(); ++i) ps.vertIndex.push_back(int(i));
-  return Domain::Build(std::move(ps), {}, d);
-}
-
-double Outside(const vcg::Box3d& b, const vcg::Point3d& x) {
-  double s = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double e = std::max({b.min[a] - x[a], 0.0, x[a] - b.max[a]});
-    s += e * e;
-  }
-  return std::sqrt(s);
-}
-
-struct TileRun {
-  Tile::Result result;
-  std::vector<uint64_t> id;  // per row of the tile: the cloud's index
-};
-
-/// One tile: its core (x below or from `split`) and every point within `halo` of the core's box.
-TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, double halo, const Tile::Param& base) {
-  vcg::Box3d all;
-  for (const auto& p : cloud) all.Add(p);
-  Tile::Param p = base;
-  p.cloud = all;
-  p.core = all;
-  (left ? p.core.max[0] : p.core.min[0]) = split;
-  p.halo = halo;
-  TileRun t;
-  std::vector<vcg::Point3d> pos;
-  std::vector<char> core;
-  for (size_t i = 0; i < cloud.size(); ++i)
-    if (Outside(p.core, cloud[i]) <= halo) {
-      t.id.push_back(i);
-      pos.push_back(cloud[i]);
-      core.push_back((cloud[i][0] < split) == left);
-    }
-  t.result = Tile::Compute(DomainOf(pos, Graph(true)), t.id, core, p);
-  return t;
-}
-
 // Two tiles, each widening its halo until certified, settled at the seam in
 // the visiting order, against the whole cloud's samples in that order.
 void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radius = 0.09, size_t atLeast = 20) {
-  const auto cloud = Cloud();
-  Tile::Param p;
-  p.radius = radius;
-  p.seed = 5;
-  Whole::Param whole;
-  whole.domain = Graph(false);
-  whole.radius = p.radius;
-  whole.seed = p.seed;
-  whole.order = p.order = order;
-  p.keyScale = p.radius;  // a run at a radius orders by that scale
-  p.keyNoise = Whole::NoiseOf(order, whole);
-  p.keyOffSurface = whole.prominenceOffSurface;
-  p.keySmoothClean = whole.prominenceSmoothClean;
-  p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);  // the whole cloud's, in id order
-  const Domain wholeDomain = DomainOf(cloud, Graph(false));
-  p.keyClean = wholeDomain.Clean();  // the whole cloud's, as a cluster measures it
-  const auto w = Whole::Compute(wholeDomain, whole);
-  const std::set<int> expected(w.vertIndex.begin(), w.vertIndex.end());
-  ASSERT_GT(expected.size(), atLeast);
-
-  // Each tile decides its core, widening the halo until it is certified.
-  std::vector<int8_t> status(cloud.size(), Tile::Out);
-  std::vector<std::vector<uint64_t>> coverers(cloud.size());
-  std::vector<float> key(cloud.size(), 0);
-  size_t open = 0;
-  for (bool left : {true, false}) {
-    double halo = p.radius;
-    TileRun t = Decide(cloud, left, 0.5, halo, p);
-    while (!t.result.certified) {
-      ASSERT_GT(t.result.neededHalo, halo);
-      halo = t.result.neededHalo * 1.01;
-      t = Decide(cloud, left, 0.5, halo, p);
-    }
-    for (size_t row = 0; row < t.id.size(); ++row) {
-      const bool core = (cloud[t.id[row]][0] < 0.5) == left;
-      if (!core) continue;
-      status[t.id[row]] = t.result.status[row];
-      open += t.result.status[row] == Tile::Open;
-      if (!t.result.key.empty()) key[t.id[row]] = t.result.key[row];
-      for (int64_t c = t.result.coverOffset[row]; c < t.result.coverOffset[row + 1]; ++c)
-        coverers[t.id[row]].push_back(t.result.coverers[size_t(c)]);
-    }
-  }
-  EXPECT_GT(open, 0u) << "the seam must leave points open, or Settle is not tested";
-
-  // Settle the open points in visiting order: by their keys from the tiles, else by priority.
-  std::vector<uint64_t> openIds;
-  std::vector<float> openKeys;
-  for (size_t i = 0; i < cloud.size(); ++i)
-    if (status[i] == Tile::Open) openIds.push_back(i), openKeys.push_back(key[i]);
-  const std::vector<int> rank = order != vcg_ext::VisitOrder::Random
-                                    ? vcg_ext::KeyFirstOrder(openKeys, openIds, p.seed)
-                                    : vcg_ext::PriorityOrder(openIds, p.seed);
-  std::vector<int64_t> sorted, offset{0}, cover;
-  for (int k : rank) {
-    const uint64_t i = openIds[size_t(k)];
-    sorted.push_back(int64_t(i));
-    for (uint64_t c : coverers[i]) cover.push_back(int64_t(c));
-    offset.push_back(int64_t(cover.size()));
-  }
-  Tile::Settle(sorted, offset, cover, status);
-  std::set<int> tiled;
-  for (size_t i = 0; i < status.size(); ++i)
-    if (status[i] == Tile::In) tiled.insert(int(i));
-  EXPECT_EQ(tiled, expected);
+  const test::TiledAndWhole r = test::TilesAndWhole(Cloud(), order, radius, 5, 0.5);
+  ASSERT_EQ(r.problem, "");
+  ASSERT_GT(r.whole.size(), atLeast);
+  EXPECT_GT(r.open, 0u) << "the seam must leave points open, or Settle is not tested";
+  EXPECT_EQ(r.tiled, r.whole);
 }
 
 }  // namespace
@@ -195,7 +80,7 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirstAtACoa
 
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
   const auto cloud = Cloud();
-  const Domain whole = DomainOf(cloud, Graph(false));
+  const Domain whole = DomainOf(cloud, test::PointGraph(false));
   for (double tolerance : {0.0, 0.02})
     for (size_t target : {size_t(80), size_t(300)}) {
       vcg_ext::PoissonTargetCount::Param tp;
@@ -232,7 +117,7 @@ TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
               pos.push_back(cloud[i]);
               core.push_back((cloud[i][0] < 0.5) == left);
             }
-          auto r = Tile::Pilot(DomainOf(pos, Graph(true)), id, core, p, below);
+          auto r = Tile::Pilot(DomainOf(pos, test::PointGraph(true)), id, core, p, below);
           if (!r.certified) continue;
           disks.insert(disks.end(), r.disks.begin(), r.disks.end());
           break;

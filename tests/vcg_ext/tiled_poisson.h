@@ -1,0 +1,150 @@
+#ifndef GEODESIC_LOD_TESTS_TILED_POISSON_H
+#define GEODESIC_LOD_TESTS_TILED_POISSON_H
+// A cloud sampled as the cluster samples it, in two tiles split at an x, each
+// reading its core and a halo widened until certified, the seam settled in the
+// visiting order; and as one process samples it: what poisson_tile_test and the
+// tile fuzz target compare.
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+#include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/poisson_tile.h>
+
+namespace test {
+
+typedef vcg_ext::PoissonTile<double> Tile;
+typedef vcg_ext::GeodesicDomain<double> TileDomain;
+typedef vcg_ext::GeodesicPoissonLod<double> WholeCloud;
+
+inline TileDomain::Param PointGraph(bool keepReach) {
+  TileDomain::Param d;
+  d.mode = vcg_ext::GeodesicMode::PointGraph;
+  d.keepReach = keepReach;
+  return d;
+}
+
+inline TileDomain DomainOf(const std::vector<vcg::Point3d>& pos, const TileDomain::Param& d) {
+  vcg_ext::PointSet<double> ps;
+  ps.pos = pos;
+  for (size_t i = 0; i < pos.size(); ++i) ps.vertIndex.push_back(int(i));
+  return TileDomain::Build(std::move(ps), {}, d);
+}
+
+/// The distance from x to the box b (0 inside).
+inline double Outside(const vcg::Box3d& b, const vcg::Point3d& x) {
+  double s = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double e = std::max({b.min[a] - x[a], 0.0, x[a] - b.max[a]});
+    s += e * e;
+  }
+  return std::sqrt(s);
+}
+
+struct TileRun {
+  Tile::Result result;
+  std::vector<uint64_t> id;  // per row of the tile: the cloud's index
+};
+
+/// One tile: its core (x below or from `split`) and every point within `halo` of the core's box.
+inline TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, double halo,
+                      const Tile::Param& base) {
+  vcg::Box3d all;
+  for (const auto& p : cloud) all.Add(p);
+  Tile::Param p = base;
+  p.cloud = all;
+  p.core = all;
+  (left ? p.core.max[0] : p.core.min[0]) = split;
+  p.halo = halo;
+  TileRun t;
+  std::vector<vcg::Point3d> pos;
+  std::vector<char> core;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (Outside(p.core, cloud[i]) <= halo) {
+      t.id.push_back(i);
+      pos.push_back(cloud[i]);
+      core.push_back((cloud[i][0] < split) == left);
+    }
+  t.result = Tile::Compute(DomainOf(pos, PointGraph(true)), t.id, core, p);
+  return t;
+}
+
+struct TiledAndWhole {
+  std::set<int> tiled, whole;  ///< the samples, as cloud indices
+  size_t open = 0;             ///< the points the tiles left open at the seam
+  std::string problem;         ///< a halo that did not widen (empty if none)
+};
+
+/// The samples of `cloud` at `radius` in `order` (seed `seed`), in two tiles split at x = `split`,
+/// and in one process. Throws what the whole cloud's sampler throws for bad input.
+inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_ext::VisitOrder order, double radius,
+                                   uint64_t seed, double split) {
+  TiledAndWhole out;
+  Tile::Param p;
+  p.radius = radius;
+  p.seed = seed;
+  WholeCloud::Param whole;
+  whole.domain = PointGraph(false);
+  whole.radius = p.radius;
+  whole.seed = p.seed;
+  whole.order = p.order = order;
+  p.keyScale = p.radius;  // a run at a radius orders by that scale
+  p.keyNoise = WholeCloud::NoiseOf(order, whole);
+  p.keyOffSurface = whole.prominenceOffSurface;
+  p.keySmoothClean = whole.prominenceSmoothClean;
+  p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);  // the whole cloud's, in id order
+  const TileDomain wholeDomain = DomainOf(cloud, PointGraph(false));
+  p.keyClean = wholeDomain.Clean();  // the whole cloud's, as a cluster measures it
+  const auto w = WholeCloud::Compute(wholeDomain, whole);
+  out.whole = std::set<int>(w.vertIndex.begin(), w.vertIndex.end());
+
+  // Each tile decides its core, widening the halo until it is certified.
+  std::vector<int8_t> status(cloud.size(), Tile::Out);
+  std::vector<std::vector<uint64_t>> coverers(cloud.size());
+  std::vector<float> key(cloud.size(), 0);
+  for (bool left : {true, false}) {
+    double halo = p.radius;
+    TileRun t = Decide(cloud, left, split, halo, p);
+    while (!t.result.certified) {
+      if (!(t.result.neededHalo > halo)) {
+        out.problem = "a tile asked for a halo of " + std::to_string(t.result.neededHalo) + " beside one of " +
+                      std::to_string(halo);
+        return out;
+      }
+      halo = t.result.neededHalo * 1.01;
+      t = Decide(cloud, left, split, halo, p);
+    }
+    for (size_t row = 0; row < t.id.size(); ++row) {
+      const bool core = (cloud[t.id[row]][0] < split) == left;
+      if (!core) continue;
+      status[t.id[row]] = t.result.status[row];
+      out.open += t.result.status[row] == Tile::Open;
+      if (!t.result.key.empty()) key[t.id[row]] = t.result.key[row];
+      for (int64_t c = t.result.coverOffset[row]; c < t.result.coverOffset[row + 1]; ++c)
+        coverers[t.id[row]].push_back(t.result.coverers[size_t(c)]);
+    }
+  }
+
+  // Settle the open points in visiting order: by their keys from the tiles, else by priority.
+  std::vector<uint64_t> openIds;
+  std::vector<float> openKeys;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (status[i] == Tile::Open) openIds.push_back(i), openKeys.push_back(key[i]);
+  const std::vector<int> rank = order != vcg_ext::VisitOrder::Random ? vcg_ext::KeyFirstOrder(openKeys, openIds, p.seed)
+                                                                      : vcg_ext::PriorityOrder(openIds, p.seed);
+  std::vector<int64_t> sorted, offset{0}, cover;
+  for (int k : rank) {
+    const uint64_t i = openIds[size_t(k)];
+    sorted.push_back(int64_t(i));
+    for (uint64_t c : coverers[i]) cover.push_back(int64_t(c));
+    offset.push_back(int64_t(cover.size()));
+  }
+  Tile::Settle(sorted, offset, cover, status);
+  for (size_t i = 0; i < status.size(); ++i)
+    if (status[i] == Tile::In) out.tiled.insert(int(i));
+  return out;
+}
+
+}  // namespace test
+#endif
