@@ -3,8 +3,9 @@
 // blob, clumps, repeated points, a thin strip), split into two tiles at any x,
 // each deciding its core with a halo widened until certified and the seam
 // settled in the visiting order, must give exactly the whole cloud's Poisson
-// samples at the same radius and seed, in every visiting order; never a crash
-// or a sanitizer report. Bad input ends in std::invalid_argument.
+// samples at the same radius and seed, in every visiting order, and so must a
+// coarser nested level among those samples; never a crash or a sanitizer
+// report. Bad input ends in std::invalid_argument.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <cmath>
 #include <cstdio>
@@ -52,20 +53,27 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double radius = f.ConsumeFloatingPointInRange<double>(0.01, 0.4);
   const uint64_t seed = f.ConsumeIntegral<uint64_t>();
   const double split = f.ConsumeFloatingPointInRange<double>(0.05, 0.95);
-  test::TiledAndWhole r;
+  // A coarser nested level: among the first level's samples, at a larger radius.
+  const double coarser = f.ConsumeFloatingPointInRange<double>(1.2, 4);
+  auto check = [&](const test::TiledAndWhole& r, double at, const char* level) {
+    if (!r.problem.empty()) {
+      std::fprintf(stderr, "broken halo (%s): %s\n", level, r.problem.c_str());
+      __builtin_trap();
+    }
+    if (r.tiled != r.whole) {
+      std::fprintf(stderr, "%s: tiles gave %zu samples, one process %zu (order %d, radius %g, split %g, %zu open)\n",
+                   level, r.tiled.size(), r.whole.size(), int(order), at, split, r.open);
+      __builtin_trap();
+    }
+  };
   try {
-    r = test::TilesAndWhole(cloud, order, radius, seed, split);
+    const test::TiledAndWhole first = test::TilesAndWhole(cloud, order, radius, seed, split);
+    check(first, radius, "first level");
+    std::vector<char> candidate(cloud.size(), 0);
+    for (int i : first.whole) candidate[size_t(i)] = 1;
+    check(test::TilesAndWhole(cloud, order, coarser * radius, seed, split, &candidate), coarser * radius,
+          "nested level");
   } catch (const std::invalid_argument&) {
-    return 0;
-  }
-  if (!r.problem.empty()) {
-    std::fprintf(stderr, "broken halo: %s\n", r.problem.c_str());
-    __builtin_trap();
-  }
-  if (r.tiled != r.whole) {
-    std::fprintf(stderr, "tiles gave %zu samples, one process %zu (order %d, radius %g, split %g, %zu open)\n",
-                 r.tiled.size(), r.whole.size(), int(order), radius, split, r.open);
-    __builtin_trap();
   }
   return 0;
 }

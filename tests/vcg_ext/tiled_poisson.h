@@ -47,9 +47,10 @@ struct TileRun {
   std::vector<uint64_t> id;  // per row of the tile: the cloud's index
 };
 
-/// One tile: its core (x below or from `split`) and every point within `halo` of the core's box.
+/// One tile: its core (x below or from `split`) and every point within `halo` of the core's box;
+/// with `candidate` (per cloud point) only those may become samples, as in a nested level.
 inline TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double split, double halo,
-                      const Tile::Param& base) {
+                      const Tile::Param& base, const std::vector<char>* candidate = nullptr) {
   vcg::Box3d all;
   for (const auto& p : cloud) all.Add(p);
   Tile::Param p = base;
@@ -59,13 +60,15 @@ inline TileRun Decide(const std::vector<vcg::Point3d>& cloud, bool left, double 
   p.halo = halo;
   TileRun t;
   std::vector<vcg::Point3d> pos;
-  std::vector<char> core;
+  std::vector<char> core, may;
   for (size_t i = 0; i < cloud.size(); ++i)
     if (Outside(p.core, cloud[i]) <= halo) {
       t.id.push_back(i);
       pos.push_back(cloud[i]);
       core.push_back((cloud[i][0] < split) == left);
+      if (candidate) may.push_back((*candidate)[i]);
     }
+  if (candidate) p.candidate = &may;
   t.result = Tile::Compute(DomainOf(pos, PointGraph(true)), t.id, core, p);
   return t;
 }
@@ -77,9 +80,10 @@ struct TiledAndWhole {
 };
 
 /// The samples of `cloud` at `radius` in `order` (seed `seed`), in two tiles split at x = `split`,
-/// and in one process. Throws what the whole cloud's sampler throws for bad input.
+/// and in one process; with `candidate` (per point) among those only, as a nested level among a
+/// finer level's samples. Throws what the whole cloud's sampler throws for bad input.
 inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_ext::VisitOrder order, double radius,
-                                   uint64_t seed, double split) {
+                                   uint64_t seed, double split, const std::vector<char>* candidate = nullptr) {
   TiledAndWhole out;
   Tile::Param p;
   p.radius = radius;
@@ -89,6 +93,9 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   whole.radius = p.radius;
   whole.seed = p.seed;
   whole.order = p.order = order;
+  if (candidate)
+    for (size_t i = 0; i < cloud.size(); ++i)
+      if ((*candidate)[i]) whole.within.push_back(int(i));
   p.keyScale = p.radius;  // a run at a radius orders by that scale
   p.keyNoise = WholeCloud::NoiseOf(order, whole);
   p.keyOffSurface = whole.prominenceOffSurface;
@@ -105,7 +112,7 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   std::vector<float> key(cloud.size(), 0);
   for (bool left : {true, false}) {
     double halo = p.radius;
-    TileRun t = Decide(cloud, left, split, halo, p);
+    TileRun t = Decide(cloud, left, split, halo, p, candidate);
     while (!t.result.certified) {
       if (!(t.result.neededHalo > halo)) {
         out.problem = "a tile asked for a halo of " + std::to_string(t.result.neededHalo) + " beside one of " +
@@ -113,7 +120,7 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
         return out;
       }
       halo = t.result.neededHalo * 1.01;
-      t = Decide(cloud, left, split, halo, p);
+      t = Decide(cloud, left, split, halo, p, candidate);
     }
     for (size_t row = 0; row < t.id.size(); ++row) {
       const bool core = (cloud[t.id[row]][0] < split) == left;
