@@ -145,10 +145,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double tolerance = f.ConsumeBool() ? 0.0 : f.ConsumeFloatingPointInRange<double>(-0.1, 1.1);
   const auto regions = vcg_ext::Regions(f.ConsumeIntegralInRange<int>(0, 2));
   const auto order = vcg_ext::VisitOrder(f.ConsumeIntegralInRange<int>(0, 3));
+  Deviation::Param dev;
+  dev.maxDistance = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
+  // Consumed last, so the corpus's inputs keep their meaning; an input that ends before it gets the default.
+  const auto placement = vcg_ext::Placement(2 - f.ConsumeIntegralInRange<int>(0, 2));
   auto common = [&](auto& p) {
     p.domain = d;
     p.seed = seed;
     p.meshOutput = meshOutput;
+    p.placement = placement;
   };
 
   const std::vector<char> before = Snapshot(m);
@@ -201,8 +206,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   unchanged();
   // The deviation measure of the layer against itself: figures in range, NaN only where skipped or missed.
-  Deviation::Param dev;
-  dev.maxDistance = f.ConsumeBool() ? double(Special(f)) : f.ConsumeFloatingPointInRange<double>(0, 2);
   try {
     const auto r = Deviation::Compute(m, m, dev);
     if (r.hitNum > r.pointNum || r.distance.size() != m.vert.size()) Fail("deviation counts");
