@@ -10,31 +10,21 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 #include <vcg_ext/height_field_lod.h>
+#include "fuzz_values.h"
 
 namespace {
 using HF = vcg_ext::HeightFieldLod;
 
-double Special(FuzzedDataProvider& f) {
-  static const double values[] = {0., 1., -1., 0.5, 1e-30, -1e-30, 1e30, -1e30, 1e-300, 1e300, DBL_MAX, -DBL_MAX,
-                                  DBL_MIN, 5e-324, 6.5e6, 4.4e6, std::numeric_limits<double>::quiet_NaN(),
-                                  std::numeric_limits<double>::infinity()};
-  return values[f.ConsumeIntegralInRange<size_t>(0, sizeof(values) / sizeof(values[0]) - 1)];
-}
-
-double Coordinate(FuzzedDataProvider& f) {
-  switch (f.ConsumeIntegralInRange<int>(0, 3)) {
-    case 0: return Special(f);
-    case 1: return f.ConsumeFloatingPoint<double>();
-    default: return f.ConsumeFloatingPointInRange<double>(-1., 1.);
-  }
-}
+// Beside the shared values: past float's range, and UTM-sized eastings and northings.
+const std::vector<double> kExtra = {1e-300, 1e300, 6.5e6, 4.4e6};
+double Special(FuzzedDataProvider& f) { return fuzz::Special<double>(f, kExtra); }
+double Coordinate(FuzzedDataProvider& f) { return fuzz::Coordinate<double>(f, kExtra); }
 
 [[noreturn]] void Fail(const char* what) {
   std::fprintf(stderr, "broken result: %s\n", what);

@@ -5,11 +5,9 @@
 // for separation and coverage. Some inputs are surfaces of over a thousand
 // points, so the parallel passes split them across threads (built with OpenMP).
 #include <fuzzer/FuzzedDataProvider.h>
-#include <cfloat>
 #include <cstdio>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -19,6 +17,7 @@
 #include <vcg_ext/mesh_lod.h>
 #include <vcg_ext/normal_projection.h>
 #include "../vcg_ext/test_mesh.h"
+#include "fuzz_values.h"
 
 namespace {
 using LOD = vcg_ext::GeodesicPoissonLod<test::TMesh::ScalarType>;
@@ -26,20 +25,8 @@ using FPS = vcg_ext::GeodesicFpsLod<test::TMesh::ScalarType>;
 using Pyramid = vcg_ext::GeodesicLodPyramid<test::TMesh::ScalarType>;
 using Deviation = vcg_ext::NormalProjection<test::TMesh>;
 
-float Special(FuzzedDataProvider& f) {
-  static const float values[] = {0.f, 1.f, -1.f, 0.5f, 1e-30f, -1e-30f, 1e30f, -1e30f, FLT_MAX, -FLT_MAX,
-                                 FLT_MIN, 1e-45f, std::numeric_limits<float>::quiet_NaN(),
-                                 std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-  return values[f.ConsumeIntegralInRange<size_t>(0, sizeof(values) / sizeof(values[0]) - 1)];
-}
-
-float Coordinate(FuzzedDataProvider& f) {
-  switch (f.ConsumeIntegralInRange<int>(0, 3)) {
-    case 0: return Special(f);
-    case 1: return f.ConsumeFloatingPoint<float>();
-    default: return f.ConsumeFloatingPointInRange<float>(-1.f, 1.f);
-  }
-}
+float Special(FuzzedDataProvider& f) { return fuzz::Special<float>(f); }
+float Coordinate(FuzzedDataProvider& f) { return fuzz::Coordinate<float>(f); }
 
 [[noreturn]] void Fail(const char* what) {
   std::fprintf(stderr, "broken result: %s\n", what);
