@@ -202,7 +202,12 @@ def test_folders_and_globs_expand_to_point_files_in_a_stable_order(tmp_path):
     # The order of the items; inside each, sorted: the ids run through the files in this order.
     assert got == [str(b / n) for n in ("t1.laz", "t10.laz", "t2.laz")] + \
                   [str(a / n) for n in ("c.las", "m.LAZ", "z.laz")] + [str(single)]
-    assert cf.expand_inputs([str(a)]) == cf.expand_inputs([str(a)])
+    # Whatever order the folder lists them in: the same names made in the reverse order.
+    c = tmp_path / "c"
+    c.mkdir()
+    for name in ("z.laz", "m.LAZ", "c.las")[::-1]:
+        (c / name).write_bytes(b"")
+    assert [os.path.basename(p) for p in cf.expand_inputs([str(c)])] == ["c.las", "m.LAZ", "z.laz"]
 
 
 @pytest.mark.parametrize("items, problem", [
