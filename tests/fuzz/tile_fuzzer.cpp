@@ -4,7 +4,8 @@
 // each deciding its core with a halo widened until certified and the seam
 // settled in the visiting order, must give exactly the whole cloud's Poisson
 // samples at the same radius and seed, in every visiting order, and so must a
-// coarser nested level among those samples; never a crash or a sanitizer
+// coarser nested level among those samples, and so must the first radius of a
+// count search from the tiles' pilot disks; never a crash or a sanitizer
 // report. Bad input ends in std::invalid_argument.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <cmath>
@@ -55,6 +56,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double split = f.ConsumeFloatingPointInRange<double>(0.05, 0.95);
   // A coarser nested level: among the first level's samples, at a larger radius.
   const double coarser = f.ConsumeFloatingPointInRange<double>(1.2, 4);
+  // A count search's first radius, from the tiles' pilot disks.
+  const size_t target = f.ConsumeIntegralInRange<size_t>(1, n);
+  const double tolerance = f.ConsumeBool() ? 0.0 : f.ConsumeFloatingPointInRange<double>(0, 0.1);
   auto check = [&](const test::TiledAndWhole& r, double at, const char* level) {
     if (!r.problem.empty()) {
       std::fprintf(stderr, "broken halo (%s): %s\n", level, r.problem.c_str());
@@ -73,6 +77,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (int i : first.whole) candidate[size_t(i)] = 1;
     check(test::TilesAndWhole(cloud, order, coarser * radius, seed, split, &candidate), coarser * radius,
           "nested level");
+    const test::PilotRadii pilot = test::TilesAndWholePilot(cloud, target, tolerance, seed, split);
+    if (!pilot.problem.empty() || pilot.tiled != pilot.whole) {
+      std::fprintf(stderr, "pilot: %s; first radius %.17g from the tiles, %.17g from one process (%zu of %zu, %g)\n",
+                   pilot.problem.c_str(), pilot.tiled, pilot.whole, target, n, tolerance);
+      __builtin_trap();
+    }
   } catch (const std::invalid_argument&) {
   }
   return 0;

@@ -79,56 +79,13 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirstAtACoa
 }
 
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
-  const auto cloud = Cloud();
-  const Domain whole = DomainOf(cloud, test::PointGraph(false));
   for (double tolerance : {0.0, 0.02})
     for (size_t target : {size_t(80), size_t(300)}) {
-      vcg_ext::PoissonTargetCount::Param tp;
-      tp.sampleNum = target;
-      tp.tolerance = tolerance;
-      tp.seed = 5;
-      const std::vector<int> order = vcg_ext::PriorityOrder(whole.points.vertIndex, tp.seed);
-      tp.order = &order;
-      tp.pilotIds = &whole.points.vertIndex;
-      tp.initialRadius = vcg_ext::RadiusSearch::FirstRadius(vcg_ext::CoreDiagonal(whole.points.pos), target);
-      double expected = 0;
-      whole.WithSearch([&](auto& search) { expected = vcg_ext::PoissonTargetCount::Pilot(whole.size(), search, tp); });
-      ASSERT_GT(expected, 0);
-
-      Tile::Param p;
-      p.radius = vcg_ext::PilotRadius::kReach * tp.initialRadius;
-      p.seed = tp.seed;
-      vcg::Box3d all;
-      for (const auto& x : cloud) all.Add(x);
-      p.cloud = all;
-      const uint64_t below = vcg_ext::PilotRadius::Threshold(cloud.size(), target);
-      std::vector<vcg_ext::PilotRadius::Disk> disks;
-      size_t widened = 0;
-      for (bool left : {true, false}) {
-        p.core = all;
-        (left ? p.core.max[0] : p.core.min[0]) = 0.5;
-        for (p.halo = p.radius;; p.halo *= 1.5, ++widened) {
-          std::vector<uint64_t> id;
-          std::vector<vcg::Point3d> pos;
-          std::vector<char> core;
-          for (size_t i = 0; i < cloud.size(); ++i)
-            if (Outside(p.core, cloud[i]) <= p.halo) {
-              id.push_back(i);
-              pos.push_back(cloud[i]);
-              core.push_back((cloud[i][0] < 0.5) == left);
-            }
-          auto r = Tile::Pilot(DomainOf(pos, test::PointGraph(true)), id, core, p, below);
-          if (!r.certified) continue;
-          disks.insert(disks.end(), r.disks.begin(), r.disks.end());
-          break;
-        }
-      }
-      EXPECT_GT(widened, 0u) << "a halo of the pilot's radius alone must be refused, or the check is not tested";
-      std::reverse(disks.begin(), disks.end());  // the tiles' disks come in any order
-      EXPECT_EQ(vcg_ext::PoissonTargetCount::PilotFirstRadius(disks, cloud.size(), target, tolerance,
-                                                              tp.initialRadius),
-                expected)
-          << target << " samples, tolerance " << tolerance;
+      const test::PilotRadii r = test::TilesAndWholePilot(Cloud(), target, tolerance, 5, 0.5);
+      ASSERT_EQ(r.problem, "");
+      ASSERT_GT(r.whole, 0);
+      EXPECT_GT(r.widened, 0u) << "a halo of the pilot's radius alone must be refused, or the check is not tested";
+      EXPECT_EQ(r.tiled, r.whole) << target << " samples, tolerance " << tolerance;
     }
 }
 

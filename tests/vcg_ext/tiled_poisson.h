@@ -3,13 +3,16 @@
 // A cloud sampled as the cluster samples it, in two tiles split at an x, each
 // reading its core and a halo widened until certified, the seam settled in the
 // visiting order; and as one process samples it: what poisson_tile_test and the
-// tile fuzz target compare.
+// tile fuzz target compare. Likewise the first radius of a count search from
+// the tiles' pilot disks.
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
 #include <vector>
+#include <vcg_ext/core_diagonal.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
+#include <vcg_ext/poisson_target_count.h>
 #include <vcg_ext/poisson_tile.h>
 
 namespace test {
@@ -150,6 +153,67 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   Tile::Settle(sorted, offset, cover, status);
   for (size_t i = 0; i < status.size(); ++i)
     if (status[i] == Tile::In) out.tiled.insert(int(i));
+  return out;
+}
+
+struct PilotRadii {
+  double tiled = 0, whole = 0;  ///< the count search's first radius from the tiles' pilot disks, and one process's
+  size_t widened = 0;           ///< halos the tiles widened
+  std::string problem;          ///< a tile never certified (empty if none)
+};
+
+/// The first radius of a search for `target` samples (within `tolerance`), from the pilot disks of two
+/// tiles split at x = `split`, each widening its halo by half until certified, and from one process's.
+inline PilotRadii TilesAndWholePilot(const std::vector<vcg::Point3d>& cloud, size_t target, double tolerance,
+                                     uint64_t seed, double split) {
+  PilotRadii out;
+  const TileDomain whole = DomainOf(cloud, PointGraph(false));
+  vcg_ext::PoissonTargetCount::Param tp;
+  tp.sampleNum = target;
+  tp.tolerance = tolerance;
+  tp.seed = seed;
+  const std::vector<int> order = vcg_ext::PriorityOrder(whole.points.vertIndex, tp.seed);
+  tp.order = &order;
+  tp.pilotIds = &whole.points.vertIndex;
+  tp.reckoned = whole.size() + whole.repeats.size();
+  // The guess and the count of points as GeodesicPoissonLod takes them: repeated points included.
+  tp.initialRadius = vcg_ext::RadiusSearch::FirstRadius(
+      vcg_ext::CoreDiagonal(whole.repeats.empty() ? whole.points.pos : whole.GivenPositions()), target);
+  whole.WithSearch([&](auto& search) { out.whole = vcg_ext::PoissonTargetCount::Pilot(whole.size(), search, tp); });
+
+  Tile::Param p;
+  p.radius = vcg_ext::PilotRadius::kReach * tp.initialRadius;
+  p.seed = tp.seed;
+  vcg::Box3d all;
+  for (const auto& x : cloud) all.Add(x);
+  p.cloud = all;
+  const uint64_t below = vcg_ext::PilotRadius::Threshold(cloud.size(), target);
+  std::vector<vcg_ext::PilotRadius::Disk> disks;
+  for (bool left : {true, false}) {
+    p.core = all;
+    (left ? p.core.max[0] : p.core.min[0]) = split;
+    for (p.halo = p.radius;; p.halo *= 1.5, ++out.widened) {
+      if (out.widened > 200) {
+        out.problem = "a tile's pilot was never certified";
+        return out;
+      }
+      std::vector<uint64_t> id;
+      std::vector<vcg::Point3d> pos;
+      std::vector<char> core;
+      for (size_t i = 0; i < cloud.size(); ++i)
+        if (Outside(p.core, cloud[i]) <= p.halo) {
+          id.push_back(i);
+          pos.push_back(cloud[i]);
+          core.push_back((cloud[i][0] < split) == left);
+        }
+      auto r = Tile::Pilot(DomainOf(pos, PointGraph(true)), id, core, p, below);
+      if (!r.certified) continue;
+      disks.insert(disks.end(), r.disks.begin(), r.disks.end());
+      break;
+    }
+  }
+  std::reverse(disks.begin(), disks.end());  // the tiles' disks come in any order
+  out.tiled = vcg_ext::PoissonTargetCount::PilotFirstRadius(disks, cloud.size(), target, tolerance, tp.initialRadius);
   return out;
 }
 
