@@ -16,11 +16,8 @@ namespace poisson_tile_test {
 namespace {
 
 using test::Decide;
-using test::DomainOf;
-using test::Outside;
 using test::Tile;
 using test::TileRun;
-typedef test::TileDomain Domain;
 
 /// A bumpy 40 x 40 height field on [0,1]^2, jittered so no two distances tie.
 std::vector<vcg::Point3d> Cloud() {
