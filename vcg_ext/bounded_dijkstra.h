@@ -2,6 +2,7 @@
 #define VCG_EXT_BOUNDED_DIJKSTRA_H
 // Dijkstra on a NeighbourGraph, stopped at a radius: the geodesic disk search.
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cstdint>
 #include <limits>
@@ -35,10 +36,38 @@ class BoundedDijkstra {
   BoundedDijkstra(const NeighbourGraph<Scalar>& g, const EdgeLength<Scalar>& len)
       : g_(g), len_(len) {}
 
+  /// VisitBeyond's `below`: floats, each no lower than the length it stands
+  /// for (4 bytes a point whatever Scalar is).
+  typedef float PruneDistance;
+
   /// Calls f(i, d) once for every point i at graph distance d <= r from
   /// `src`, in order of increasing d (src first, with d = 0).
   template <class F>
   void Visit(int src, Scalar r, F&& f) {
+    Search(src, r, [](int, Scalar) { return false; }, f);
+  }
+
+  /// Visit, leaving out what earlier searches reach at least as near:
+  /// below[j] is at least the length of a path to j from an earlier source
+  /// (infinity if none), and a point reached no nearer than that is neither reported nor
+  /// passed through. What lies beyond it is then as near to that source by
+  /// the same edges (the same sums in the same order: a sum rounds no lower
+  /// from a lower start), so a Poisson disk's points left out are within r of
+  /// an earlier sample, and the disks mark the same points: the disks of a
+  /// few samples far apart in the graph but near in space no longer sweep
+  /// the same points again and again. `below` may be lowered meanwhile by
+  /// another thread (relaxed reads: any value read is such a length).
+  template <class F>
+  void VisitBeyond(int src, Scalar r, const std::atomic<PruneDistance>* below, F&& f) {
+    Search(src, r, [below](int j, Scalar d) { return double(below[j].load(std::memory_order_relaxed)) <= double(d); },
+           f);
+  }
+
+  /// Calls f(i, d) once for every point i at graph distance d <= r from
+  /// `src`, in order of increasing d (src first, with d = 0), except where
+  /// reached(j, d) says that j is reached as near by other means.
+  template <class Reached, class F>
+  void Search(int src, Scalar r, const Reached& reached, F&& f) {
     near_.Clear();
     heap_.clear();
     near_.Add(src, 0);
@@ -80,7 +109,7 @@ class BoundedDijkstra {
         Scalar* dj = near_.Find(j);
         if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, j, arc[a]);
-        if (nd <= r && (!dj || nd < *dj)) {
+        if (nd <= r && (!dj || nd < *dj) && !reached(j, nd)) {
           if (dj) *dj = nd; else near_.Add(j, nd);
           Push(heap_, j, nd);
         }

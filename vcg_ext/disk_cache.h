@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <vector>
+#include "poisson_disk.h"
 
 namespace vcg_ext {
 
@@ -63,6 +64,18 @@ class DiskCache {
       cache_->Keep(src, rs, list_);
     }
 
+    /// Search's VisitBeyond where it has one (PoissonDisk::Compute's disks):
+    /// whole disks while the cache keeps them and has room, then what the
+    /// search leaves out of them is not searched.
+    typedef typename PruneDistanceOf<Search>::type PruneDistance;
+    template <class R, class B, class F>
+    void VisitBeyond(int src, R r, const B* below, F&& f) {
+      if (cache_->keeping_ && !cache_->full_.load(std::memory_order_relaxed)) return Visit(src, r, f);
+      const Scalar rs = Scalar(r);
+      if (cache_->Replay(src, rs, f)) return;
+      search_->VisitBeyond(src, rs, below, f);
+    }
+
    private:
     std::unique_ptr<Search> own_;
     Search* search_;
@@ -90,13 +103,14 @@ class DiskCache {
   // Keeps src's disk searched at r, in place of a smaller one.
   void Keep(int src, Scalar r, const std::vector<Entry>& list) {
     const size_t need = list.size() + 1;
-    if (need > block_) return;
+    const auto noRoom = [this] { full_.store(true, std::memory_order_relaxed); };
+    if (need > block_) return noRoom();
     size_t at;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      if (used_ + need > budget_) return;
+      if (used_ + need > budget_) return noRoom();
       if (end_ % block_ + need > block_) end_ = (end_ / block_ + 1) * block_;  // the list starts a new block
-      if (end_ / block_ >= blocks_.size() || end_ + need >= kNone) return;
+      if (end_ / block_ >= blocks_.size() || end_ + need >= kNone) return noRoom();
       if (!blocks_[end_ / block_]) blocks_[end_ / block_].reset(new Entry[block_]);
       at = end_;
       end_ += need;
@@ -114,6 +128,7 @@ class DiskCache {
   std::mutex mutex_;
   size_t budget_, end_ = 0, used_ = 0;
   bool keeping_ = true;
+  std::atomic<bool> full_{false};  // a disk found no room: the walks' searches keep no more
   std::atomic<size_t> hits_{0};
 };
 

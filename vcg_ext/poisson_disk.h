@@ -2,14 +2,37 @@
 #define VCG_EXT_POISSON_DISK_H
 // Poisson-disk sampling by disk searches in any metric.
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 #include "parallel.h"
 #include "progress.h"
 
 namespace vcg_ext {
+
+/// The distance type of a disk search's VisitBeyond (BoundedDijkstra's
+/// PruneDistance), or void for one without it.
+template <class S, class = void>
+struct PruneDistanceOf {
+  typedef void type;
+};
+template <class S>
+struct PruneDistanceOf<S, std::void_t<typename S::PruneDistance>> {
+  typedef typename S::PruneDistance type;
+};
+
+/// d in D, rounded up where D cannot hold it.
+template <class D>
+D NoLower(double d) {
+  const D x = D(d);
+  return double(x) < d ? std::nextafter(x, std::numeric_limits<D>::infinity()) : x;
+}
 
 /// Points are visited in a given order (PriorityOrder: seeded, and the same
 /// for a point whatever else is present); an unvisited point becomes a
@@ -45,15 +68,44 @@ class PoissonDisk {
     Result r;
     r.owner.assign(n, -1);
     size_t covered = 0;
-    InOrder(n, disk, p.radius, *p.order, [&](int i) { return r.owner[i] < 0; },
-            [&](int i, const std::vector<int>& members) {
-              if (r.owner[i] >= 0) return;  // covered by an earlier disk of its batch
-              const int id = int(r.samples.size());
-              r.samples.push_back(i);
-              for (int j : members)
-                if (r.owner[j] < 0) r.owner[j] = id, ++covered;
-            },
-            [&] { return covered; }, progress);
+    auto done = [&] { return covered; };
+    typedef typename PruneDistanceOf<DiskSearch>::type D;
+    if constexpr (std::is_void<D>::value) {
+      InOrder(n, disk, p.radius, *p.order, [&](int i) { return r.owner[i] < 0; },
+              [&](int i, const std::vector<int>& members) {
+                if (r.owner[i] >= 0) return;  // covered by an earlier disk of its batch
+                const int id = int(r.samples.size());
+                r.samples.push_back(i);
+                for (int j : members)
+                  if (r.owner[j] < 0) r.owner[j] = id, ++covered;
+              },
+              done, progress);
+    } else {
+      // Each point's distance to the nearest sample so far, as far as the
+      // disks found it (rounded up to D): a disk leaves out what an earlier
+      // one reaches at least as near (VisitBeyond), and marks the same points.
+      std::unique_ptr<std::atomic<D>[]> below(new std::atomic<D>[n]);
+      ParallelFor(n, 1 << 16, [&](size_t i) {
+        below[i].store(std::numeric_limits<D>::infinity(), std::memory_order_relaxed);
+      });
+      Walk<std::pair<int, D>>(
+          n, disk, *p.order,
+          [&](DiskSearch& s, int src, std::vector<std::pair<int, D>>& list) {
+            s.VisitBeyond(src, p.radius, below.get(), [&](int i, double d) { list.emplace_back(i, NoLower<D>(d)); });
+          },
+          [&](int i) { return r.owner[i] < 0; },
+          [&](int i, const std::vector<std::pair<int, D>>& members) {
+            if (r.owner[i] >= 0) return;  // covered by an earlier disk of its batch
+            const int id = int(r.samples.size());
+            r.samples.push_back(i);
+            for (const auto& m : members) {
+              if (r.owner[m.first] < 0) r.owner[m.first] = id, ++covered;
+              if (m.second < below[m.first].load(std::memory_order_relaxed))
+                below[m.first].store(m.second, std::memory_order_relaxed);
+            }
+          },
+          done, progress);
+    }
     return r;
   }
 
@@ -66,29 +118,52 @@ class PoissonDisk {
   template <class DiskSearch, class Wanted, class Take, class Done>
   static void InOrder(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
                       Take take, Done done, Progress progress) {
+    Walk<int>(
+        n, disk, order,
+        [radius](DiskSearch& s, int src, std::vector<int>& list) {
+          s.Visit(src, radius, [&](int i, double) { list.push_back(i); });
+        },
+        wanted, take, done, progress);
+  }
+
+  /// InOrder with the disks searched by search(s, src, list), each a list of
+  /// Member (InOrder's: the points).
+  template <class Member, class DiskSearch, class Search, class Wanted, class Take, class Done>
+  static void Walk(size_t n, DiskSearch& disk, const std::vector<int>& order, Search search, Wanted wanted,
+                   Take take, Done done, Progress progress) {
     const int threads = ThreadCount();
     PerThread<DiskSearch> searches(disk);
     struct Batch {
       std::vector<int> cand;
-      std::vector<std::vector<int>> members;  // per candidate: its disk, nearest first
+      std::vector<std::vector<Member>> members;  // per candidate: its disk, nearest first
     } batches[3];
-    size_t o = 0, searched = 0, reached = 0;
+    size_t o = 0;
+    size_t lastSize = 0, lastSearched = 0, lastReached = 0;  // the batch taken last
     const size_t m0 = order.size();
     // The next candidates in the order that wanted(i) accepts so far.
     auto gather = [&](Batch& b) {
       // Batches small enough that their disks rarely overlap: their total
-      // expected size is at most an eighth of the points still uncovered.
+      // expected size, at the mean of the batch taken last, is at most an
+      // eighth of the points still uncovered. Disks can grow many times over
+      // from one batch to the next (a cloud's core after the rims of its
+      // outliers; at large radii one disk may cover most of the cloud, and a
+      // batch of such disks would search it again and again), so a batch is
+      // at most twice the one before.
       const size_t left = n - std::min(n, done());
-      const size_t perDisk = searched ? std::max<size_t>(1, reached / searched) : n;
-      const size_t size = threads == 1 ? 1 : std::min<size_t>(kMaxBatch, std::max<size_t>(1, left / (8 * perDisk)));
+      const size_t perDisk = lastSearched ? std::max<size_t>(1, lastReached / lastSearched) : n;
+      const size_t size = threads == 1 ? 1
+                                       : std::min({kMaxBatch, 2 * std::max<size_t>(1, lastSize),
+                                                   std::max<size_t>(1, left / (8 * perDisk))});
       b.cand.clear();
       for (; o < m0 && b.cand.size() < size; ++o)
         if (wanted(order[o])) b.cand.push_back(order[o]);
       if (b.members.size() < b.cand.size()) b.members.resize(b.cand.size());
     };
     auto takeAll = [&](Batch& b) {
+      if (b.cand.empty()) return;
+      lastSize = b.cand.size(), lastSearched = 0, lastReached = 0;
       for (size_t c = 0; c < b.cand.size(); ++c) {
-        searched += 1, reached += b.members[c].size();
+        lastSearched += 1, lastReached += b.members[c].size();
         take(b.cand[c], b.members[c]);
       }
       b.cand.clear();
@@ -102,11 +177,10 @@ class PoissonDisk {
     while (!cur->cand.empty() || !prev->cand.empty()) {
       std::atomic<bool> outOfMemory{false};  // a search's bad_alloc, rethrown after the loop
       ParallelForBeside([&] { takeAll(*prev), gather(*next); }, cur->cand.size(), 8, [&](size_t c) {
-        DiskSearch& search = searches.Mine();
-        std::vector<int>& list = cur->members[c];
+        std::vector<Member>& list = cur->members[c];
         list.clear();
         try {
-          search.Visit(cur->cand[c], radius, [&](int i, double) { list.push_back(i); });
+          search(searches.Mine(), cur->cand[c], list);
         } catch (const std::bad_alloc&) {
           outOfMemory = true;
         }

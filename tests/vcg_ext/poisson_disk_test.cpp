@@ -1,7 +1,9 @@
 // Geodesic Poisson-disk sampling: separation, coverage, determinism, counts,
 // disconnected parts, and adaptivity of the weighted metrics.
 #include <gtest/gtest.h>
+#include <atomic>
 #include <set>
+#include <vcg_ext/disk_cache.h>
 #include <vcg_ext/geodesic_poisson_lod.h>
 #include <vcg_ext/mesh_lod.h>
 #include "on_threads.h"
@@ -36,6 +38,37 @@ Split BumpySplit(const Domain& d, const std::vector<int>& samples) {
   const size_t nf = d.points.size() - nb, sf = samples.size() - sb;
   return {double(sb) / samples.size(), (double(sb) / nb) / (double(sf) / nf)};
 }
+
+// The plain walk, one point at a time, each disk searched whole: samples and owners.
+std::pair<std::vector<int>, std::vector<int>> PlainWalk(const Domain& d, const std::vector<int>& order, double r) {
+  std::vector<int> samples, owner(d.size(), -1);
+  d.WithSearch([&](auto& search) {
+    for (int i : order) {
+      if (owner[size_t(i)] >= 0) continue;
+      search.Visit(i, float(r), [&](int j, double) {
+        if (owner[size_t(j)] < 0) owner[size_t(j)] = int(samples.size());
+      });
+      samples.push_back(i);
+    }
+  });
+  return {samples, owner};
+}
+
+// A disk search that counts the points its searches report (in `reached`, shared by its copies).
+template <class Search>
+struct Counting {
+  typedef typename Search::PruneDistance PruneDistance;
+  Search search;
+  std::atomic<size_t>* reached;
+  template <class R, class F>
+  void Visit(int src, R r, F&& f) {
+    search.Visit(src, r, [&](int i, PruneDistance di) { ++*reached, f(i, di); });
+  }
+  template <class R, class B, class F>
+  void VisitBeyond(int src, R r, const B* below, F&& f) {
+    search.VisitBeyond(src, r, below, [&](int i, PruneDistance di) { ++*reached, f(i, di); });
+  }
+};
 
 // Radius giving about `target` samples in `metric` (bisection on the count).
 double RadiusFor(const Domain& d, size_t target) {
@@ -204,16 +237,7 @@ TEST(PoissonDisk, BatchedWalkIsThePlainWalkOnAnyThreadCount) {
   const Domain d = Build(m, Metric::CurvatureDensity);
   const double r = 0.02;
   const std::vector<int> order = LOD::VisitingOrder(d, 7, {}, vcg_ext::VisitOrder::Random);
-  std::vector<int> samples, owner(d.size(), -1);
-  d.WithSearch([&](auto& search) {
-    for (int i : order) {
-      if (owner[size_t(i)] >= 0) continue;
-      search.Visit(i, float(r), [&](int j, double) {
-        if (owner[size_t(j)] < 0) owner[size_t(j)] = int(samples.size());
-      });
-      samples.push_back(i);
-    }
-  });
+  const auto [samples, owner] = PlainWalk(d, order, r);
   ASSERT_GT(samples.size(), 1000u) << "enough disks for many batches";
   vcg_ext::PoissonDisk::Param pp;
   pp.radius = r;
@@ -223,6 +247,81 @@ TEST(PoissonDisk, BatchedWalkIsThePlainWalkOnAnyThreadCount) {
     test::OnThreads(threads, [&] { d.WithSearch([&](auto& search) { got = vcg_ext::PoissonDisk::Compute(d.size(), search, pp); }); });
     EXPECT_EQ(got.samples, samples) << threads << " threads";
     EXPECT_EQ(got.owner, owner) << threads << " threads";
+  }
+}
+
+// A disk leaves out what an earlier disk reaches at least as near: the same
+// samples and owners as whole disks, at radii where each point lies in many
+// disks, in any metric and order, on any threads, and through the count
+// search's disk cache (whole disks kept while it has room, then left out).
+TEST(PoissonDisk, DisksLeavingOutWhatEarlierDisksReachMarkWhatWholeDisksMark) {
+  SKIP_WITHOUT_OPENMP();
+  test::TMesh m;
+  Bumpy(m, 70);
+  for (Metric metric : {Metric::CurvatureDensity, Metric::WeightedEq3, Metric::Geodesic}) {
+    const Domain d = Build(m, metric);
+    ASSERT_FALSE(d.meshGeodesics) << "a cloud: the point graph's searches";
+    for (auto visit : {vcg_ext::VisitOrder::Random, vcg_ext::VisitOrder::Prominence}) {
+      for (double r : {0.03, 0.15, 0.6, 3.0}) {
+        const std::vector<int> order = LOD::VisitingOrder(d, 3, {}, visit, r);
+        const auto plain = PlainWalk(d, order, r);
+        ASSERT_GT(plain.first.size(), 0u);
+        vcg_ext::PoissonDisk::Param pp;
+        pp.radius = r;
+        pp.order = &order;
+        for (int threads : {1, 2, 3}) {
+          vcg_ext::PoissonDisk::Result got, cached;
+          test::OnThreads(threads, [&] {
+            vcg_ext::BoundedDijkstra<float> search(d.graph, d.Lengths());
+            got = vcg_ext::PoissonDisk::Compute(d.size(), search, pp);
+            vcg_ext::DiskCache<float> cache(d.size(), d.size());  // room for a few disks
+            vcg_ext::DiskCache<float>::Cached<vcg_ext::BoundedDijkstra<float>> disks(search, cache);
+            cached = vcg_ext::PoissonDisk::Compute(d.size(), disks, pp);
+          });
+          const std::string what = std::to_string(int(metric)) + " order " + std::to_string(int(visit)) +
+                                   " r " + std::to_string(r) + ", " + std::to_string(threads) + " threads";
+          EXPECT_EQ(got.samples, plain.first) << what;
+          EXPECT_EQ(got.owner, plain.second) << what;
+          EXPECT_EQ(cached.samples, plain.first) << what << ", cached";
+          EXPECT_EQ(cached.owner, plain.second) << what << ", cached";
+        }
+      }
+    }
+  }
+}
+
+// Isolated points visited first give disks of one point; the disks after
+// them each reach the whole patch. A batch is at most twice the one before,
+// and a disk leaves out what an earlier one reaches: each point is searched
+// a few times, not once for every disk of a batch sized by the small disks
+// (nearly 900 times each here).
+TEST(PoissonDisk, DisksAfterSmallOnesSearchEachPointAFewTimes) {
+  SKIP_WITHOUT_OPENMP();
+  test::TMesh m;
+  test::Plane(m, 60);
+  const size_t patch = m.vert.size(), isolated = 8;
+  for (size_t k = 0; k < isolated; ++k) vcg::tri::Allocator<test::TMesh>::AddVertex(m, test::P3(20.f + 5.f * float(k), 20.f, 0.f));
+  const Domain d = Build(m, Metric::Geodesic);
+  ASSERT_FALSE(d.meshGeodesics);
+  std::vector<int> order(d.size());
+  for (size_t i = 0; i < d.size(); ++i) order[i] = int(i);
+  std::stable_partition(order.begin(), order.end(), [&](int i) { return size_t(d.points.vertIndex[size_t(i)]) >= patch; });
+  const double r = 2.0;  // beyond the patch's diameter, short of the isolated points' gaps
+  vcg_ext::PoissonDisk::Param pp;
+  pp.radius = r;
+  pp.order = &order;
+  const auto plain = PlainWalk(d, order, r);
+  ASSERT_EQ(plain.first.size(), isolated + 1) << "each isolated point and one disk for the patch";
+  for (int threads : {2, 3}) {
+    std::atomic<size_t> reached{0};
+    vcg_ext::PoissonDisk::Result got;
+    test::OnThreads(threads, [&] {
+      Counting<vcg_ext::BoundedDijkstra<float>> counting{vcg_ext::BoundedDijkstra<float>(d.graph, d.Lengths()),
+                                                         &reached};
+      got = vcg_ext::PoissonDisk::Compute(d.size(), counting, pp);
+    });
+    EXPECT_EQ(got.samples, plain.first) << threads << " threads";
+    EXPECT_LE(double(reached), 32.0 * double(d.size())) << threads << " threads";
   }
 }
 

@@ -1,0 +1,53 @@
+"""Small LODs of a forest: the shared airborne tile lone-star.laz (518,862 points: trees, ground and
+stray returns, 58 connected parts of its neighbour graph) asked for a few dozen to a few thousand
+points, by our Python API (as the command runs a LAS file) and by MeshLab's point cloud simplification
+asked for the same count, side by side in one process. At such counts one disk may hold most of the
+cloud. Writes docs/small_counts.json and prints a Markdown table.
+
+usage: bench/small_counts.py [--counts 5000,1000,300,100,70,50]
+"""
+import argparse
+import os
+import time
+
+import laspy
+import numpy as np
+import pymeshlab
+
+import geodesic_lod as gl
+from quality_config import DATA
+from results import publish
+
+TILE = DATA / "lidar" / "lone-star.laz"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--counts", default="5000,1000,300,100,70,50")
+    a = ap.parse_args()
+    las = laspy.read(str(TILE))
+    points = np.stack([las.x, las.y, las.z], axis=1)
+    rows = []
+    for count in (int(c) for c in a.counts.split(",")):
+        load = os.getloadavg()[0]
+        t = time.perf_counter()
+        lod = gl.poisson_lod(points, count=count)
+        ours = time.perf_counter() - t
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=points - points.min(axis=0)))
+        t = time.perf_counter()
+        ms.generate_simplified_point_cloud(samplenum=count, exactnumflag=False)
+        meshlab = time.perf_counter() - t
+        rows.append({"points": len(points), "count": count, "samples": len(lod.indices), "parts": lod.components,
+                     "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2),
+                     "meshlab_samples": ms.current_mesh().vertex_number(), "meshlab_s": round(meshlab, 2),
+                     "load": round(load, 2)})
+    publish("small_counts", rows, [("count asked", lambda r: f"{r['count']:,}"),
+                                   ("ours (Poisson runs)", lambda r: f"{r['ours_s']:.1f} s ({r['runs']})"),
+                                   ("MeshLab simplification (its samples)",
+                                    lambda r: f"{r['meshlab_s']:.1f} s ({r['meshlab_samples']:,})"),
+                                   ("load", lambda r: str(r["load"]))])
+
+
+if __name__ == "__main__":
+    main()
