@@ -138,7 +138,7 @@ class PoissonDisk {
       std::vector<std::vector<Member>> members;  // per candidate: its disk, nearest first
     } batches[3];
     size_t o = 0;
-    size_t lastSize = 0, lastSearched = 0, lastReached = 0;  // the batch taken last
+    size_t lastSize = 0, lastReached = 0;  // the batch taken last: its disks and their points
     const size_t m0 = order.size();
     // The next candidates in the order that wanted(i) accepts so far.
     auto gather = [&](Batch& b) {
@@ -150,7 +150,7 @@ class PoissonDisk {
       // batch of such disks would search it again and again), so a batch is
       // at most twice the one before.
       const size_t left = n - std::min(n, done());
-      const size_t perDisk = lastSearched ? std::max<size_t>(1, lastReached / lastSearched) : n;
+      const size_t perDisk = lastSize ? std::max<size_t>(1, lastReached / lastSize) : n;
       const size_t size = threads == 1 ? 1
                                        : std::min({kMaxBatch, 2 * std::max<size_t>(1, lastSize),
                                                    std::max<size_t>(1, left / (8 * perDisk))});
@@ -161,9 +161,9 @@ class PoissonDisk {
     };
     auto takeAll = [&](Batch& b) {
       if (b.cand.empty()) return;
-      lastSize = b.cand.size(), lastSearched = 0, lastReached = 0;
+      lastSize = b.cand.size(), lastReached = 0;
       for (size_t c = 0; c < b.cand.size(); ++c) {
-        lastSearched += 1, lastReached += b.members[c].size();
+        lastReached += b.members[c].size();
         take(b.cand[c], b.members[c]);
       }
       b.cand.clear();
