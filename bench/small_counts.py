@@ -4,7 +4,7 @@ points, by our Python API (as the command runs a LAS file) and by MeshLab's poin
 asked for the same count, side by side in one process. At such counts one disk may hold most of the
 cloud. Writes docs/small_counts.json and prints a Markdown table.
 
-usage: bench/small_counts.py [--counts 5000,1000,300,100,70,50]
+usage: bench/small_counts.py [--counts 5000,1000,300,100,70,58,50,30]
 """
 import argparse
 import os
@@ -23,7 +23,7 @@ TILE = DATA / "lidar" / "lone-star.laz"
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--counts", default="5000,1000,300,100,70,50")
+    ap.add_argument("--counts", default="5000,1000,300,100,70,58,50,30")
     a = ap.parse_args()
     las = laspy.read(str(TILE))
     points = np.stack([las.x, las.y, las.z], axis=1)

@@ -287,6 +287,11 @@ class GeodesicDomain {
            " in none " + (leftOut == 1 ? "is" : "are") + " not sampled with mesh geodesics)";
   }
   bool Scatters() const { return ScatterShare<Scalar>::Scatters(scatterShare); }
+  /// The connected parts (of the point graph or the mesh's edges) holding one
+  /// of `points` at least: a disk never leaves its part. O(points), on all threads.
+  size_t PartsHolding(const std::vector<int>& points) const {
+    return (meshGeodesics ? fmMesh.edges : graph).ComponentsHolding(points);
+  }
   /// BallShare::CellSide of the points as given (before repeats were
   /// dropped): the spacing key orders scale their balls by.
   double CellSide() const {

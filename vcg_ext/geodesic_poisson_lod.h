@@ -198,6 +198,13 @@ class GeodesicPoissonLod {
                                                  p.prominenceOffSurface, p.prominenceSmoothClean, ordering);
     tp.order = &order;
     tp.pilotIds = &d.points.vertIndex;  // the first run's radius from a pilot around the guess
+    // One sample a part the order visits: counted once a run gives no more than the domain's parts.
+    size_t fewest = 0;
+    tp.fewest = [&](size_t count) {
+      if (count > size_t(d.components)) return false;  // never for Euclidean disks (0 parts)
+      if (fewest == 0) fewest = order.size() == d.size() ? size_t(d.components) : d.PartsHolding(order);
+      return count == fewest;
+    };
     PoissonTargetCount::Result r;
     // Its runs compute each edge's length as they go, as one run does: disks
     // skip most edges by their straight length, so kept weights (4 bytes an

@@ -275,7 +275,23 @@ class NeighbourGraph {
   /// the largest set is found among a sample, and only the points outside it join the rest of
   /// their arcs. A point of that set needs none of its arcs: the graph is symmetric, so an arc to a
   /// point outside is joined from there (sets only grow, so a point found in it stays in it).
-  int ComponentCount() const {
+  int ComponentCount() const { return int(Joined().Count()); }
+
+  /// How many connected components hold at least one of `points`: Joined(), then a pass over them.
+  size_t ComponentsHolding(const std::vector<int>& points) const {
+    UnionFind sets = Joined();
+    std::vector<char> held(size(), 0);
+    size_t count = 0;
+    for (int i : points) {
+      char& h = held[size_t(sets.Find(i))];
+      count += h == 0, h = 1;
+    }
+    return count;
+  }
+
+ private:
+  // The points joined by their arcs (ComponentCount's sets).
+  UnionFind Joined() const {
     const size_t n = size();
     UnionFind sets(n);
     constexpr int kFirst = 2;
@@ -288,10 +304,9 @@ class NeighbourGraph {
       if (sets.Find(int(i)) == largest) return;
       for (int e = offset[i] + kFirst; e < offset[i + 1]; ++e) sets.Unite(int(i), To(int(i), e));
     });
-    return int(sets.Count());
+    return sets;
   }
 
- private:
   // The root most of up to 1024 points spread over the numbers share (the least on a tie); -1 for none.
   static int MostCommonRoot(UnionFind& sets) {
     const size_t n = sets.size(), step = std::max<size_t>(1, n / 1024);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -56,7 +57,9 @@ class RadiusSearch {
   int Runs() const { return runs_; }
 
   /// Records the count of the run at Radius() and steps to the next radius.
-  Role Report(size_t count) {
+  /// `fewest`: no radius gives fewer samples than this run (one a connected
+  /// part), and every larger one gives the same: above the target, no run is nearer.
+  Role Report(size_t count, bool fewest = false) {
     const double c = double(count), r = r_;
     ++runs_;
     Role role = Role::None;
@@ -69,8 +72,9 @@ class RadiusSearch {
     } else if (belowRadius_ == 0 || r < belowRadius_) {
       belowRadius_ = r, belowCount_ = c, role = Role::Below;
     }
-    if ((belowRadius_ > 0 && belowRadius_ <= aboveRadius_ * (1 + 1e-9)) || runs_ >= maxRuns_) {
-      done_ = true;  // the count jumps across the target here, or no runs are left
+    if ((belowRadius_ > 0 && belowRadius_ <= aboveRadius_ * (1 + 1e-9)) || runs_ >= maxRuns_ ||
+        (fewest && c >= target_)) {
+      done_ = true;  // the count jumps across the target here, no runs are left, or none gives fewer
       return role;
     }
     const double window = 0.5 * (accLo_ + std::min(accHi_, candidates_));  // the middle of what is accepted
@@ -158,6 +162,10 @@ class PoissonTargetCount {
     /// The candidates the steps and the pilot reckon with, if not the order's
     /// points: a cloud's rows as given, repeats included, as a cluster counts them.
     size_t reckoned = 0;
+    /// Whether no radius gives fewer samples than a count: one a connected part holding a point
+    /// the order visits, where a run's samples stay the same at every larger radius (empty: none
+    /// known). A run giving so many above the target ends the search, its set thinned.
+    std::function<bool(size_t)> fewest;
     double keptDisks = 2.5;      ///< disks kept from run to run and for the thinning (DiskCache), in
                                  ///< entries per point (8 bytes each in float); 0: none. A run's disks
                                  ///< hold about 1.9 a point at any radius; 2.5 keeps also the second
@@ -251,7 +259,7 @@ class PoissonTargetCount {
       cache.Keeping(it > 0 || pilot > 0);  // a guess's disks are seldom read again; the pilot's radius errs large
       Trial t = Run(n, disks, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
       ++out.iterations;
-      switch (steps.Report(t.count)) {
+      switch (steps.Report(t.count, p.fewest && p.fewest(t.count))) {
         case RadiusSearch::Role::Accepted: accepted = std::move(t); break;
         case RadiusSearch::Role::Above: above = std::move(t); break;
         case RadiusSearch::Role::Below:

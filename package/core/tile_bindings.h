@@ -384,7 +384,7 @@ inline void BindTiles(nb::module_& m) {
       .def_prop_ro("radius", &RadiusSearch::Radius)
       .def_prop_ro("done", &RadiusSearch::Done)
       .def_prop_ro("runs", &RadiusSearch::Runs)
-      .def("report", &RadiusSearch::Report, "count"_a)
+      .def("report", [](RadiusSearch& s, size_t count) { return s.Report(count); }, "count"_a)
       .def_static("first_radius", &RadiusSearch::FirstRadius, "core_diagonal"_a, "target"_a);
   m.attr("TILE_OUT") = int(Tile::Out);
   m.attr("TILE_IN") = int(Tile::In);

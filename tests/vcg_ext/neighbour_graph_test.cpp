@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <random>
+#include <set>
 #include <vector>
 #include <vcg_ext/geodesic_domain.h>
 #include "graph_domain.h"
@@ -91,8 +92,8 @@ TEST(NeighbourGraph, CountsDisconnectedParts) {
   EXPECT_EQ(GraphDomain(m, vcg_ext::Metric::Geodesic).components, 3);
 }
 
-// The parts of the graph, as a breadth-first search finds them, also where
-// few neighbours leave many parts, on any number of threads.
+// The parts of the graph, and those some points hold, as a breadth-first search
+// finds them, also where few neighbours leave many parts, on any number of threads.
 TEST(NeighbourGraph, ComponentCountIsTheBreadthFirstSearchs) {
   test::TMesh m;
   test::Plane(m, 20);
@@ -103,22 +104,32 @@ TEST(NeighbourGraph, ComponentCountIsTheBreadthFirstSearchs) {
   const auto knn = vcg_ext::KnnTable<float>::Compute(ps.pos, 10);
   for (int k : {1, 2, 3, 10}) {
     const auto g = vcg_ext::NeighbourGraph<float>::FromKnn(vcg_ext::KnnTable<float>(knn), k);
-    std::vector<char> seen(g.size(), 0);
+    std::vector<int> part(g.size(), -1);
     int parts = 0;
     for (size_t s = 0; s < g.size(); ++s) {
-      if (seen[s]) continue;
-      ++parts;
+      if (part[s] >= 0) continue;
       std::vector<int> stack = {int(s)};
-      seen[s] = 1;
+      part[s] = parts;
       while (!stack.empty()) {
         const int i = stack.back();
         stack.pop_back();
         for (int e = g.offset[size_t(i)]; e < g.offset[size_t(i) + 1]; ++e)
-          if (!seen[size_t(g.To(i, e))]) seen[size_t(g.To(i, e))] = 1, stack.push_back(g.To(i, e));
+          if (part[size_t(g.To(i, e))] < 0) part[size_t(g.To(i, e))] = parts, stack.push_back(g.To(i, e));
       }
+      ++parts;
     }
     for (int threads : {1, 2, 3})
       EXPECT_EQ(test::OnThreads(threads, [&] { return g.ComponentCount(); }), parts) << "k = " << k << ", " << threads << " threads";
+    // The parts some points hold: every third point, and the points of every other part.
+    for (int pick = 0; pick < 2; ++pick) {
+      std::vector<int> points;
+      std::set<int> held;
+      for (int i = 0; i < int(g.size()); ++i)
+        if (pick == 0 ? i % 3 == 0 : part[size_t(i)] % 2 == 0) points.push_back(i), held.insert(part[size_t(i)]);
+      for (int threads : {1, 2})
+        EXPECT_EQ(test::OnThreads(threads, [&] { return g.ComponentsHolding(points); }), held.size())
+            << "k = " << k << ", pick " << pick;
+    }
     if (k == 1) EXPECT_GT(parts, 3);  // one neighbour each cannot join a whole plane
     if (k == 10) EXPECT_EQ(parts, 3);
   }

@@ -157,6 +157,36 @@ TEST(TargetCount, TerminatesWhereTheCountJumpsAcrossTheTarget) {
   }
 }
 
+TEST(TargetCount, FewerSamplesThanPartsEndTheSearchAtOneSampleAPart) {
+  // Eight clusters far apart: no radius gives fewer than one sample a part that
+  // may hold one, and a run giving that many gives it at every larger radius.
+  // Asked for fewer, the search stops there and thins that set (it made every
+  // run it may, each at a larger radius, before).
+  test::TMesh m;
+  vcg::tri::Allocator<test::TMesh>::AddVertices(m, 8 * 300);
+  std::mt19937 rng(2);
+  std::normal_distribution<float> g;
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    const test::P3 q(g(rng), g(rng), g(rng)), centre(float(100 * (i / 300)), 0, 0);
+    m.vert[i].P() = centre + q / q.Norm(), m.vert[i].N() = test::P3(0, 0, 0);
+  }
+  for (bool someParts : {false, true})
+    for (double tolerance : {0.0, 0.05})
+      for (size_t n : {size_t(1), size_t(3), size_t(5)}) {
+        LOD::Param p = Target(n, tolerance);
+        if (someParts)  // the points of clusters 0, 2, 4, 5, 7 only: five parts hold candidates
+          for (int i = 0; i < int(m.vert.size()); ++i)
+            if (std::set<int>{0, 2, 4, 5, 7}.count(i / 300)) p.within.push_back(i);
+        const auto r = vcg_ext::MeshLod<LOD>(m, p);
+        EXPECT_EQ(r.vertIndex.size(), n) << n << (someParts ? " of five parts" : "");
+        EXPECT_EQ(r.poissonCount, someParts ? 5u : 8u) << n;
+        EXPECT_LE(r.iterations, 8) << n << (someParts ? " of five parts" : "") << " at tolerance " << tolerance;
+        std::set<int> parts;
+        for (int v : r.vertIndex) parts.insert(v / 300);
+        EXPECT_EQ(parts.size(), n) << "two samples in one part";
+      }
+}
+
 TEST(TargetCount, NamesBadTargets) {
   test::TMesh m;
   test::Plane(m, 10);
