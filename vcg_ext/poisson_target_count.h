@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -83,8 +84,18 @@ class RadiusSearch {
       auto q = [&](double count) { return 1 / std::max(0.5, candidates_ - count); };
       r_ = NextRadius(aboveRadius_, q(aboveCount_), belowRadius_, q(belowCount_), q(c), r, q(window), prevRadius_,
                       prevCount_ > 0 ? q(prevCount_) : 0, kLeftOutSlope);
+      flatBefore_ = false;
     } else {
       r_ = NextRadius(aboveRadius_, aboveCount_, belowRadius_, belowCount_, c, r, aim_, prevRadius_, prevCount_);
+      // Where the last two steps hardly moved the count (the same count: a cloud's parts at one
+      // sample each, where no radius gives fewer), the next goes at least twice as far as the last.
+      const bool bracket = aboveRadius_ > 0 && belowRadius_ > 0;
+      const bool flat = !bracket && prevRadius_ > 0 && !(MeasuredSlope(prevRadius_, prevCount_, r, c) >= kFlat);
+      if (flat && flatBefore_) {
+        const double last = std::fabs(std::log(r / prevRadius_)), next = std::log(r_ / r);
+        if (std::fabs(next) < 2 * last) r_ = r * std::exp(std::copysign(std::min(2 * last, std::log(8.0)), next));
+      }
+      flatBefore_ = flat;
     }
     prevRadius_ = r, prevCount_ = c;
     return role;
@@ -107,12 +118,17 @@ class RadiusSearch {
       f = std::min(0.9, std::max(0.1, f));
       return std::exp(la + f * (lb - la));
     }
-    if (prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r && prevCount != count) {
-      const double s = -std::log(count / prevCount) / std::log(r / prevRadius);
-      if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
-    }
+    const double s = MeasuredSlope(prevRadius, prevCount, r, count);
+    if (std::isfinite(s)) slope = std::min(3.0, std::max(1.0, s));
     const double step = std::pow(count / target, 1.0 / slope);
     return r * std::min(8.0, std::max(1.0 / 8, step));
+  }
+
+  /// -d log N / d log r between two runs (0 for the same count): NaN where they do not measure it.
+  static double MeasuredSlope(double prevRadius, double prevCount, double r, double count) {
+    if (!(prevRadius > 0 && prevCount > 0 && count > 0 && prevRadius != r))
+      return std::numeric_limits<double>::quiet_NaN();
+    return -std::log(count / prevCount) / std::log(r / prevRadius);
   }
 
   static constexpr double kThinning = 0.03;  // an exact count thins a set up to 3% larger
@@ -124,6 +140,8 @@ class RadiusSearch {
   /// about r^2 of them on a surface), not its count, which then hardly moves with r: steps by the
   /// count would shrink r by about 1% a run.
   static constexpr double kSaturated = 0.75;
+  /// A measured slope below this is flat: the count hardly moves with r there.
+  static constexpr double kFlat = 0.5;
   static constexpr double kLeftOutSlope = 2.0;  ///< -d log(1 / left out) / d log r where no run has measured it
 
  private:
@@ -133,6 +151,7 @@ class RadiusSearch {
   double accLo_ = 0, accHi_ = 0, aim_ = 0;
   double aboveRadius_ = 0, aboveCount_, belowRadius_ = 0, belowCount_ = 0;  // radius 0: every point a sample
   double prevRadius_ = 0, prevCount_ = 0;
+  bool flatBefore_ = false;  // the step before hardly moved the count
   double r_;
   bool done_ = false;
 };

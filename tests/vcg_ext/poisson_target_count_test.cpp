@@ -187,6 +187,26 @@ TEST(TargetCount, FewerSamplesThanPartsEndTheSearchAtOneSampleAPart) {
       }
 }
 
+TEST(TargetCount, CountsJustAboveThePartsTakeFewRuns) {
+  // A patch and 40 small balls far apart, as a forest's scan with its stray returns: just above
+  // 41 samples the count falls far slower than r^-1 (only the patch's samples go), and steps by
+  // a slope of 1 took 11-24 runs.
+  test::TMesh m;
+  test::Plane(m, 40);
+  for (int b = 0; b < 40; ++b)
+    test::AppendShifted(m, [](test::TMesh& ball) { test::Sphere(ball, 24, 0.02f); },
+                        test::P3(float(5 + 3 * (b % 8)), float(3 * (b / 8)), 0));
+  for (double tolerance : {0.0, 0.01})
+    for (size_t n : {size_t(42), size_t(44), size_t(48), size_t(56)}) {
+      const LOD::Param p = Target(n, tolerance);
+      const auto r = vcg_ext::MeshLod<LOD>(m, p);
+      EXPECT_EQ(r.components, 41);
+      EXPECT_NEAR(double(r.vertIndex.size()), double(n), tolerance * double(n)) << n;
+      EXPECT_LE(r.iterations, 12) << n << " at tolerance " << tolerance;
+      RecordProperty("runs_" + std::to_string(n) + (tolerance > 0 ? "_tolerance" : ""), r.iterations);
+    }
+}
+
 TEST(TargetCount, NamesBadTargets) {
   test::TMesh m;
   test::Plane(m, 10);
