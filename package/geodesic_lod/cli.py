@@ -248,9 +248,19 @@ def _run_on_cluster(args, request: dict) -> int:
             where = pathlib.Path(args.output) / pathlib.Path(level["tiles"][0]["file"]).parent if level["tiles"] \
                 else pathlib.Path(args.output)
             summary.append(f"{where}: {level['samples']:,} of {index['points']:,} points in "
-                           f"{arrays.counted(len(level['tiles']), 'tile')}, radius {level['radius']:.6g}")
+                           f"{arrays.counted(len(level['tiles']), 'tile')}, radius {level['radius']:.6g}"
+                           f"{_outside_tolerance(level)}")
         summary += _choices_line(args, index)
     return _done(args, summary, start)
+
+
+def _outside_tolerance(level: dict) -> str:
+    """Where a cluster's count search kept a run outside its tolerance (no radius gives fewer samples than one
+    a connected part, and counts can jump across the target), the words saying so; else nothing."""
+    target, tolerance = level.get("target"), level.get("tolerance_percent")
+    if target is None or abs(level["samples"] - target) <= tolerance / 100 * target:
+        return ""
+    return f" ({target:,} asked, no run within {tolerance:g}% of it: the nearest kept)"
 
 
 def _sampling_bar(args) -> ProgressBar:

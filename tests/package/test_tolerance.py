@@ -7,6 +7,7 @@ import pytest
 import geodesic_lod as gl
 from geodesic_lod import distributed as dist
 from conftest import bumpy_sphere
+from point_file_inputs import las_cloud
 from test_cli import run
 
 
@@ -34,6 +35,17 @@ def test_the_cluster_refuses_a_tolerance_it_cannot_keep(tmp_path, tolerance, pro
     with pytest.raises(gl.InputError, match=problem):
         dist.lod_files([str(tmp_path / "in.npy")], tmp_path / "lod", count=100, tolerance=tolerance)
     assert not (tmp_path / "lod").exists()
+
+
+def test_the_cluster_says_so_where_no_run_lands_within_the_tolerance(tmp_path):
+    # Six balls far apart: no radius gives fewer than one sample a ball, so asked for three the cluster
+    # keeps the run nearest the count (one machine thins a set to it) and says so.
+    balls = np.concatenate([bumpy_sphere(500) + [100.0 * k, 0, 0] for k in range(6)])
+    r = run(las_cloud(tmp_path / "in.laz", points=balls * 10), "-o", tmp_path / "lod", "--count", "3",
+            "--workers", "1")
+    assert r.returncode == 0, r.stderr
+    assert ": 6 of 3,000 points in " in r.stderr, r.stderr
+    assert "3 asked, no run within 1% of it: the nearest kept" in r.stderr, r.stderr
 
 
 @pytest.fixture(scope="module")
