@@ -385,7 +385,11 @@ inline void BindTiles(nb::module_& m) {
       .def_prop_ro("done", &RadiusSearch::Done)
       .def_prop_ro("runs", &RadiusSearch::Runs)
       .def("report", [](RadiusSearch& s, size_t count) { return s.Report(count); }, "count"_a)
-      .def_static("first_radius", &RadiusSearch::FirstRadius, "core_diagonal"_a, "target"_a);
+      .def_static("first_radius", &RadiusSearch::FirstRadius, "core_diagonal"_a, "target"_a)
+      .def_static("fewest", &RadiusSearch::Fewest, "target"_a, "tolerance"_a,
+                  "the fewest samples a tolerance above 0 accepts for a target")
+      .def_static("most", &RadiusSearch::Most, "target"_a, "tolerance"_a,
+                  "the most samples a tolerance above 0 accepts for a target");
   m.attr("TILE_OUT") = int(Tile::Out);
   m.attr("TILE_IN") = int(Tile::In);
   m.attr("TILE_OPEN") = int(Tile::Open);

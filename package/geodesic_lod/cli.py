@@ -258,7 +258,10 @@ def _outside_tolerance(level: dict) -> str:
     """Where a cluster's count search kept a run outside its tolerance (no radius gives fewer samples than one
     a connected part, and counts can jump across the target), the words saying so; else nothing."""
     target, tolerance = level.get("target"), level.get("tolerance_percent")
-    if target is None or abs(level["samples"] - target) <= tolerance / 100 * target:
+    if target is None:
+        return ""
+    share = tolerance / 100
+    if _core.RadiusSearch.fewest(target, share) <= level["samples"] <= _core.RadiusSearch.most(target, share):
         return ""
     return f" ({target:,} asked, no run within {tolerance:g}% of it: the nearest kept)"
 
