@@ -1,13 +1,19 @@
 """Small LODs of a forest: the shared airborne tile lone-star.laz (518,862 points: trees, ground and
 stray returns, 58 connected parts of its neighbour graph) asked for a few dozen to a few thousand
-points, by our Python API (as the command runs a LAS file) and by MeshLab's point cloud simplification
-asked for the same count, side by side in one process. At such counts one disk may hold most of the
-cloud. Writes docs/small_counts.json and prints a Markdown table.
+points, by our Python API (as the command runs a LAS file), by the command on a local cluster of two
+workers, and by MeshLab's point cloud simplification asked for the same count, side by side in one
+run. At such counts one disk may hold most of the cloud. Writes docs/small_counts.json and prints a
+Markdown table.
 
 usage: bench/small_counts.py [--counts 5000,1000,300,100,70,58,50,30]
 """
 import argparse
+import json
 import os
+import pathlib
+import subprocess
+import sys
+import tempfile
 import time
 
 import laspy
@@ -19,6 +25,18 @@ from quality_config import DATA
 from results import publish
 
 TILE = DATA / "lidar" / "lone-star.laz"
+
+
+def cluster_run(count: int) -> dict:
+    """The command on a local cluster of two workers, as a user runs it: its wall time, runs and samples."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = pathlib.Path(tmp) / "lod"
+        t = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "geodesic_lod", str(TILE), "-o", f"{out}/", "--count", str(count),
+                        "--workers", "2", "-q"], check=True)
+        seconds = time.perf_counter() - t
+        index = json.loads((out / "index.json").read_text())
+    return {"cluster_s": round(seconds, 2), "cluster_runs": index["runs"], "cluster_samples": index["samples"]}
 
 
 def main():
@@ -39,11 +57,13 @@ def main():
         ms.generate_simplified_point_cloud(samplenum=count, exactnumflag=False)
         meshlab = time.perf_counter() - t
         rows.append({"points": len(points), "count": count, "samples": len(lod.indices), "parts": lod.components,
-                     "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2),
+                     "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2), **cluster_run(count),
                      "meshlab_samples": ms.current_mesh().vertex_number(), "meshlab_s": round(meshlab, 2),
                      "load": round(load, 2)})
     publish("small_counts", rows, [("count asked", lambda r: f"{r['count']:,}"),
                                    ("ours (Poisson runs)", lambda r: f"{r['ours_s']:.1f} s ({r['runs']})"),
+                                   ("the command, 2 workers (runs, its samples)",
+                                    lambda r: f"{r['cluster_s']:.1f} s ({r['cluster_runs']}, {r['cluster_samples']:,})"),
                                    ("MeshLab simplification (its samples)",
                                     lambda r: f"{r['meshlab_s']:.1f} s ({r['meshlab_samples']:,})"),
                                    ("load", lambda r: str(r["load"]))])

@@ -70,6 +70,7 @@ class BoundedDijkstra {
   void Search(int src, Scalar r, const Reached& reached, F&& f) {
     near_.Clear();
     heap_.clear();
+    whole_ = true;
     near_.Add(src, 0);
     heap_.push(Scalar(0), src);
     while (!heap_.empty()) {
@@ -100,6 +101,7 @@ class BoundedDijkstra {
           row[kept] = j, arc[kept] = e0 + a;
           kept += !(double(vcg::SquaredDistance(pi, pos[size_t(j)])) > room2);
         }
+        whole_ = whole_ && kept == count;
       } else {
         for (int a = 0; a < count; ++a) arc[a] = e0 + a;
         kept = count;
@@ -109,13 +111,24 @@ class BoundedDijkstra {
         Scalar* dj = near_.Find(j);
         if (dj && *dj <= top.first) continue;  // no edge can lower it: its length is not needed
         const Scalar nd = top.first + Length(i, j, arc[a]);
-        if (nd <= r && (!dj || nd < *dj) && !reached(j, nd)) {
-          if (dj) *dj = nd; else near_.Add(j, nd);
-          Push(heap_, j, nd);
+        if (!(nd <= r)) {
+          whole_ = false;
+        } else if (!dj || nd < *dj) {
+          if (reached(j, nd)) {
+            whole_ = false;  // left out: what lies beyond it may not be reached
+          } else {
+            if (dj) *dj = nd; else near_.Add(j, nd);
+            Push(heap_, j, nd);
+          }
         }
       }
     }
   }
+
+  /// Whether the last search reached its source's whole connected part: no
+  /// edge it met led beyond r, and `reached` left out no point it met. Then
+  /// a search from the same source at any larger radius reaches the same points.
+  bool Whole() const { return whole_; }
 
   /// Multi-source step: lowers `dist` (distances to a set of sources, one
   /// entry per point, infinity where unknown) to account for the new source
@@ -264,6 +277,7 @@ class BoundedDijkstra {
   NearTable near_;
   RadixHeap<Scalar> heap_;
   std::vector<int> row_, arc_;  ///< a row's targets and arcs, those kept first
+  bool whole_ = false;          ///< Whole()
 };
 
 }  // namespace vcg_ext

@@ -27,6 +27,21 @@ struct PruneDistanceOf<S, std::void_t<typename S::PruneDistance>> {
   typedef typename S::PruneDistance type;
 };
 
+/// Whether a disk search's last disk held its centre's whole connected part
+/// (BoundedDijkstra::Whole); false for a search that cannot tell.
+template <class S, class = void>
+struct TellsWholePart : std::false_type {};
+template <class S>
+struct TellsWholePart<S, std::void_t<decltype(std::declval<const S&>().Whole())>> : std::true_type {};
+template <class S>
+bool WholePartOf(const S& s) {
+  if constexpr (TellsWholePart<S>::value) {
+    return s.Whole();
+  } else {
+    return false;
+  }
+}
+
 /// d in D, rounded up where D cannot hold it.
 template <class D>
 D NoLower(double d) {
@@ -118,12 +133,30 @@ class PoissonDisk {
   template <class DiskSearch, class Wanted, class Take, class Done>
   static void InOrder(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
                       Take take, Done done, Progress progress) {
+    InOrderWhole(
+        n, disk, radius, order, wanted, [&](int i, const std::vector<int>& list, bool) { take(i, list); }, done,
+        progress);
+  }
+
+  /// InOrder calling take(i, disk, whole): `whole`, whether the disk holds
+  /// i's whole connected part (WholePartOf), so that no larger radius gives i
+  /// a larger disk.
+  template <class DiskSearch, class Wanted, class Take, class Done>
+  static void InOrderWhole(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
+                           Take take, Done done, Progress progress) {
     Walk<int>(
         n, disk, order,
         [radius](DiskSearch& s, int src, std::vector<int>& list) {
           s.Visit(src, radius, [&](int i, double) { list.push_back(i); });
+          if (!WholePartOf(s)) list.push_back(kCut);
         },
-        wanted, take, done, progress);
+        wanted,
+        [&](int i, std::vector<int>& list) {
+          const bool whole = list.empty() || list.back() != kCut;
+          if (!whole) list.pop_back();
+          take(i, static_cast<const std::vector<int>&>(list), whole);
+        },
+        done, progress);
   }
 
   /// InOrder with the disks searched by search(s, src, list), each a list of
@@ -193,6 +226,7 @@ class PoissonDisk {
 
  private:
   static constexpr size_t kMaxBatch = 4096;
+  static constexpr int kCut = -1;  ///< InOrderWhole's mark at the end of a disk that is not whole
 };
 
 }  // namespace vcg_ext

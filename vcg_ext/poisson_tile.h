@@ -70,6 +70,12 @@ class PoissonTile {
     std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
     std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
     std::vector<float> key;              ///< with a key order: per row it may visit, its key (else 0; Settle's order)
+    /// Whether each core sample's disk held the sample's whole connected part
+    /// (PoissonDisk::InOrderWhole), and per row, an open row's. When every
+    /// sample of every tile has one, each part holds one sample and no larger
+    /// radius gives fewer: a count search can stop there.
+    bool wholeParts = true;
+    std::vector<char> openWhole;
   };
 
   /// `d` built with keepReach on the tile's rows (core and halo) in increasing
@@ -133,14 +139,17 @@ class PoissonTile {
     std::vector<char> covered(n, 0), state(n, Out);
     std::vector<std::pair<int, int>> maybe;  // (open core point, an open point covering it), in visiting order
     size_t settled = 0;
+    r.openWhole.assign(rows, 0);
     d.WithSearch([&](auto& search) {
-      PoissonDisk::InOrder(n, search, radius, order, [&](int i) { return covered[i] != 2; },
-                           [&](int i, const std::vector<int>& disk) {
+      PoissonDisk::InOrderWhole(n, search, radius, order, [&](int i) { return covered[i] != 2; },
+                           [&](int i, const std::vector<int>& disk, bool whole) {
                              if (covered[i] == 2) return;  // an earlier disk of its batch covered it
                              // A core point is a sample if nothing may cover it; a halo point's
                              // fate is its own tile's, so here it may only be one.
                              const bool sure = (flags[size_t(i)] & Core) && covered[i] == 0;
                              state[i] = sure ? In : Open;
+                             if (sure) r.wholeParts = r.wholeParts && whole;
+                             if (flags[size_t(i)] & Core) r.openWhole[size_t(d.points.vertIndex[size_t(i)])] = whole;
                              for (int j : disk) {
                                if (covered[j] == 2 || state[j] != Out || !(flags[size_t(j)] & Visit)) continue;
                                if (sure) {

@@ -207,6 +207,9 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
   out["band"] = ToNumpy(std::vector<int64_t>(r.band.begin(), r.band.end()), {band});
   const size_t keys = r.key.size();
   out["key"] = ToNumpy(std::move(r.key), {keys});
+  out["whole_parts"] = r.wholeParts;
+  const size_t opens = r.openWhole.size();
+  out["open_whole"] = ToNumpy(std::vector<uint8_t>(r.openWhole.begin(), r.openWhole.end()), {opens});
   return out;
 }
 
@@ -384,7 +387,8 @@ inline void BindTiles(nb::module_& m) {
       .def_prop_ro("radius", &RadiusSearch::Radius)
       .def_prop_ro("done", &RadiusSearch::Done)
       .def_prop_ro("runs", &RadiusSearch::Runs)
-      .def("report", [](RadiusSearch& s, size_t count) { return s.Report(count); }, "count"_a)
+      .def("report", &RadiusSearch::Report, "count"_a, "fewest"_a = false,
+           "records a run's count (fewest: no radius gives fewer samples, one a connected part) and steps")
       .def_static("first_radius", &RadiusSearch::FirstRadius, "core_diagonal"_a, "target"_a)
       .def_static("fewest", &RadiusSearch::Fewest, "target"_a, "tolerance"_a,
                   "the fewest samples a tolerance above 0 accepts for a target")

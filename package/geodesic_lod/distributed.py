@@ -335,6 +335,7 @@ class _Run:
     settled: np.ndarray
     count: int
     seconds: dict  #: tiles (their decisions) and seams (settling them)
+    parts_whole: bool  #: one sample a connected part, each disk holding its part: no radius gives fewer
 
 
 class Ticks:
@@ -369,10 +370,12 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     held = client.who_has(decisions)
     where.update({k: list(held[f.key])[:1] for k, f in enumerate(decisions) if held.get(f.key)})
     parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
-    settled = tiles.settle([p for p in parts if p is not None], job.seed)
+    known = [p for p in parts if p is not None]
+    settled = tiles.settle(known, job.seed)
     count = sum(worker_check.gather(client, client.map(sample_count, decisions, pure=False))) + len(settled)
     return _Run(job.radius, decisions, parts, settled, int(count),
-                {"tiles": decided - start, "seams": time.perf_counter() - decided})
+                {"tiles": decided - start, "seams": time.perf_counter() - decided},
+                tiles.one_sample_a_part(known, settled))
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
@@ -394,7 +397,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
         halo = tiles.first_halo(max(r, reach), spacing, job.order)
         run = poisson_run(client, dataclasses.replace(job, radius=r, halo=halo), boxes, ticks, where)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
-        if steps.report(run.count) == _core.SearchRole.Accepted:
+        if steps.report(run.count, run.parts_whole) == _core.SearchRole.Accepted:
             best = run
         elif best is None or abs(run.count - target) < abs(best.count - target):
             best = run

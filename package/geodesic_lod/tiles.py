@@ -10,6 +10,7 @@ and compare with ``poisson_lod``.
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import os
@@ -153,6 +154,10 @@ class Decision:
         Points read for it (core and halo).
     open_keys : (m,) ndarray of float32 or None
         In a key order, the open points' keys (their visiting order's); None in random order.
+    whole_parts : bool
+        Whether each sample's disk held the sample's whole connected part (no edge left the radius).
+    open_whole : (m,) ndarray of bool or None
+        The same for each open point's disk (None: none known).
     """
     samples: np.ndarray
     band_ids: np.ndarray
@@ -163,15 +168,16 @@ class Decision:
     halo: float
     read: int
     open_keys: Optional[np.ndarray] = None
+    whole_parts: bool = False
+    open_whole: Optional[np.ndarray] = None
 
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.samples, self.band_ids, self.band_status, self.open_ids, self.cover_offset,
-                                      self.coverers) + (() if self.open_keys is None else (self.open_keys,)))
+                                      self.coverers, self.open_keys, self.open_whole) if a is not None)
 
     def seams(self) -> "Decision":
         """The part settle needs (no samples): small, for sending to one place."""
-        return Decision(np.empty(0, np.uint64), self.band_ids, self.band_status, self.open_ids, self.cover_offset,
-                        self.coverers, self.halo, self.read, self.open_keys)
+        return dataclasses.replace(self, samples=np.empty(0, np.uint64))
 
 
 @dataclass(frozen=True)
@@ -354,7 +360,8 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
                     coverers=r["coverers"][picks], halo=t.halo, read=len(ids),
-                    open_keys=r["key"][opened] if order.keyed else None), None
+                    open_keys=r["key"][opened] if order.keyed else None, whole_parts=bool(r["whole_parts"]),
+                    open_whole=r["open_whole"][opened].astype(bool)), None
 
 
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
@@ -454,6 +461,20 @@ def settle(decisions: Sequence[Decision], seed: int) -> np.ndarray:
     _core.settle(np.searchsorted(known, ordered).astype(np.int64),
                  np.concatenate([[0], np.cumsum(counts[rank])]).astype(np.int64), cover.astype(np.int64), status)
     return ordered[status[np.searchsorted(known, ordered)] == IN]
+
+
+def one_sample_a_part(decisions: Sequence[Decision], settled: np.ndarray) -> bool:
+    """Whether every sample of a run (the tiles' own and the `settled` open points) has a disk holding its whole
+    connected part: then each part holds one sample, and no larger radius gives fewer."""
+    if not all(d.whole_parts for d in decisions):
+        return False
+    opens = [d for d in decisions if len(d.open_ids)]
+    if not opens:
+        return True
+    if any(d.open_whole is None for d in opens):
+        return False
+    whole = np.concatenate([d.open_whole for d in opens])
+    return bool(whole[np.isin(np.concatenate([d.open_ids for d in opens]), settled)].all())
 
 
 def _visiting_keys(open_ids: np.ndarray, seed: int, opens: Sequence[Decision]) -> np.ndarray:

@@ -5,8 +5,9 @@
 // settled in the visiting order, must give exactly the whole cloud's Poisson
 // samples at the same radius and seed, in every visiting order, and so must a
 // coarser nested level among those samples, and so must the first radius of a
-// count search from the tiles' pilot disks; never a crash or a sanitizer
-// report. Bad input ends in std::invalid_argument.
+// count search from the tiles' pilot disks; where the tiles tell one sample a
+// connected part, there is one; never a crash or a sanitizer report. Bad input
+// ends in std::invalid_argument.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <cmath>
 #include <cstdio>
@@ -67,6 +68,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (r.tiled != r.whole) {
       std::fprintf(stderr, "%s: tiles gave %zu samples, one process %zu (order %d, radius %g, split %g, %zu open)\n",
                    level, r.tiled.size(), r.whole.size(), int(order), at, split, r.open);
+      __builtin_trap();
+    }
+    if (r.partsWhole && r.whole.size() != r.parts) {
+      std::fprintf(stderr, "%s: the tiles tell one sample a part, but %zu samples in %zu parts (radius %g)\n", level,
+                   r.whole.size(), r.parts, at);
       __builtin_trap();
     }
   };

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import geodesic_lod as gl
+from geodesic_lod import _core
 from geodesic_lod import distributed as dist
 from conftest import bumpy_sphere
 from point_file_inputs import las_cloud
@@ -46,6 +47,23 @@ def test_the_cluster_says_so_where_no_run_lands_within_the_tolerance(tmp_path):
     assert r.returncode == 0, r.stderr
     assert ": 6 of 3,000 points in " in r.stderr, r.stderr
     assert "3 asked, no run within 1% of it: the nearest kept" in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("tile_points", [None, 1000])  # one tile; tiles that cut the balls, their seams settled
+def test_the_clusters_count_search_ends_at_one_sample_a_part(tmp_path, tile_points):
+    # Below one sample a connected part no radius gives fewer samples: the search ends at the first run in which
+    # every sample's disk held its whole part (one machine's ends at its parts' count), not after all its runs.
+    from dask.distributed import Client
+    balls = np.concatenate([bumpy_sphere(500) + [100.0 * k, 0, 0] for k in range(6)])
+    np.save(tmp_path / "in.npy", balls)
+    most = _core.PoissonParam().max_iterations
+    with dist.local_cluster(1) as cluster, Client(cluster) as client:
+        index = dist.lod_files([str(tmp_path / "in.npy")], tmp_path / "lod", count=3, tolerance=1, client=client,
+                               threads=1, **({"tile_points": tile_points} if tile_points else {}))
+    assert index["samples"] == 6
+    assert index["runs"] < most, index["runs"]
+    if tile_points:
+        assert len(index["tiles"]) > 1
 
 
 @pytest.fixture(scope="module")

@@ -1,9 +1,11 @@
 // vcg_ext/bounded_dijkstra.h: a search stopped at a radius reaches exactly the
 // points within it (once each, in increasing distance, at their full-search
-// distance), also at a radius equal to a point's distance; a graph distance is
+// distance), also at a radius equal to a point's distance, and says it holds
+// its whole connected part only where it does; a graph distance is
 // never below the straight line, and on a plane's grid little above it; a
 // field's holes are completed as one front would, on any number of threads.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -45,7 +47,15 @@ TEST(BoundedDijkstra, ReachesExactlyThePointsWithinTheRadius) {
           last = di;
         });
         for (size_t i = 0; i < full.size(); ++i) EXPECT_EQ(bool(seen[i]), full[i] <= r) << "point " << i;
+        if (search.Whole())
+          for (size_t i = 0; i < full.size(); ++i) EXPECT_TRUE(seen[i]) << "a whole disk leaves out point " << i;
       }
+      // A radius with room for every edge beyond the farthest point: the disk is the whole field.
+      const float farthest = *std::max_element(full.begin(), full.end());
+      search.Visit(src, 3 * farthest, [](int, float) {});
+      EXPECT_TRUE(search.Whole());
+      search.Visit(src, 0.5f * farthest, [](int, float) {});
+      EXPECT_FALSE(search.Whole());
     }
   }
 }

@@ -75,6 +75,34 @@ TEST(PoissonTile, TwoTilesSettledGiveTheWholeCloudsSamplesWithTheRimsFirstAtACoa
   ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder::Border, 0.3, 6);
 }
 
+// Six patches far apart, two across the seam: the tiles tell one sample a patch
+// only where every sample's disk holds its whole patch (no larger radius then
+// gives fewer samples), and do tell it once the radius spans a patch.
+TEST(PoissonTile, TilesTellOneSampleAPartOnlyWhereEachDiskHoldsItsWholePart) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.002, 0.002);
+  std::vector<vcg::Point3d> cloud;
+  const int patches = 6;
+  for (int k = 0; k < patches; ++k)
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        cloud.emplace_back(0.45 * k + 0.02 * i + jitter(rng), 0.3 * (k % 2) + 0.02 * j + jitter(rng),
+                           0.01 * std::sin(3.0 * i + k) + jitter(rng));
+  const double split = 0.45 * 2 + 0.07;  // through the third patch
+  bool told = false;
+  for (double radius : {0.02, 0.05, 0.1, 0.2, 0.4}) {
+    const test::TiledAndWhole r = test::TilesAndWhole(cloud, vcg_ext::VisitOrder::Random, radius, 3, split);
+    ASSERT_EQ(r.problem, "");
+    EXPECT_EQ(r.tiled, r.whole) << "radius " << radius;
+    ASSERT_EQ(r.parts, size_t(patches));
+    if (r.partsWhole) EXPECT_EQ(r.whole.size(), r.parts) << "radius " << radius;
+    told = told || r.partsWhole;
+    if (radius >= 0.4) EXPECT_TRUE(r.partsWhole) << "a disk of 0.4 holds a patch 0.2 across";
+    if (radius <= 0.05) EXPECT_FALSE(r.partsWhole) << "radius " << radius;
+  }
+  EXPECT_TRUE(told);
+}
+
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
   for (double tolerance : {0.0, 0.02})
     for (size_t target : {size_t(80), size_t(300)}) {

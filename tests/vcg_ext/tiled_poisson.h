@@ -80,6 +80,10 @@ struct TiledAndWhole {
   std::set<int> tiled, whole;  ///< the samples, as cloud indices
   size_t open = 0;             ///< the points the tiles left open at the seam
   std::string problem;         ///< a halo that did not widen (empty if none)
+  /// Every tiled sample's disk held its whole connected part (the tiles' wholeParts and the
+  /// settled open points' openWhole), as a cluster's count search reads it.
+  bool partsWhole = true;
+  size_t parts = 0;  ///< the whole cloud's connected parts holding a point that may be a sample
 };
 
 /// The samples of `cloud` at `radius` in `order` (seed `seed`), in two tiles split at x = `split`,
@@ -108,11 +112,16 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   p.keyClean = wholeDomain.Clean();  // the whole cloud's, as a cluster measures it
   const auto w = WholeCloud::Compute(wholeDomain, whole);
   out.whole = std::set<int>(w.vertIndex.begin(), w.vertIndex.end());
+  std::vector<int> may;
+  for (size_t i = 0; i < wholeDomain.size(); ++i)
+    if (!candidate || (*candidate)[size_t(wholeDomain.points.vertIndex[i])]) may.push_back(int(i));
+  out.parts = wholeDomain.PartsHolding(may);
 
   // Each tile decides its core, widening the halo until it is certified.
   std::vector<int8_t> status(cloud.size(), Tile::Out);
   std::vector<std::vector<uint64_t>> coverers(cloud.size());
   std::vector<float> key(cloud.size(), 0);
+  std::vector<char> openWhole(cloud.size(), 0);
   for (bool left : {true, false}) {
     double halo = p.radius;
     TileRun t = Decide(cloud, left, split, halo, p, candidate);
@@ -125,10 +134,12 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
       halo = t.result.neededHalo * 1.01;
       t = Decide(cloud, left, split, halo, p, candidate);
     }
+    out.partsWhole = out.partsWhole && t.result.wholeParts;
     for (size_t row = 0; row < t.id.size(); ++row) {
       const bool core = (cloud[t.id[row]][0] < split) == left;
       if (!core) continue;
       status[t.id[row]] = t.result.status[row];
+      openWhole[t.id[row]] = t.result.openWhole[row];
       out.open += t.result.status[row] == Tile::Open;
       if (!t.result.key.empty()) key[t.id[row]] = t.result.key[row];
       for (int64_t c = t.result.coverOffset[row]; c < t.result.coverOffset[row + 1]; ++c)
@@ -153,6 +164,8 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   Tile::Settle(sorted, offset, cover, status);
   for (size_t i = 0; i < status.size(); ++i)
     if (status[i] == Tile::In) out.tiled.insert(int(i));
+  for (int64_t i : sorted)
+    if (status[size_t(i)] == Tile::In) out.partsWhole = out.partsWhole && openWhole[size_t(i)];
   return out;
 }
 
