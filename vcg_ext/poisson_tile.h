@@ -58,6 +58,12 @@ class PoissonTile {
     VisitOrder order = VisitOrder::Random;
     double keyScale = 0, keyNoise = 0, keyOffSurface = 0, keyCellSide = 0;
     bool keyClean = false, keySmoothClean = false;
+    /// Per row, keys of this order a run on the same rows computed before
+    /// (Result::key, Result::keyed): used where they hold every row this run
+    /// visits, as the count search's runs and the levels of one scale visit
+    /// much the same points (nullptr: none).
+    const std::vector<float>* givenKey = nullptr;
+    const std::vector<char>* givenKeyed = nullptr;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -70,6 +76,7 @@ class PoissonTile {
     std::vector<uint64_t> coverers;      ///< ids of the earlier points whose disks may cover an open row
     std::vector<int> band;               ///< core rows within r of the core's boundary (others' coverers)
     std::vector<float> key;              ///< with a key order: per row it may visit, its key (else 0; Settle's order)
+    std::vector<char> keyed;             ///< per row: whether `key` holds its key (empty where given keys served)
     /// Whether each core sample's disk held the sample's whole connected part
     /// (PoissonDisk::InOrderWhole), and per row, an open row's. When every
     /// sample of every tile has one, each part holds one sample and no larger
@@ -108,7 +115,12 @@ class PoissonTile {
       flags[i] = char((core[row] ? Core : 0) | (may && toCore[i] <= radius ? Visit : 0));
     }
     std::vector<int> order;
-    if (p.order != VisitOrder::Random) {
+    if (p.order != VisitOrder::Random && Given(d, flags, Visit, p)) {
+      std::vector<float> key(n);
+      for (size_t i = 0; i < n; ++i) key[i] = (*p.givenKey)[size_t(d.points.vertIndex[i])];
+      order = KeyFirstOrder(key, pid, p.seed);
+      r.key = *p.givenKey;
+    } else if (p.order != VisitOrder::Random) {
       const Progress ordering = OrderShare(progress, p.order);
       std::vector<char> visited(n);  // the points whose keys order anything
       for (size_t i = 0; i < n; ++i) visited[i] = (flags[i] & Visit) != 0;
@@ -125,7 +137,11 @@ class PoissonTile {
                     &visited);
       order = KeyFirstOrder(key, pid, p.seed);
       r.key.assign(rows, 0);
-      for (size_t i = 0; i < n; ++i) r.key[size_t(d.points.vertIndex[i])] = key[i];
+      r.keyed.assign(rows, 0);
+      for (size_t i = 0; i < n; ++i) {
+        r.key[size_t(d.points.vertIndex[i])] = key[i];
+        r.keyed[size_t(d.points.vertIndex[i])] = visited[i];
+      }
     } else {
       order = PriorityOrder(pid, p.seed);
     }
@@ -253,6 +269,14 @@ class PoissonTile {
       exact = exact && reach < ToEdge(p, d.points.pos[i]);
     }
     return {exact, need};
+  }
+
+  // Whether given keys hold every point that `visit` marks in `flags`.
+  static bool Given(const Domain& d, const std::vector<char>& flags, char visit, const Param& p) {
+    if (!p.givenKey || !p.givenKeyed) return false;
+    for (size_t i = 0; i < d.size(); ++i)
+      if ((flags[i] & visit) && !(*p.givenKeyed)[size_t(d.points.vertIndex[i])]) return false;
+    return true;
   }
 
   // Distance from x to the edge of the region read (open where the cloud ends).

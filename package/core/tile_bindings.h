@@ -28,6 +28,7 @@ using namespace nb::literals;
 
 typedef nb::ndarray<const uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Ids;
 typedef nb::ndarray<const bool, nb::ndim<1>, nb::c_contig, nb::device::cpu> Flags;
+typedef nb::ndarray<const float, nb::ndim<1>, nb::c_contig, nb::device::cpu> Keys;
 typedef nb::ndarray<const int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Int64s;
 typedef nb::ndarray<int8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu> Statuses;
 
@@ -173,9 +174,12 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
                                std::array<double, 6> coreBox, double halo, std::array<double, 6> cloudBox,
                                std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
                                vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide,
-                               double keyOffSurface, bool keyClean, bool keySmoothClean) {
+                               double keyOffSurface, bool keyClean, bool keySmoothClean, std::optional<Keys> givenKey,
+                               std::optional<Flags> givenKeyed) {
   const size_t rows = ids.shape(0);
   CheckTileRows(d, ids, core, candidate);
+  if (bool(givenKey) != bool(givenKeyed) || (givenKey && (givenKey->shape(0) != rows || givenKeyed->shape(0) != rows)))
+    throw std::invalid_argument("given_key and given_keyed come together, one entry a row");
   if (order == vcg_ext::VisitOrder::Automatic)
     throw std::invalid_argument("a tile takes a chosen visiting order: the cluster chooses for the whole cloud");
   Threads team(threads);
@@ -190,10 +194,17 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
     tp.keySmoothClean = keySmoothClean;
     tp.keyCellSide = keyCellSide;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
-    std::vector<char> isCore(core.data(), core.data() + rows), may;
+    std::vector<char> isCore(core.data(), core.data() + rows), may, keyed;
     if (candidate) {
       may.assign(candidate->data(), candidate->data() + rows);
       tp.candidate = &may;
+    }
+    std::vector<float> key;
+    if (givenKey) {
+      key.assign(givenKey->data(), givenKey->data() + rows);
+      keyed.assign(givenKeyed->data(), givenKeyed->data() + rows);
+      tp.givenKey = &key;
+      tp.givenKeyed = &keyed;
     }
     return Tile::Compute(d, id, isCore, tp, pr);
   });
@@ -205,8 +216,9 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
   out["cover_offset"] = ToNumpy(std::move(r.coverOffset), {r.certified ? rows + 1 : 0});
   out["coverers"] = ToNumpy(std::move(r.coverers), {covers});
   out["band"] = ToNumpy(std::vector<int64_t>(r.band.begin(), r.band.end()), {band});
-  const size_t keys = r.key.size();
+  const size_t keys = r.key.size(), keyedRows = r.keyed.size();
   out["key"] = ToNumpy(std::move(r.key), {keys});
+  out["keyed"] = ToNumpy(std::vector<uint8_t>(r.keyed.begin(), r.keyed.end()), {keyedRows});
   out["whole_parts"] = r.wholeParts;
   const size_t opens = r.openWhole.size();
   out["open_whole"] = ToNumpy(std::vector<uint8_t>(r.openWhole.begin(), r.openWhole.end()), {opens});
@@ -341,7 +353,8 @@ inline void BindTiles(nb::module_& m) {
         "halo"_a, "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "progress"_a.none(),
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
         "key_cell_side"_a = 0.0, "key_off_surface"_a = Poisson::Param().prominenceOffSurface,
-        "key_clean"_a = false, "key_smooth_clean"_a = Poisson::Param().prominenceSmoothClean);
+        "key_clean"_a = false, "key_smooth_clean"_a = Poisson::Param().prominenceSmoothClean,
+        "given_key"_a = nb::none(), "given_keyed"_a = nb::none());
   m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
         "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
         "the count search's pilot disks of a tile's core, at radius");

@@ -245,14 +245,27 @@ class TileRead:
         The tile's own points.
     domain : _core.Domain
         Their point graph's domain.
+    whole : bool
+        The halo reached past the cloud's box on every side: the read holds every point, and serves a run
+        asking for any halo.
+    keys : tuple or None
+        The keys of the last key order a run computed on it: (its ``Order.core_args()``, the key of each
+        point, whether each point has one); a later run in that order visiting no other point uses them.
     """
     halo: float
     ids: np.ndarray
     core: np.ndarray
     domain: object
+    whole: bool = False
+    keys: Optional[tuple] = None
+
+    def halo_read(self) -> float:
+        """The width around the box within which every point was read: infinite for a whole read."""
+        return math.inf if self.whole else self.halo
 
     def nbytes(self) -> int:
-        return self.ids.nbytes + self.core.nbytes + self.domain.nbytes
+        return (self.ids.nbytes + self.core.nbytes + self.domain.nbytes
+                + (0 if self.keys is None else self.keys[1].nbytes + self.keys[2].nbytes))
 
 
 SPILL_FREE_SHARE = 0.1  # a read is written to disk only while the disk keeps this share of its size free
@@ -278,7 +291,7 @@ class TileReads:
         loaded = t is None and folder is not None
         if loaded:
             t = _load_read(_read_path(folder, job, tile))
-        t = t if t is not None and t.halo >= halo else None
+        t = t if t is not None and (t.halo >= halo or t.whole) else None
         with self.lock:
             self.hits += t is not None and not loaded
             self.loads += t is not None and loaded
@@ -310,7 +323,8 @@ def _write_read(t: TileRead, path: pathlib.Path) -> bool:
     """The read as one file of arrays one after another (np.save's format), under a temporary name renamed
     when complete; not written where the disk would keep less than SPILL_FREE_SHARE of its size free, nor
     where writing fails (the next run on the tile reads again). Whether it was written."""
-    parts = {"halo": np.float64(t.halo), "ids": t.ids, "core": t.core, **_core.tile_domain_arrays(t.domain)}
+    parts = {"halo": np.float64(t.halo), "whole": np.bool_(t.whole), "ids": t.ids, "core": t.core,
+             **_core.tile_domain_arrays(t.domain)}
     size = sum(np.asarray(v).nbytes for v in parts.values())
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}")
     try:
@@ -336,8 +350,9 @@ def _load_read(path: pathlib.Path) -> Optional[TileRead]:
     except FileNotFoundError:
         return None
     halo, ids, core = float(parts.pop("halo")), parts.pop("ids"), parts.pop("core")
+    whole = bool(parts.pop("whole"))
     domain = _core.tile_domain_from_arrays(**{k: v.item() if v.ndim == 0 else v for k, v in parts.items()})
-    return TileRead(halo, ids, core, domain)
+    return TileRead(halo, ids, core, domain, whole)
 
 
 def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
@@ -347,8 +362,13 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
     Returns (Decision, None) or, when the halo is too narrow for the check, (None, a halo that will do)."""
     if candidate is not None:
         candidate = np.ascontiguousarray(candidate, dtype=bool)
-    r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), float(t.halo),
-                           cloud.as_tuple(), candidate, threads, progress, **order.core_args())
+    args = order.core_args()
+    known = t.keys if order.keyed and t.keys is not None and t.keys[0] == args else None
+    r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), t.halo_read(),
+                           cloud.as_tuple(), candidate, threads, progress, **args,
+                           **({"given_key": known[1], "given_keyed": known[2]} if known else {}))
+    if order.keyed and len(r["keyed"]):  # computed here: kept for the next run
+        t.keys = (args, r["key"], r["keyed"].astype(bool))
     if not r["certified"]:
         return None, max(r["needed_halo"] * 1.01, 1.5 * t.halo)
     status, offset = r["status"], r["cover_offset"]
@@ -406,13 +426,14 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
                 if len(e.args) != 2 or e.args[0] != "Points":
                     raise
                 problem = e.args[1]
+        whole = bool(np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi))
         if problem:  # a stray point, or a pile of one point's copies, far from the rest: read further
-            if np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi):
+            if whole:
                 raise InputError(f"the cloud {problem}")
             halo *= 4
             continue
         t = TileRead(halo, np.ascontiguousarray(ids, dtype=np.uint64), np.ascontiguousarray(core, dtype=bool),
-                     tile_domain)
+                     tile_domain, whole)
         if reads is not None:
             reads.put(job, tile, t, folder)
         return t
@@ -432,7 +453,7 @@ def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo
             return None
         may = None if candidates is None else np.ascontiguousarray(candidates(t.ids, t.halo), dtype=bool)
         r = _core.pilot_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.outer(cloud).as_tuple(),
-                             float(t.halo), cloud.as_tuple(), may, threads, int(below))
+                             t.halo_read(), cloud.as_tuple(), may, threads, int(below))
         if r["certified"]:
             return r["hash"], r["offset"], r["dist"], r["candidates"]
         halo = max(r["needed_halo"] * 1.01, 1.5 * t.halo)

@@ -10,7 +10,7 @@ import pytest
 import geodesic_lod as gl
 import geodesic_lod.pymeshlab  # noqa: F401  (binds the filters)
 from conftest import bumpy_sphere
-from geodesic_lod import _core, partition, tiles
+from geodesic_lod import _core, arrays, partition, tiles
 from tiled_lod import poisson_lod_tiled
 
 
@@ -131,6 +131,59 @@ def test_reads_are_not_written_where_the_disk_would_be_left_too_full(tmp_path, m
     again = poisson_lod_tiled(p, radius=0.08, reads=reads, folder=tmp_path)
     assert list((tmp_path / "reads").iterdir()) == [] and reads.loads == 0
     assert np.array_equal(once, again)
+
+
+def tile_domain_param(p):
+    """The domain parameters a cluster gives every tile of the points p."""
+    domain = arrays.DomainOptions(metric="curvature-density", geodesics="point-graph").param(len(p))
+    domain.merge_distance = _core.merge_distance(np.ascontiguousarray(p))
+    return domain
+
+
+@pytest.mark.parametrize("kind", ["rims", "prominence"])
+def test_a_key_orders_keys_kept_on_a_read_serve_runs_visiting_no_other_point(kind):
+    # A tile's keys, computed by one run, serve a later run in that order that visits no other point (a
+    # smaller radius); a larger one visits more and computes them again: every decision a fresh read's.
+    p = bumpy_sphere(8000)
+    cloud = tiles.Box(p.min(axis=0), p.max(axis=0))
+    box = tiles.grid_tiles(cloud, (2, 1, 1))[0]
+    order = tiles.Order(kind, 0.08, 0.0, _core.cell_side(p, len(p)), False)
+    ids = np.arange(len(p), dtype=np.uint64)
+    domain = tile_domain_param(p)
+
+    def read(halo):
+        m = np.all((p >= box.lo - halo) & (p <= box.hi + halo), axis=1)
+        return p[m], None, ids[m]
+
+    def fresh():
+        return tiles.read_tile(read, box=box, cloud=cloud, halo=0.4, domain=domain, threads=None, reads=None,
+                               job=None, tile=None, folder=None)
+
+    kept = fresh()
+    for radius, reused in ((0.06, False), (0.04, True), (0.05, True), (0.08, False)):
+        before = kept.keys
+        d, _ = tiles.decide(kept, radius=radius, box=box.outer(cloud), cloud=cloud, order=order)
+        assert (kept.keys is before) == reused, radius
+        e, _ = tiles.decide(fresh(), radius=radius, box=box.outer(cloud), cloud=cloud, order=order)
+        assert np.array_equal(d.samples, e.samples) and np.array_equal(d.open_ids, e.open_ids)
+        assert np.array_equal(d.open_keys, e.open_keys) and np.array_equal(d.coverers, e.coverers)
+
+
+def test_a_read_holding_the_whole_cloud_serves_a_run_asking_for_any_halo():
+    p = bumpy_sphere(3000)
+    cloud = tiles.Box(p.min(axis=0), p.max(axis=0))
+    reads, calls = tiles.TileReads(1 << 30), []
+    domain = tile_domain_param(p)
+
+    def read(halo):
+        calls.append(halo)
+        return p, None, np.arange(len(p), dtype=np.uint64)
+
+    for halo in (0.1, 0.5, 4.0):
+        t = tiles.read_tile(read, box=cloud, cloud=cloud, halo=halo, domain=domain, threads=None, reads=reads,
+                            job="job", tile=0, folder=None)
+        assert t.whole and t.halo_read() == np.inf
+    assert calls == [0.1]
 
 
 def test_tile_reads_keep_what_fits_the_budget_for_their_job_only_and_a_wider_halo_reads_again():
