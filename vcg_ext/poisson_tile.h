@@ -64,6 +64,11 @@ class PoissonTile {
     /// much the same points (nullptr: none).
     const std::vector<float>* givenKey = nullptr;
     const std::vector<char>* givenKeyed = nullptr;
+    /// The read holds every point of the cloud: every point is decided here
+    /// as the whole cloud decides it, and none is left open. Where disks
+    /// span tiles, open points would take a disk each, as many as the
+    /// tile's points; decided here, only the samples' disks are searched.
+    bool readsAll = false;
   };
   struct Result {
     /// The halo is wide enough: every core point's disks and the neighbourhoods
@@ -112,7 +117,7 @@ class PoissonTile {
       const size_t row = size_t(d.points.vertIndex[i]);
       pid[i] = id[row];
       const bool may = !p.candidate || (*p.candidate)[row] != 0;
-      flags[i] = char((core[row] ? Core : 0) | (may && toCore[i] <= radius ? Visit : 0));
+      flags[i] = char((core[row] ? Core : 0) | (may && (p.readsAll || toCore[i] <= radius) ? Visit : 0));
     }
     std::vector<int> order;
     if (p.order != VisitOrder::Random && Given(d, flags, Visit, p)) {
@@ -161,8 +166,9 @@ class PoissonTile {
                            [&](int i, const std::vector<int>& disk, bool whole) {
                              if (covered[i] == 2) return;  // an earlier disk of its batch covered it
                              // A core point is a sample if nothing may cover it; a halo point's
-                             // fate is its own tile's, so here it may only be one.
-                             const bool sure = (flags[size_t(i)] & Core) && covered[i] == 0;
+                             // fate is its own tile's, so here it may only be one (unless the
+                             // read holds every point, and every point is decided here).
+                             const bool sure = (p.readsAll || (flags[size_t(i)] & Core)) && covered[i] == 0;
                              state[i] = sure ? In : Open;
                              if (sure) r.wholeParts = r.wholeParts && whole;
                              if (flags[size_t(i)] & Core) r.openWhole[size_t(d.points.vertIndex[size_t(i)])] = whole;

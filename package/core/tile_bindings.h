@@ -175,7 +175,7 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
                                std::optional<Flags> candidate, std::optional<int> threads, nb::object progress,
                                vcg_ext::VisitOrder order, double keyScale, double keyNoise, double keyCellSide,
                                double keyOffSurface, bool keyClean, bool keySmoothClean, std::optional<Keys> givenKey,
-                               std::optional<Flags> givenKeyed) {
+                               std::optional<Flags> givenKeyed, bool readsAll) {
   const size_t rows = ids.shape(0);
   CheckTileRows(d, ids, core, candidate);
   if (bool(givenKey) != bool(givenKeyed) || (givenKey && (givenKey->shape(0) != rows || givenKeyed->shape(0) != rows)))
@@ -193,6 +193,7 @@ inline nb::dict PoissonTileRun(const Domain& d, const Ids& ids, const Flags& cor
     tp.keyClean = keyClean;
     tp.keySmoothClean = keySmoothClean;
     tp.keyCellSide = keyCellSide;
+    tp.readsAll = readsAll;
     std::vector<uint64_t> id(ids.data(), ids.data() + rows);
     std::vector<char> isCore(core.data(), core.data() + rows), may, keyed;
     if (candidate) {
@@ -354,7 +355,7 @@ inline void BindTiles(nb::module_& m) {
         "visit_order"_a = vcg_ext::VisitOrder::Random, "key_scale"_a = 0.0, "key_noise"_a = 0.0,
         "key_cell_side"_a = 0.0, "key_off_surface"_a = Poisson::Param().prominenceOffSurface,
         "key_clean"_a = false, "key_smooth_clean"_a = Poisson::Param().prominenceSmoothClean,
-        "given_key"_a = nb::none(), "given_keyed"_a = nb::none());
+        "given_key"_a = nb::none(), "given_keyed"_a = nb::none(), "reads_all"_a = false);
   m.def("pilot_tile", &PilotTileRun, "domain"_a, "ids"_a, "core"_a, "radius"_a, "seed"_a, "core_box"_a, "halo"_a,
         "cloud_box"_a, "candidate"_a.none(), "threads"_a.none(), "below"_a,
         "the count search's pilot disks of a tile's core, at radius");

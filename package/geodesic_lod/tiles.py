@@ -365,7 +365,7 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
     args = order.core_args()
     known = t.keys if order.keyed and t.keys is not None and t.keys[0] == args else None
     r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), t.halo_read(),
-                           cloud.as_tuple(), candidate, threads, progress, **args,
+                           cloud.as_tuple(), candidate, threads, progress, **args, reads_all=t.whole,
                            **({"given_key": known[1], "given_keyed": known[2]} if known else {}))
     if order.keyed and len(r["keyed"]):  # computed here: kept for the next run
         t.keys = (args, r["key"], r["keyed"].astype(bool))

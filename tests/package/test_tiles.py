@@ -39,6 +39,17 @@ def test_tiles_give_the_whole_clouds_samples(shape, seed, radius, metric):
     assert len(opened) > 1 and sum(opened) > 0  # the seams were really settled across tiles
 
 
+def test_tiles_whose_reads_hold_the_whole_cloud_decide_every_point_and_leave_none_open():
+    # At a radius whose disks span the tiles, points left open would each take a disk; a tile that read
+    # every point decides them as the whole cloud does.
+    p = uneven(6000)
+    opened = []
+    tiled = poisson_lod_tiled(p, radius=0.3, shape=(2, 2, 1), halo=10.0,
+                              on_tile=lambda t, d: opened.append(len(d.open_ids)))
+    assert len(opened) == 4 and sum(opened) == 0
+    assert np.array_equal(tiled, gl.poisson_lod(p, radius=0.3, visit_order="random").indices)
+
+
 def test_a_halo_too_narrow_is_widened_and_changes_nothing():
     p, normals = bumpy_sphere(8000), None
     widened = []
