@@ -137,7 +137,8 @@ def _tile_arguments(job: Job, box: tiles.Box) -> dict:
                 candidates=_tile_candidates(job, outer), threads=job.threads,
                 reads=_tile_reads() if job.runs_again else None,  # else none is read again
                 job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
-                folder=job.cells.folder if job.runs_again else None)
+                folder=job.cells.folder if job.runs_again else None,
+                share=lambda halo: job.cells.share_within(outer.lo - halo, outer.hi + halo))
 
 
 def _tile_candidates(job: Job, outer: tiles.Box):

@@ -268,6 +268,11 @@ class TileRead:
                 + (0 if self.keys is None else self.keys[1].nbytes + self.keys[2].nbytes))
 
 
+# A read that would hold this share of the cloud's points reads them all: at most as many again, and the
+# tile then decides every point as the whole cloud does, none left open (each open point takes a disk, and
+# where a halo is that wide beside its tile most of its points would be open).
+WHOLE_READ_SHARE = 0.5
+
 SPILL_FREE_SHARE = 0.1  # a read is written to disk only while the disk keeps this share of its size free
 
 
@@ -387,15 +392,17 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
 def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                     seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
                     threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
-                    job=None, tile=None, folder=None) -> Optional[Decision]:
+                    job=None, tile=None, folder=None, share: Optional[Callable[[float], float]] = None
+                    ) -> Optional[Decision]:
     """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
     the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
     may become samples. With `reads`, the read of at least that halo kept for (`job`, `tile`) is used
-    instead of reading, and a new one kept (in memory, or in the job's work `folder`). None when the
+    instead of reading, and a new one kept (in memory, or in the job's work `folder`); share(halo), when
+    given, at least the share of the cloud's points a read of that halo holds (read_tile). None when the
     tile's core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
-                      tile=tile, folder=folder)
+                      tile=tile, folder=folder, share=share)
         if t is None:
             return None
         may = None if candidates is None else candidates(t.ids, t.halo)
@@ -406,14 +413,19 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
 
 
 def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, threads: Optional[int],
-              reads: Optional[TileReads], job, tile, folder) -> Optional[TileRead]:
+              reads: Optional[TileReads], job, tile, folder,
+              share: Optional[Callable[[float], float]] = None) -> Optional[TileRead]:
     """What a tile reads with a halo of at least `halo` (decide_widening's arguments): kept in `reads`, or read
-    and kept there. None when the tile's core holds no point."""
+    and kept there; the whole cloud where share(halo) reaches WHOLE_READ_SHARE. None when the tile's core
+    holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
     while True:
         t = None if reads is None else reads.get(job, tile, halo, folder)
         if t is not None:
             return t
+        cover = float(max(np.max(box.lo - cloud.lo), np.max(cloud.hi - box.hi), 0.0)) * (1 + 1e-9)
+        if share is not None and halo < cover and share(halo) >= WHOLE_READ_SHARE:
+            halo = cover
         points, normals, ids = read(halo)
         core = box.core_mask(points, cloud)
         if not core.any():
@@ -442,13 +454,13 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
 def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                    below: int, seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
                    threads: Optional[int] = None, reads: Optional[TileReads] = None, job=None, tile=None,
-                   folder=None) -> Optional[tuple]:
+                   folder=None, share: Optional[Callable[[float], float]] = None) -> Optional[tuple]:
     """The count search's pilot disks of one tile's core at `radius` (``_core.pilot_tile``: hash, offset,
     dist, and the core's candidates), reading a wider halo until the check passes, as decide_widening. None
     when the core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
-                      tile=tile, folder=folder)
+                      tile=tile, folder=folder, share=share)
         if t is None:
             return None
         may = None if candidates is None else np.ascontiguousarray(candidates(t.ids, t.halo), dtype=bool)

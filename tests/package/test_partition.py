@@ -133,6 +133,12 @@ def test_regions_and_records_come_out_as_the_files_give_them(files, tmp_path, pi
         assert cells.read_records(files, ids).rows.array.tobytes() == every_record(files)[ids].tobytes()
         checked += 1
     assert checked >= 4
+    for _ in range(8):  # a region's share is at least its points' share of the cloud
+        a = rng.uniform(lo - 1, hi)
+        b = a + rng.uniform(0, 1, 3) * (hi + 1 - a)
+        inside = np.all((every >= a) & (every <= b), axis=1).mean()
+        assert inside <= cells.share_within(a, b) <= 1
+    assert cells.share_within(lo - 1, hi + 1) == 1
 
 
 def test_each_record_is_decoded_once(files, tmp_path, monkeypatch):

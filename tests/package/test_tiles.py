@@ -197,6 +197,22 @@ def test_a_read_holding_the_whole_cloud_serves_a_run_asking_for_any_halo():
     assert calls == [0.1]
 
 
+@pytest.mark.parametrize("share, whole", [(0.4, False), (tiles.WHOLE_READ_SHARE, True), (0.9, True)])
+def test_a_read_holding_half_the_cloud_reads_it_all(share, whole):
+    p = bumpy_sphere(3000)
+    cloud = tiles.Box(p.min(axis=0), p.max(axis=0))
+    box = tiles.grid_tiles(cloud, (2, 1, 1))[0]
+    ids = np.arange(len(p), dtype=np.uint64)
+
+    def read(halo):
+        m = np.all((p >= box.lo - halo) & (p <= box.hi + halo), axis=1)
+        return p[m], None, ids[m]
+
+    t = tiles.read_tile(read, box=box, cloud=cloud, halo=0.2, domain=tile_domain_param(p), threads=None,
+                        reads=None, job=None, tile=None, folder=None, share=lambda halo: share)
+    assert t.whole == whole and (len(t.ids) == len(p)) == whole
+
+
 def test_tile_reads_keep_what_fits_the_budget_for_their_job_only_and_a_wider_halo_reads_again():
     class Read(tiles.TileRead):
         def nbytes(self):

@@ -93,6 +93,20 @@ def test_one_machine_and_the_cluster_step_the_same_count_search(parts, tmp_path,
     assert np.array_equal(cluster_ids(tmp_path / "lod", index), np.sort(one.indices))
 
 
+def test_tiles_whose_disks_span_them_read_the_whole_cloud_and_leave_no_point_open(parts, tmp_path):
+    # 200 samples of 20,000 points in tiles of 5,000: each tile's halo holds most of the cloud (3,253 points
+    # were left open), so it reads all of it and decides every point; one machine's samples.
+    from dask.distributed import Client
+    folder, points = parts
+    one = gl.poisson_lod(points, count=200, tolerance=1)
+    with dist.local_cluster(1) as cluster, Client(cluster) as client:
+        index = dist.lod_files([str(folder)], tmp_path / "lod", count=200, tolerance=1, client=client, threads=1,
+                               tile_points=5000)
+    assert len(index["tiles"]) > 1 and index["open_points"] == 0
+    assert all(t["points_read"] == len(points) for t in index["tiles"])
+    assert np.array_equal(cluster_ids(tmp_path / "lod", index), np.sort(one.indices))
+
+
 def test_the_commands_levels_are_the_clusters_on_one_machine(parts, tmp_path):
     from dask.distributed import Client
     import laspy
