@@ -1,8 +1,8 @@
 """Small LODs of a forest: the shared airborne tile lone-star.laz (518,862 points: trees, ground and
 stray returns, 58 connected parts of its neighbour graph) asked for a few dozen to a few thousand
 points, by our Python API (as the command runs a LAS file), by the command on a local cluster of two
-workers, and by MeshLab's point cloud simplification asked for the same count, side by side in one
-run. At such counts one disk may hold most of the cloud. Writes docs/small_counts.json and prints a
+workers (in one tile, and in tiles of TILE_POINTS points), and by MeshLab's point cloud simplification
+asked for the same count, side by side in one run. At such counts one disk may hold most of the cloud. Writes docs/small_counts.json and prints a
 Markdown table.
 
 usage: bench/small_counts.py [--counts 5000,1000,300,100,70,58,50,30]
@@ -25,18 +25,21 @@ from quality_config import DATA
 from results import publish
 
 TILE = DATA / "lidar" / "lone-star.laz"
+TILE_POINTS = 200_000  # three tiles, whose disks span them at small counts
 
 
-def cluster_run(count: int) -> dict:
-    """The command on a local cluster of two workers, as a user runs it: its wall time, runs and samples."""
+def cluster_run(count: int, key: str, *options: str) -> dict:
+    """The command on a local cluster of two workers, as a user runs it: its wall time, runs, samples and
+    tiles, under names starting with `key`."""
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "lod"
         t = time.perf_counter()
         subprocess.run([sys.executable, "-m", "geodesic_lod", str(TILE), "-o", f"{out}/", "--count", str(count),
-                        "--workers", "2", "-q"], check=True)
+                        "--workers", "2", "-q", *options], check=True)
         seconds = time.perf_counter() - t
         index = json.loads((out / "index.json").read_text())
-    return {"cluster_s": round(seconds, 2), "cluster_runs": index["runs"], "cluster_samples": index["samples"]}
+    return {f"{key}_s": round(seconds, 2), f"{key}_runs": index["runs"], f"{key}_samples": index["samples"],
+            f"{key}_tiles": len(index["tiles"]), f"{key}_open_points": index["open_points"]}
 
 
 def main():
@@ -57,13 +60,17 @@ def main():
         ms.generate_simplified_point_cloud(samplenum=count, exactnumflag=False)
         meshlab = time.perf_counter() - t
         rows.append({"points": len(points), "count": count, "samples": len(lod.indices), "parts": lod.components,
-                     "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2), **cluster_run(count),
+                     "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2),
+                     **cluster_run(count, "cluster"),
+                     **cluster_run(count, "tiled", "--tile-points", str(TILE_POINTS)),
                      "meshlab_samples": ms.current_mesh().vertex_number(), "meshlab_s": round(meshlab, 2),
                      "load": round(load, 2)})
     publish("small_counts", rows, [("count asked", lambda r: f"{r['count']:,}"),
                                    ("ours (Poisson runs)", lambda r: f"{r['ours_s']:.1f} s ({r['runs']})"),
                                    ("the command, 2 workers (runs, its samples)",
                                     lambda r: f"{r['cluster_s']:.1f} s ({r['cluster_runs']}, {r['cluster_samples']:,})"),
+                                   (f"the same, tiles of {TILE_POINTS:,} points",
+                                    lambda r: f"{r['tiled_s']:.1f} s ({r['tiled_runs']}, {r['tiled_samples']:,})"),
                                    ("MeshLab simplification (its samples)",
                                     lambda r: f"{r['meshlab_s']:.1f} s ({r['meshlab_samples']:,})"),
                                    ("load", lambda r: str(r["load"]))])
