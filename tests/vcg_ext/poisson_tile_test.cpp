@@ -2,7 +2,9 @@
 // and then settled at the seams, give exactly the whole cloud's Poisson samples
 // (in random order, with the rims first and with the prominent points first);
 // a halo too narrow is refused with a wider one to try; Settle's rule; the
-// tiles' pilot disks give the whole cloud's first radius of a count search.
+// tiles' pilot disks give the whole cloud's first radius of a count search;
+// tiles tell one sample a part only where each disk holds its part; a tile
+// that read every point leaves none open, and given keys serve its order.
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
@@ -101,6 +103,49 @@ TEST(PoissonTile, TilesTellOneSampleAPartOnlyWhereEachDiskHoldsItsWholePart) {
     if (radius <= 0.05) EXPECT_FALSE(r.partsWhole) << "radius " << radius;
   }
   EXPECT_TRUE(told);
+}
+
+// A tile that read every point decides every point as the whole cloud does:
+// none is left open, and the tiles' samples are the whole cloud's, also in a
+// key order whose keys a run before gave.
+TEST(PoissonTile, TilesReadingEveryPointLeaveNoneOpen) {
+  const auto cloud = Cloud();
+  for (vcg_ext::VisitOrder order : {vcg_ext::VisitOrder::Random, vcg_ext::VisitOrder::Prominence}) {
+    const double radius = 0.12;
+    const test::TiledAndWhole whole = test::TilesAndWhole(cloud, order, radius, 5, 0.5);
+    ASSERT_EQ(whole.problem, "");
+    Tile::Param p;
+    p.radius = radius;
+    p.seed = 5;
+    p.order = order;
+    p.keyScale = radius;
+    const test::WholeCloud::Param defaults;
+    p.keyNoise = test::WholeCloud::NoiseOf(order, defaults);
+    p.keyOffSurface = defaults.prominenceOffSurface;
+    p.keySmoothClean = defaults.prominenceSmoothClean;
+    p.keyCellSide = vcg_ext::CellGrid<double>::SurfaceCellSide(cloud, 1);
+    p.keyClean = test::DomainOf(cloud, test::PointGraph(false)).Clean();
+    p.readsAll = true;
+    std::set<int> tiled;
+    for (bool left : {true, false}) {
+      const TileRun t = Decide(cloud, left, 0.5, 10.0, p);
+      ASSERT_TRUE(t.result.certified);
+      ASSERT_EQ(t.id.size(), cloud.size());
+      for (size_t row = 0; row < t.id.size(); ++row) {
+        EXPECT_NE(t.result.status[row], Tile::Open);
+        if (t.result.status[row] == Tile::In) tiled.insert(int(t.id[row]));
+      }
+      if (order == vcg_ext::VisitOrder::Random) continue;
+      // Again with the keys the run gave: the same statuses.
+      Tile::Param again = p;
+      again.givenKey = &t.result.key;
+      again.givenKeyed = &t.result.keyed;
+      const TileRun u = Decide(cloud, left, 0.5, 10.0, again);
+      EXPECT_TRUE(u.result.keyed.empty()) << "the given keys must serve";
+      EXPECT_EQ(u.result.status, t.result.status);
+    }
+    EXPECT_EQ(tiled, whole.whole);
+  }
 }
 
 TEST(PoissonTile, TheTilesPilotDisksGiveTheWholeCloudsFirstRadius) {
