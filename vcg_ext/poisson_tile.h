@@ -5,7 +5,9 @@
 // points (the core, a box) and a halo around them; it decides every core point
 // whose earlier neighbours it can see settled, and leaves the rest "open",
 // each with the points whose disks may cover it. Open points lie near the
-// seams; Settle decides them all at once, in the visiting order.
+// seams; Settle decides them all at once, in the visiting order. Cost: the
+// disks of the samples, of the open points and of the core points that open
+// halo points may cover (those within r of the seams).
 //
 // Why the result equals the whole cloud's: Poisson-disk sampling in a visiting
 // order is the greedy independent set of "within r" in that order
@@ -92,7 +94,7 @@ class PoissonTile {
 
   /// `d` built with keepReach on the tile's rows (core and halo) in increasing
   /// `id` order; `core[row]` tells the tile's own rows. Cost: the disks of the
-  /// samples and of the points near the seams.
+  /// samples and of the core points near the seams.
   static Result Compute(const Domain& d, const std::vector<uint64_t>& id, const std::vector<char>& core,
                         const Param& p, Progress progress = Progress(nullptr)) {
     Result r;
@@ -107,10 +109,6 @@ class PoissonTile {
     r.neededHalo = halo.second;
     if (!r.certified) return r;
 
-    // Per point: whether it is the tile's own (Core) and whether it may be
-    // visited (Visit: within r of the core, and a candidate). One byte a
-    // point, read where each disk lands.
-    enum : char { Core = 1, Visit = 2 };
     std::vector<char> flags(n);
     std::vector<uint64_t> pid(n);
     for (size_t i = 0; i < n; ++i) {
@@ -120,35 +118,35 @@ class PoissonTile {
       flags[i] = char((core[row] ? Core : 0) | (may && (p.readsAll || toCore[i] <= radius) ? Visit : 0));
     }
     std::vector<int> order;
-    if (p.order != VisitOrder::Random && Given(d, flags, Visit, p)) {
-      std::vector<float> key(n);
-      for (size_t i = 0; i < n; ++i) key[i] = (*p.givenKey)[size_t(d.points.vertIndex[i])];
-      order = KeyFirstOrder(key, pid, p.seed);
-      r.key = *p.givenKey;
-    } else if (p.order != VisitOrder::Random) {
-      const Progress ordering = OrderShare(progress, p.order);
-      std::vector<char> visited(n);  // the points whose keys order anything
-      for (size_t i = 0; i < n; ++i) visited[i] = (flags[i] & Visit) != 0;
-      std::vector<float> key =
-          p.order == VisitOrder::Border
-              ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
-                                             BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering,
-                                             &visited)
-              : Prominence<Scalar>::Compute(
-                    d.points.pos, d.normal, pid,
-                    Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
-                                                  Prominence<Scalar>::SmoothOn(p.keyClean, p.keySmoothClean)),
-                    p.keyNoise, Prominence<Scalar>::OffSurfaceOn(p.keyClean, p.keyOffSurface), ordering,
-                    &visited);
-      order = KeyFirstOrder(key, pid, p.seed);
-      r.key.assign(rows, 0);
-      r.keyed.assign(rows, 0);
-      for (size_t i = 0; i < n; ++i) {
-        r.key[size_t(d.points.vertIndex[i])] = key[i];
-        r.keyed[size_t(d.points.vertIndex[i])] = visited[i];
-      }
-    } else {
+    if (p.order == VisitOrder::Random) {
       order = PriorityOrder(pid, p.seed);
+    } else {
+      std::vector<float> key(n);
+      if (Given(d, flags, Visit, p)) {
+        for (size_t i = 0; i < n; ++i) key[i] = (*p.givenKey)[size_t(d.points.vertIndex[i])];
+        r.key = *p.givenKey;
+      } else {
+        const Progress ordering = OrderShare(progress, p.order);
+        std::vector<char> visited(n);  // the points whose keys order anything
+        for (size_t i = 0; i < n; ++i) visited[i] = (flags[i] & Visit) != 0;
+        key = p.order == VisitOrder::Border
+                  ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
+                                                 BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering,
+                                                 &visited)
+                  : Prominence<Scalar>::Compute(
+                        d.points.pos, d.normal, pid,
+                        Prominence<Scalar>::Scale::Of(p.keyCellSide, p.keyScale,
+                                                      Prominence<Scalar>::SmoothOn(p.keyClean, p.keySmoothClean)),
+                        p.keyNoise, Prominence<Scalar>::OffSurfaceOn(p.keyClean, p.keyOffSurface), ordering,
+                        &visited);
+        r.key.assign(rows, 0);
+        r.keyed.assign(rows, 0);
+        for (size_t i = 0; i < n; ++i) {
+          r.key[size_t(d.points.vertIndex[i])] = key[i];
+          r.keyed[size_t(d.points.vertIndex[i])] = visited[i];
+        }
+      }
+      order = KeyFirstOrder(key, pid, p.seed);
     }
     order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !(flags[size_t(i)] & Visit); }),
                 order.end());
@@ -158,31 +156,59 @@ class PoissonTile {
     // are covered for sure, or taken (their state no longer Out). Points never
     // visited (not Visit) are not reported, whatever their marks.
     std::vector<char> covered(n, 0), state(n, Out);
-    std::vector<std::pair<int, int>> maybe;  // (open core point, an open point covering it), in visiting order
+    Coverers coverers(n);
     size_t settled = 0;
+    // A core point one of whose open coverers dominates it is out for sure
+    // (Coverers::Dominated) and takes no disk: otherwise a point that an
+    // open one may cover is open too, and where disks are wide beside the
+    // tile the open points flood it, each with a disk.
+    auto out = [&](int i) {
+      if (covered[i] == 2) return true;
+      if (covered[i] == 0 || !(flags[size_t(i)] & Core) || !coverers.Dominated(i, flags, state)) return false;
+      covered[i] = 2, ++settled;
+      return true;
+    };
+    // The points decided here: the core, or every point where the read holds
+    // them all. A halo point's fate is its own tile's: here it is open unless
+    // a sample covers it, and takes no disk; the core points it may cover
+    // find it in theirs, which they search anyway.
+    auto decidedHere = [&](int i) { return p.readsAll || (flags[size_t(i)] & Core); };
     r.openWhole.assign(rows, 0);
     d.WithSearch([&](auto& search) {
-      PoissonDisk::InOrderWhole(n, search, radius, order, [&](int i) { return covered[i] != 2; },
-                           [&](int i, const std::vector<int>& disk, bool whole) {
-                             if (covered[i] == 2) return;  // an earlier disk of its batch covered it
-                             // A core point is a sample if nothing may cover it; a halo point's
-                             // fate is its own tile's, so here it may only be one (unless the
-                             // read holds every point, and every point is decided here).
-                             const bool sure = (p.readsAll || (flags[size_t(i)] & Core)) && covered[i] == 0;
-                             state[i] = sure ? In : Open;
-                             if (sure) r.wholeParts = r.wholeParts && whole;
-                             if (flags[size_t(i)] & Core) r.openWhole[size_t(d.points.vertIndex[size_t(i)])] = whole;
-                             for (int j : disk) {
-                               if (covered[j] == 2 || state[j] != Out || !(flags[size_t(j)] & Visit)) continue;
-                               if (sure) {
-                                 covered[j] = 2, ++settled;
-                               } else if (flags[size_t(j)] & Core) {
-                                 covered[j] = 1;
-                                 maybe.emplace_back(j, i);
-                               }
-                             }
-                           },
-                           [&] { return settled; }, progress);
+      PoissonDisk::Walk<int>(
+          n, search, order,
+          [&](auto& s, int src, std::vector<int>& list) {
+            if (!decidedHere(src)) return;
+            s.Visit(src, radius, [&](int i, double) { list.push_back(i); });
+            if (!WholePartOf(s)) list.push_back(kCut);
+          },
+          [&](int i) { return !out(i); },
+          [&](int i, std::vector<int>& disk) {
+            const bool whole = disk.empty() || disk.back() != kCut;
+            if (!whole) disk.pop_back();
+            if (covered[i] == 2) return;  // an earlier disk of its batch covered it
+            if (!decidedHere(i)) {
+              state[i] = Open;
+              return;
+            }
+            for (int j : disk)
+              if (!(flags[size_t(j)] & Core) && state[j] == Open) covered[i] = 1, coverers.Add(i, j);
+            if (out(i)) return;  // an open point taken since dominates it
+            const bool sure = covered[i] == 0;  // a sample if nothing may cover it
+            state[i] = sure ? In : Open;
+            if (sure) r.wholeParts = r.wholeParts && whole;
+            if (flags[size_t(i)] & Core) r.openWhole[size_t(d.points.vertIndex[size_t(i)])] = whole;
+            for (int j : disk) {
+              if (covered[j] == 2 || state[j] != Out || !(flags[size_t(j)] & Visit)) continue;
+              if (sure) {
+                covered[j] = 2, ++settled;
+              } else if (flags[size_t(j)] & Core) {
+                covered[j] = 1;
+                coverers.Add(j, i);
+              }
+            }
+          },
+          [&] { return settled; }, progress);
     });
     for (size_t i = 0; i < n; ++i) {
       if (!(flags[i] & Core)) continue;
@@ -190,15 +216,17 @@ class PoissonTile {
       r.status[row] = covered[i] == 2 ? Out : state[i];
     }
     // Open rows and their coverers, by row, each row's in visiting order.
-    std::vector<std::pair<int, uint64_t>> open;  // (row, coverer's id)
-    for (const auto& m : maybe) {
-      const int row = d.points.vertIndex[size_t(m.first)];
-      if (r.status[size_t(row)] == Open) open.emplace_back(row, pid[size_t(m.second)]);
+    std::vector<int> rank(n);
+    for (size_t k = 0; k < order.size(); ++k) rank[size_t(order[k])] = int(k);
+    std::vector<std::pair<int, int>> open;  // (row, coverer's rank)
+    for (const auto& e : coverers.Entries()) {
+      const int row = d.points.vertIndex[size_t(e.first)];
+      if (r.status[size_t(row)] == Open) open.emplace_back(row, rank[size_t(e.second)]);
     }
-    std::stable_sort(open.begin(), open.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::sort(open.begin(), open.end());
     r.coverers.reserve(open.size());
     for (const auto& o : open) {
-      r.coverers.push_back(o.second);
+      r.coverers.push_back(pid[size_t(order[size_t(o.second)])]);
       ++r.coverOffset[size_t(o.first) + 1];
     }
     for (size_t row = 0; row < rows; ++row) r.coverOffset[row + 1] += r.coverOffset[row];
@@ -253,6 +281,53 @@ class PoissonTile {
   }
 
  private:
+  // Per point: whether it is the tile's own (Core) and whether it may be
+  // visited (Visit: within r of the core, and a candidate). One byte a point,
+  // read where each disk lands.
+  enum : char { Core = 1, Visit = 2 };
+  static constexpr int kCut = -1;  // the mark at the end of a disk that is not whole
+
+  // Each core point's open coverers (the points taken before it whose disks
+  // hold it, not sure samples), and the test that one of them settles it.
+  class Coverers {
+   public:
+    explicit Coverers(size_t n) : head_(n, -1), mark_(n, 0) {}
+    void Add(int point, int coverer) {
+      next_.push_back(head_[size_t(point)]);
+      head_[size_t(point)] = int64_t(entries_.size());
+      entries_.emplace_back(point, coverer);
+    }
+    /// Every (point, coverer) pair, in the order found.
+    const std::vector<std::pair<int, int>>& Entries() const { return entries_; }
+
+    /// Whether an open core coverer a of core point b has every open coverer
+    /// of its own among b's: then b is covered for sure. If one of a's
+    /// coverers is a sample it covers b; if none is, a is a sample and covers
+    /// b. A core point's coverers all lie within r of the core, where every
+    /// disk reaching a core point is exact, and are known once the points
+    /// before it are taken. More coverers of b found later keep b covered:
+    /// the test may run before all of b's are known.
+    bool Dominated(int b, const std::vector<char>& flags, const std::vector<char>& state) {
+      if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
+      for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) mark_[size_t(entries_[size_t(e)].second)] = stamp_;
+      for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) {
+        const int a = entries_[size_t(e)].second;
+        if (!(flags[size_t(a)] & Core) || state[size_t(a)] != Open) continue;
+        bool all = true;
+        for (int64_t f = head_[size_t(a)]; f >= 0 && all; f = next_[size_t(f)])
+          all = mark_[size_t(entries_[size_t(f)].second)] == stamp_;
+        if (all) return true;
+      }
+      return false;
+    }
+
+   private:
+    std::vector<std::pair<int, int>> entries_;
+    std::vector<int64_t> head_, next_;  // per point its latest entry; per entry the one before
+    std::vector<uint32_t> mark_;        // per point: the stamp of the last test it covered b in
+    uint32_t stamp_ = 0;
+  };
+
   // The halo every core point needs: the points within r of the core (any
   // disk touching a core point lies there, as no weight is shorter than the
   // straight line), their kNN rows, and the rows of those rows' points (the
