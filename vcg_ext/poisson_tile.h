@@ -164,7 +164,7 @@ class PoissonTile {
     // tile the open points flood it, each with a disk.
     auto out = [&](int i) {
       if (covered[i] == 2) return true;
-      if (covered[i] == 0 || !(flags[size_t(i)] & Core) || !coverers.Dominated(i, flags, state)) return false;
+      if (covered[i] == 0 || !(flags[size_t(i)] & Core) || !coverers.Dominated(i, flags)) return false;
       covered[i] = 2, ++settled;
       return true;
     };
@@ -287,8 +287,8 @@ class PoissonTile {
   enum : char { Core = 1, Visit = 2 };
   static constexpr int kCut = -1;  // the mark at the end of a disk that is not whole
 
-  // Each core point's open coverers (the points taken before it whose disks
-  // hold it, not sure samples), and the test that one of them settles it.
+  // Each core point's coverers (the points taken before it, open, whose disks
+  // hold it), and the test that one of them settles it.
   class Coverers {
    public:
     explicit Coverers(size_t n) : head_(n, -1), mark_(n, 0) {}
@@ -300,19 +300,19 @@ class PoissonTile {
     /// Every (point, coverer) pair, in the order found.
     const std::vector<std::pair<int, int>>& Entries() const { return entries_; }
 
-    /// Whether an open core coverer a of core point b has every open coverer
-    /// of its own among b's: then b is covered for sure. If one of a's
-    /// coverers is a sample it covers b; if none is, a is a sample and covers
-    /// b. A core point's coverers all lie within r of the core, where every
-    /// disk reaching a core point is exact, and are known once the points
-    /// before it are taken. More coverers of b found later keep b covered:
-    /// the test may run before all of b's are known.
-    bool Dominated(int b, const std::vector<char>& flags, const std::vector<char>& state) {
+    /// Whether a core coverer a of core point b has every coverer of its own
+    /// among b's: then b is covered for sure. If one of a's coverers is a
+    /// sample it covers b; if none is, a is a sample and covers b. A core
+    /// point's coverers all lie within r of the core, where every disk
+    /// reaching a core point is exact, and are known once the points before
+    /// it are taken. More coverers of b found later keep b covered: the test
+    /// may run before all of b's are known.
+    bool Dominated(int b, const std::vector<char>& flags) {
       if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
       for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) mark_[size_t(entries_[size_t(e)].second)] = stamp_;
       for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) {
         const int a = entries_[size_t(e)].second;
-        if (!(flags[size_t(a)] & Core) || state[size_t(a)] != Open) continue;
+        if (!(flags[size_t(a)] & Core)) continue;
         bool all = true;
         for (int64_t f = head_[size_t(a)]; f >= 0 && all; f = next_[size_t(f)])
           all = mark_[size_t(entries_[size_t(f)].second)] == stamp_;
