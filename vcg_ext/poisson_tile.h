@@ -5,9 +5,11 @@
 // points (the core, a box) and a halo around them; it decides every core point
 // whose earlier neighbours it can see settled, and leaves the rest "open",
 // each with the points whose disks may cover it. Open points lie near the
-// seams; Settle decides them all at once, in the visiting order. Cost: the
-// disks of the samples, of the open points and of the core points that open
-// halo points may cover (those within r of the seams).
+// seams; Settle decides them all at once, in the visiting order. The halo's
+// points are decided too where their disks lie where the read is exact (a
+// halo two radii wider), so that their samples cover the core points beside
+// them. Cost: the disks of the samples (core and halo), of the open points
+// and of the core points that open halo points may cover.
 //
 // Why the result equals the whole cloud's: Poisson-disk sampling in a visiting
 // order is the greedy independent set of "within r" in that order
@@ -21,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 #include <vcg/space/box3.h>
@@ -109,26 +112,33 @@ class PoissonTile {
     r.neededHalo = halo.second;
     if (!r.certified) return r;
 
+    // The tile visits every point it read that may be a sample. Its keys,
+    // and the disks of the points farther than r beyond `exactFrom` from the
+    // read's edge, are the whole cloud's.
+    std::vector<double> toEdge(n);
+    for (size_t i = 0; i < n; ++i) toEdge[i] = ToEdge(p, d.points.pos[i]);
+    const double exactFrom = ExactFrom(d, toEdge, p);
     std::vector<char> flags(n);
     std::vector<uint64_t> pid(n);
     for (size_t i = 0; i < n; ++i) {
       const size_t row = size_t(d.points.vertIndex[i]);
       pid[i] = id[row];
       const bool may = !p.candidate || (*p.candidate)[row] != 0;
-      flags[i] = char((core[row] ? Core : 0) | (may && (p.readsAll || toCore[i] <= radius) ? Visit : 0));
+      flags[i] = char((core[row] ? Core : 0) | (may ? Visit : 0) | (Bad(d, toEdge, i, p) ? 0 : KeyExact) |
+                      (toEdge[i] - radius > exactFrom ? DiskExact : 0));
     }
     std::vector<int> order;
     if (p.order == VisitOrder::Random) {
       order = PriorityOrder(pid, p.seed);
     } else {
       std::vector<float> key(n);
-      if (Given(d, flags, Visit, p)) {
+      if (Given(d, flags, p)) {
         for (size_t i = 0; i < n; ++i) key[i] = (*p.givenKey)[size_t(d.points.vertIndex[i])];
         r.key = *p.givenKey;
       } else {
         const Progress ordering = OrderShare(progress, p.order);
         std::vector<char> visited(n);  // the points whose keys order anything
-        for (size_t i = 0; i < n; ++i) visited[i] = (flags[i] & Visit) != 0;
+        for (size_t i = 0; i < n; ++i) visited[i] = Keyed(flags[i]);
         key = p.order == VisitOrder::Border
                   ? BorderOrder<Scalar>::Compute(d.points.pos, pid, p.keyScale, p.keyNoise,
                                                  BorderOrder<Scalar>::ShareOf(p.keyCellSide, p.keyScale), ordering,
@@ -148,15 +158,18 @@ class PoissonTile {
       }
       order = KeyFirstOrder(key, pid, p.seed);
     }
+    std::vector<int> rank(n);
+    for (size_t k = 0; k < order.size(); ++k) rank[size_t(order[k])] = int(k);
     order.erase(std::remove_if(order.begin(), order.end(), [&](int i) { return !(flags[size_t(i)] & Visit); }),
                 order.end());
 
     // covered: by a sample for sure (2), or only by points still open (1).
     // A disk decides nothing for the points visited before its centre: those
-    // are covered for sure, or taken (their state no longer Out). Points never
-    // visited (not Visit) are not reported, whatever their marks.
+    // are covered for sure, or taken (their state no longer Out). Only the
+    // core's points are reported.
     std::vector<char> covered(n, 0), state(n, Out);
     Coverers coverers(n);
+    OpenCells opens(radius, n ? d.points.pos[0] : vcg::Point3<Scalar>(0, 0, 0));
     size_t settled = 0;
     // A core point one of whose open coverers dominates it is out for sure
     // (Coverers::Dominated) and takes no disk: otherwise a point that an
@@ -168,13 +181,22 @@ class PoissonTile {
       covered[i] = 2, ++settled;
       return true;
     };
-    // The points decided here: the core, or every point where the read holds
-    // them all. A halo point's fate is its own tile's: here it is open unless
-    // a sample covers it, and takes no disk; the core points it may cover
-    // find it in theirs, which they search anyway.
+    auto makeOpen = [&](int i) { state[i] = Open, opens.Add(i, d.points.pos[size_t(i)]); };
+    // The points decided here with their disks: the core, or every point
+    // where the read holds them all.
     auto decidedHere = [&](int i) { return p.readsAll || (flags[size_t(i)] & Core); };
+    // A sample's disk covers the points after it for sure.
+    auto push = [&](int src, const std::vector<int>& disk) {
+      for (int j : disk) {
+        if (rank[size_t(j)] <= rank[size_t(src)] || covered[j] == 2 || state[j] != Out) continue;
+        covered[j] = 2;
+        if (flags[size_t(j)] & Visit) ++settled;
+      }
+    };
     r.openWhole.assign(rows, 0);
     d.WithSearch([&](auto& search) {
+      auto halo = search;  // the halo samples' searches, on the calling thread beside the walk's
+      std::vector<int> disk;
       PoissonDisk::Walk<int>(
           n, search, order,
           [&](auto& s, int src, std::vector<int>& list) {
@@ -183,29 +205,41 @@ class PoissonTile {
             if (!WholePartOf(s)) list.push_back(kCut);
           },
           [&](int i) { return !out(i); },
-          [&](int i, std::vector<int>& disk) {
-            const bool whole = disk.empty() || disk.back() != kCut;
-            if (!whole) disk.pop_back();
+          [&](int i, std::vector<int>& list) {
+            const bool whole = list.empty() || list.back() != kCut;
+            if (!whole) list.pop_back();
             if (covered[i] == 2) return;  // an earlier disk of its batch covered it
             if (!decidedHere(i)) {
-              state[i] = Open;
-              return;
+              // A point of the halo, its fate its own tile's, decided here
+              // as the whole cloud decides it where it can be: no sample
+              // before it covers it, so it is one unless a point before it
+              // that may be one lies within r, or its disk reaches where
+              // the read is not exact. A sample covers core points, which
+              // then take no disk; an open one is found by the core points
+              // it may cover in their own disks, searched anyway.
+              if (!(flags[size_t(i)] & DiskExact) || opens.AnyWithin(d.points.pos, i, radius)) return makeOpen(i);
+              state[i] = In;
+              disk.clear();
+              halo.Visit(i, radius, [&](int j, double) { disk.push_back(j); });
+              return push(i, disk);
             }
-            for (int j : disk)
+            for (int j : list)
               if (!(flags[size_t(j)] & Core) && state[j] == Open) covered[i] = 1, coverers.Add(i, j);
             if (out(i)) return;  // an open point taken since dominates it
             const bool sure = covered[i] == 0;  // a sample if nothing may cover it
-            state[i] = sure ? In : Open;
-            if (sure) r.wholeParts = r.wholeParts && whole;
+            if (sure) {
+              state[i] = In;
+              r.wholeParts = r.wholeParts && whole;
+            } else {
+              makeOpen(i);
+            }
             if (flags[size_t(i)] & Core) r.openWhole[size_t(d.points.vertIndex[size_t(i)])] = whole;
-            for (int j : disk) {
-              if (covered[j] == 2 || state[j] != Out || !(flags[size_t(j)] & Visit)) continue;
-              if (sure) {
-                covered[j] = 2, ++settled;
-              } else if (flags[size_t(j)] & Core) {
-                covered[j] = 1;
-                coverers.Add(j, i);
-              }
+            if (sure) return push(i, list);
+            for (int j : list) {
+              if (covered[j] == 2 || state[j] != Out || (flags[size_t(j)] & (Visit | Core)) != (Visit | Core))
+                continue;
+              covered[j] = 1;
+              coverers.Add(j, i);
             }
           },
           [&] { return settled; }, progress);
@@ -216,17 +250,15 @@ class PoissonTile {
       r.status[row] = covered[i] == 2 ? Out : state[i];
     }
     // Open rows and their coverers, by row, each row's in visiting order.
-    std::vector<int> rank(n);
-    for (size_t k = 0; k < order.size(); ++k) rank[size_t(order[k])] = int(k);
-    std::vector<std::pair<int, int>> open;  // (row, coverer's rank)
+    std::vector<std::pair<int, std::pair<int, int>>> open;  // (row, (coverer's rank, coverer))
     for (const auto& e : coverers.Entries()) {
       const int row = d.points.vertIndex[size_t(e.first)];
-      if (r.status[size_t(row)] == Open) open.emplace_back(row, rank[size_t(e.second)]);
+      if (r.status[size_t(row)] == Open) open.push_back({row, {rank[size_t(e.second)], e.second}});
     }
     std::sort(open.begin(), open.end());
     r.coverers.reserve(open.size());
     for (const auto& o : open) {
-      r.coverers.push_back(pid[size_t(order[size_t(o.second)])]);
+      r.coverers.push_back(pid[size_t(o.second.second)]);
       ++r.coverOffset[size_t(o.first) + 1];
     }
     for (size_t row = 0; row < rows; ++row) r.coverOffset[row + 1] += r.coverOffset[row];
@@ -284,8 +316,53 @@ class PoissonTile {
   // Per point: whether it is the tile's own (Core) and whether it may be
   // visited (Visit: within r of the core, and a candidate). One byte a point,
   // read where each disk lands.
-  enum : char { Core = 1, Visit = 2 };
+  // Also: whether its key (KeyExact) and its disk (DiskExact) are the whole
+  // cloud's, as the read holds what they depend on.
+  enum : char { Core = 1, Visit = 2, KeyExact = 4, DiskExact = 8 };
   static constexpr int kCut = -1;  // the mark at the end of a disk that is not whole
+
+  // The points whose keys order a tile's run: those it visits whose keys
+  // are exact (the others are open, and no exact disk reaches them).
+  static bool Keyed(char f) { return (f & Visit) && (f & KeyExact); }
+
+  // The open points so far (all before the point being taken) in cells of
+  // side r: whether one lies within r of a point in a straight line (no
+  // weighted path is shorter: a superset of its disk's). Cost: the open
+  // points in 27 cells.
+  class OpenCells {
+   public:
+    OpenCells(double side, const vcg::Point3<Scalar>& origin) : side_(side > 0 ? side : 1), origin_(origin) {}
+    void Add(int i, const vcg::Point3<Scalar>& x) { cells_[Key(x, 0, 0, 0)].push_back(i); }
+    bool AnyWithin(const std::vector<vcg::Point3<Scalar>>& pos, int i, double r) const {
+      const vcg::Point3<Scalar>& x = pos[size_t(i)];
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -1; b <= 1; ++b)
+          for (int c = -1; c <= 1; ++c) {
+            const auto it = cells_.find(Key(x, a, b, c));
+            if (it == cells_.end()) continue;
+            for (int j : it->second)
+              if (double(vcg::Distance(pos[size_t(j)], x)) <= r) return true;
+          }
+      return false;
+    }
+
+   private:
+    // A cell's coordinates modulo 2^21 (CellGrid's keys): cells that share a
+    // key only add points to test.
+    uint64_t Key(const vcg::Point3<Scalar>& x, int a, int b, int c) const {
+      const int d[3] = {a, b, c};
+      uint64_t key = 0;
+      for (int e = 0; e < 3; ++e) {
+        const double q = std::floor((double(x[e]) - double(origin_[e])) / side_);
+        const int64_t k = int64_t(std::max(-0x1p62, std::min(q, 0x1p62))) + d[e];  // far cells: any key
+        key |= (uint64_t(k) & ((uint64_t(1) << 21) - 1)) << (21 * e);
+      }
+      return key;
+    }
+    double side_;
+    vcg::Point3<Scalar> origin_;
+    std::unordered_map<uint64_t, std::vector<int>> cells_;
+  };
 
   // Each core point's coverers (the points taken before it, open, whose disks
   // hold it), and the test that one of them settles it.
@@ -352,12 +429,28 @@ class PoissonTile {
     return {exact, need};
   }
 
-  // Whether given keys hold every point that `visit` marks in `flags`.
-  static bool Given(const Domain& d, const std::vector<char>& flags, char visit, const Param& p) {
+  // Whether given keys hold every point whose key orders the run (Keyed).
+  static bool Given(const Domain& d, const std::vector<char>& flags, const Param& p) {
     if (!p.givenKey || !p.givenKeyed) return false;
     for (size_t i = 0; i < d.size(); ++i)
-      if ((flags[i] & visit) && !(*p.givenKeyed)[size_t(d.points.vertIndex[i])]) return false;
+      if (Keyed(flags[i]) && !(*p.givenKeyed)[size_t(d.points.vertIndex[i])]) return false;
     return true;
+  }
+
+  // Whether point i's rows (CheckHalo's reach) or, in a key order, its
+  // rank's ball reach the edge of the read: then they may not be the whole
+  // cloud's.
+  static bool Bad(const Domain& d, const std::vector<double>& toEdge, size_t i, const Param& p) {
+    const double keyReach = p.order != VisitOrder::Random ? p.keyScale : 0;
+    return !(std::max(double(d.reach[i]), keyReach) < toEdge[i]);
+  }
+  // The read is exact farther than this from its edge: beyond every Bad
+  // point. -inf where none is.
+  static double ExactFrom(const Domain& d, const std::vector<double>& toEdge, const Param& p) {
+    double from = -std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < d.size(); ++i)
+      if (Bad(d, toEdge, i, p)) from = std::max(from, toEdge[i]);
+    return from;
   }
 
   // Distance from x to the edge of the region read (open where the cloud ends).

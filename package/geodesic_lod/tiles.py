@@ -222,12 +222,20 @@ class Order:
 RANDOM = Order()
 
 
-def first_halo(radius: float, spacing: float, order: Order = RANDOM) -> float:
+# A disk this many point spacings wide or wider: a tile reads two radii more of halo. It then decides the
+# points of its halo within r of its core as the whole cloud does where their disks are exact, and the core
+# points beside them take no disk each, as they would beside halo points left open (bench/tile_halo.py).
+RING_SPACINGS = 16
+
+
+def first_halo(radius: float, spacing: float, order: Order = RANDOM, ring: Optional[bool] = None) -> float:
     """A halo likely to pass the check for the runs of radius up to `radius` (a job's coarsest, so that one
     read of a tile serves them all): that radius and a few neighbourhoods of the point spacing, and for a
     keyed order its scale, within which each rank's points lie (the larger of it and the radius: a coarser
-    run's order has a larger scale)."""
-    return radius + 12 * spacing + (max(order.scale, radius) if order.keyed else 0.0)
+    run's order has a larger scale); and with `ring` (None: where disks are wide, RING_SPACINGS), two radii
+    more."""
+    ring = radius >= RING_SPACINGS * spacing if ring is None else ring
+    return radius + 12 * spacing + (2 * radius if ring else 0.0) + (max(order.scale, radius) if order.keyed else 0.0)
 
 
 @dataclass
@@ -250,7 +258,8 @@ class TileRead:
         asking for any halo.
     keys : tuple or None
         The keys of the last key order a run computed on it: (its ``Order.core_args()``, the key of each
-        point, whether each point has one); a later run in that order visiting no other point uses them.
+        point, whether each point has one: every point that may be a sample whose key the read holds); a
+        later run in that order among no other points uses them.
     """
     halo: float
     ids: np.ndarray

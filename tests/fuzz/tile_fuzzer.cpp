@@ -1,9 +1,10 @@
 // libFuzzer target: the cluster's promise that tiles give one process's samples.
 // A cloud of arbitrary layout (a jittered or exact grid, whose distances tie, a
 // blob, clumps, repeated points, a thin strip), split into two tiles at any x,
-// each deciding its core with a halo widened until certified and the seam
-// settled in the visiting order, must give exactly the whole cloud's Poisson
-// samples at the same radius and seed, in every visiting order, and so must a
+// each deciding its core with a halo (at times wider than needed) widened
+// until certified and the seam settled in the visiting order, must give
+// exactly the whole cloud's Poisson samples at the same radius and seed, in
+// every visiting order, and so must a
 // coarser nested level among those samples, and so must the first radius of a
 // count search from the tiles' pilot disks; where the tiles tell one sample a
 // connected part, there is one; never a crash or a sanitizer report. Bad input
@@ -55,6 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double radius = f.ConsumeFloatingPointInRange<double>(0.01, 0.4);
   const uint64_t seed = f.ConsumeIntegral<uint64_t>();
   const double split = f.ConsumeFloatingPointInRange<double>(0.05, 0.95);
+  // A halo wider than the check needs: the tiles ask about the points in it.
+  const double firstHalo = f.ConsumeBool() ? 0.0 : radius * f.ConsumeFloatingPointInRange<double>(1, 5);
   // A coarser nested level: among the first level's samples, at a larger radius.
   const double coarser = f.ConsumeFloatingPointInRange<double>(1.2, 4);
   // A count search's first radius, from the tiles' pilot disks.
@@ -77,11 +80,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
   };
   try {
-    const test::TiledAndWhole first = test::TilesAndWhole(cloud, order, radius, seed, split);
+    const test::TiledAndWhole first = test::TilesAndWhole(cloud, order, radius, seed, split, nullptr, firstHalo);
     check(first, radius, "first level");
     std::vector<char> candidate(cloud.size(), 0);
     for (int i : first.whole) candidate[size_t(i)] = 1;
-    check(test::TilesAndWhole(cloud, order, coarser * radius, seed, split, &candidate), coarser * radius,
+    check(test::TilesAndWhole(cloud, order, coarser * radius, seed, split, &candidate, firstHalo), coarser * radius,
           "nested level");
     const test::PilotRadii pilot = test::TilesAndWholePilot(cloud, target, tolerance, seed, split);
     if (!pilot.problem.empty() || pilot.tiled != pilot.whole) {

@@ -4,7 +4,8 @@
 // a halo too narrow is refused with a wider one to try; Settle's rule; the
 // tiles' pilot disks give the whole cloud's first radius of a count search;
 // tiles tell one sample a part only where each disk holds its part; tiles
-// whose disks are wide leave few points open; a tile that read every point
+// whose disks are wide leave few points open, and almost none where their
+// halos hold the points within 3r of the core; a tile that read every point
 // leaves none open, and given keys serve its order.
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -41,7 +42,6 @@ void ExpectTilesGiveTheWholeCloudsSamples(vcg_ext::VisitOrder order, double radi
   const test::TiledAndWhole r = test::TilesAndWhole(Cloud(), order, radius, 5, 0.5);
   ASSERT_EQ(r.problem, "");
   ASSERT_GT(r.whole.size(), atLeast);
-  EXPECT_GT(r.open, 0u) << "the seam must leave points open, or Settle is not tested";
   EXPECT_EQ(r.tiled, r.whole);
 }
 
@@ -123,6 +123,22 @@ TEST(PoissonTile, TilesWhoseDisksAreWideLeaveFewPointsOpen) {
   const test::TiledAndWhole k = test::TilesAndWhole(cloud, vcg_ext::VisitOrder::Prominence, 0.2, 3, 0.5);
   ASSERT_EQ(k.problem, "");
   EXPECT_EQ(k.tiled, k.whole);
+  EXPECT_GT(k.open, 0u) << "the seam must leave points open, or Settle is not tested";
+}
+
+// Halos that hold the points within 3r of the core (r: the disks' radius, a
+// fifth of the cloud): a tile decides the points of its halo as the whole
+// cloud does where their disks are exact, and leaves almost none open
+// (random order: 48 samples, 25 open where the halo is the narrowest
+// certified; prominence order: 53 samples, 888 open).
+TEST(PoissonTile, TilesWhoseHalosHoldTheirRingLeaveAlmostNoneOpen) {
+  const auto cloud = Cloud(70);
+  for (vcg_ext::VisitOrder order : {vcg_ext::VisitOrder::Random, vcg_ext::VisitOrder::Prominence}) {
+    const test::TiledAndWhole wide = test::TilesAndWhole(cloud, order, 0.2, 3, 0.5, nullptr, 1.0);
+    ASSERT_EQ(wide.problem, "");
+    EXPECT_EQ(wide.tiled, wide.whole);
+    EXPECT_LE(wide.open, wide.whole.size() / 10) << "order " << int(order);
+  }
 }
 
 // A tile that read every point decides every point as the whole cloud does:

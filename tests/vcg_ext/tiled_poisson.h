@@ -88,9 +88,11 @@ struct TiledAndWhole {
 
 /// The samples of `cloud` at `radius` in `order` (seed `seed`), in two tiles split at x = `split`,
 /// and in one process; with `candidate` (per point) among those only, as a nested level among a
-/// finer level's samples. Throws what the whole cloud's sampler throws for bad input.
+/// finer level's samples; each tile reads a halo of `firstHalo` (at least `radius`), widened until
+/// certified. Throws what the whole cloud's sampler throws for bad input.
 inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_ext::VisitOrder order, double radius,
-                                   uint64_t seed, double split, const std::vector<char>* candidate = nullptr) {
+                                   uint64_t seed, double split, const std::vector<char>* candidate = nullptr,
+                                   double firstHalo = 0) {
   TiledAndWhole out;
   Tile::Param p;
   p.radius = radius;
@@ -123,7 +125,7 @@ inline TiledAndWhole TilesAndWhole(const std::vector<vcg::Point3d>& cloud, vcg_e
   std::vector<float> key(cloud.size(), 0);
   std::vector<char> openWhole(cloud.size(), 0);
   for (bool left : {true, false}) {
-    double halo = p.radius;
+    double halo = std::max(p.radius, firstHalo);
     TileRun t = Decide(cloud, left, split, halo, p, candidate);
     while (!t.result.certified) {
       if (!(t.result.neededHalo > halo)) {
