@@ -144,9 +144,18 @@ class PoissonDisk {
   template <class DiskSearch, class Wanted, class Take, class Done>
   static void InOrderWhole(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order, Wanted wanted,
                            Take take, Done done, Progress progress) {
+    InOrderWhole(n, disk, radius, order, [](int) { return true; }, wanted, take, done, progress);
+  }
+
+  /// InOrderWhole searching the disks of the points searched(i) accepts
+  /// only: take gets an empty disk (and whole true) for the others.
+  template <class DiskSearch, class Searched, class Wanted, class Take, class Done>
+  static void InOrderWhole(size_t n, DiskSearch& disk, double radius, const std::vector<int>& order,
+                           Searched searched, Wanted wanted, Take take, Done done, Progress progress) {
     Walk<int>(
         n, disk, order,
-        [radius](DiskSearch& s, int src, std::vector<int>& list) {
+        [radius, &searched](DiskSearch& s, int src, std::vector<int>& list) {
+          if (!searched(src)) return;
           s.Visit(src, radius, [&](int i, double) { list.push_back(i); });
           if (!WholePartOf(s)) list.push_back(kCut);
         },

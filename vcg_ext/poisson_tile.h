@@ -197,17 +197,9 @@ class PoissonTile {
     d.WithSearch([&](auto& search) {
       auto halo = search;  // the halo samples' searches, on the calling thread beside the walk's
       std::vector<int> disk;
-      PoissonDisk::Walk<int>(
-          n, search, order,
-          [&](auto& s, int src, std::vector<int>& list) {
-            if (!decidedHere(src)) return;
-            s.Visit(src, radius, [&](int i, double) { list.push_back(i); });
-            if (!WholePartOf(s)) list.push_back(kCut);
-          },
-          [&](int i) { return !out(i); },
-          [&](int i, std::vector<int>& list) {
-            const bool whole = list.empty() || list.back() != kCut;
-            if (!whole) list.pop_back();
+      PoissonDisk::InOrderWhole(
+          n, search, radius, order, decidedHere, [&](int i) { return !out(i); },
+          [&](int i, const std::vector<int>& list, bool whole) {
             if (covered[i] == 2) return;  // an earlier disk of its batch covered it
             if (!decidedHere(i)) {
               // A point of the halo, its fate its own tile's, decided here
@@ -319,7 +311,6 @@ class PoissonTile {
   // Also: whether its key (KeyExact) and its disk (DiskExact) are the whole
   // cloud's, as the read holds what they depend on.
   enum : char { Core = 1, Visit = 2, KeyExact = 4, DiskExact = 8 };
-  static constexpr int kCut = -1;  // the mark at the end of a disk that is not whole
 
   // The points whose keys order a tile's run: those it visits whose keys
   // are exact (the others are open, and no exact disk reaches them).
@@ -368,7 +359,7 @@ class PoissonTile {
   // hold it), and the test that one of them settles it.
   class Coverers {
    public:
-    explicit Coverers(size_t n) : head_(n, -1), mark_(n, 0) {}
+    explicit Coverers(size_t n) : head_(n, -1), tested_(n, -1), mark_(n, 0) {}
     void Add(int point, int coverer) {
       next_.push_back(head_[size_t(point)]);
       head_[size_t(point)] = int64_t(entries_.size());
@@ -383,8 +374,11 @@ class PoissonTile {
     /// point's coverers all lie within r of the core, where every disk
     /// reaching a core point is exact, and are known once the points before
     /// it are taken. More coverers of b found later keep b covered: the test
-    /// may run before all of b's are known.
+    /// may run before all of b's are known. A's coverers are fixed once it
+    /// is taken, so the test runs again only once b has a new coverer.
     bool Dominated(int b, const std::vector<char>& flags) {
+      if (tested_[size_t(b)] == head_[size_t(b)]) return false;
+      tested_[size_t(b)] = head_[size_t(b)];
       if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
       for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) mark_[size_t(entries_[size_t(e)].second)] = stamp_;
       for (int64_t e = head_[size_t(b)]; e >= 0; e = next_[size_t(e)]) {
@@ -401,6 +395,7 @@ class PoissonTile {
    private:
     std::vector<std::pair<int, int>> entries_;
     std::vector<int64_t> head_, next_;  // per point its latest entry; per entry the one before
+    std::vector<int64_t> tested_;       // per point: its latest entry when last found not dominated
     std::vector<uint32_t> mark_;        // per point: the stamp of the last test it covered b in
     uint32_t stamp_ = 0;
   };

@@ -152,12 +152,12 @@ class Decision:
         The halo the decision was made with, a width in the input's units.
     read : int
         Points read for it (core and halo).
-    open_keys : (m,) ndarray of float32 or None
-        In a key order, the open points' keys (their visiting order's); None in random order.
     whole_parts : bool
         Whether each sample's disk held the sample's whole connected part (no edge left the radius).
-    open_whole : (m,) ndarray of bool or None
-        The same for each open point's disk (None: none known).
+    open_whole : (m,) ndarray of bool
+        The same for each open point's disk.
+    open_keys : (m,) ndarray of float32 or None
+        In a key order, the open points' keys (their visiting order's); None in random order.
     """
     samples: np.ndarray
     band_ids: np.ndarray
@@ -167,9 +167,9 @@ class Decision:
     coverers: np.ndarray
     halo: float
     read: int
+    whole_parts: bool
+    open_whole: np.ndarray
     open_keys: Optional[np.ndarray] = None
-    whole_parts: bool = False
-    open_whole: Optional[np.ndarray] = None
 
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.samples, self.band_ids, self.band_status, self.open_ids, self.cover_offset,
@@ -513,8 +513,6 @@ def one_sample_a_part(decisions: Sequence[Decision], settled: np.ndarray) -> boo
     opens = [d for d in decisions if len(d.open_ids)]
     if not opens:
         return True
-    if any(d.open_whole is None for d in opens):
-        return False
     whole = np.concatenate([d.open_whole for d in opens])
     return bool(whole[np.isin(np.concatenate([d.open_ids for d in opens]), settled)].all())
 
