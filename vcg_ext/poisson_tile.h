@@ -209,7 +209,7 @@ class PoissonTile {
               // the read is not exact. A sample covers core points, which
               // then take no disk; an open one is found by the core points
               // it may cover in their own disks, searched anyway.
-              if (!(flags[size_t(i)] & DiskExact) || opens.AnyWithin(d.points.pos, i, radius)) return makeOpen(i);
+              if (!(flags[size_t(i)] & DiskExact) || opens.AnyWithin(d.points.pos, i)) return makeOpen(i);
               state[i] = In;
               disk.clear();
               halo.Visit(i, radius, [&](int j, double) { disk.push_back(j); });
@@ -318,13 +318,13 @@ class PoissonTile {
 
   // The open points so far (all before the point being taken) in cells of
   // side r: whether one lies within r of a point in a straight line (no
-  // weighted path is shorter: a superset of its disk's). Cost: the open
-  // points in 27 cells.
+  // weighted path is shorter: a superset of its disk's, with room for the
+  // rounding of the paths' sums). Cost: the open points in 27 cells.
   class OpenCells {
    public:
-    OpenCells(double side, const vcg::Point3<Scalar>& origin) : side_(side > 0 ? side : 1), origin_(origin) {}
+    OpenCells(double r, const vcg::Point3<Scalar>& origin) : side_(r > 0 ? r * (1 + 1e-6) : 1), origin_(origin) {}
     void Add(int i, const vcg::Point3<Scalar>& x) { cells_[Key(x, 0, 0, 0)].push_back(i); }
-    bool AnyWithin(const std::vector<vcg::Point3<Scalar>>& pos, int i, double r) const {
+    bool AnyWithin(const std::vector<vcg::Point3<Scalar>>& pos, int i) const {
       const vcg::Point3<Scalar>& x = pos[size_t(i)];
       for (int a = -1; a <= 1; ++a)
         for (int b = -1; b <= 1; ++b)
@@ -332,7 +332,7 @@ class PoissonTile {
             const auto it = cells_.find(Key(x, a, b, c));
             if (it == cells_.end()) continue;
             for (int j : it->second)
-              if (double(vcg::Distance(pos[size_t(j)], x)) <= r) return true;
+              if (double(vcg::Distance(pos[size_t(j)], x)) <= side_) return true;
           }
       return false;
     }
