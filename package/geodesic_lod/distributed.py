@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import numbers
+import operator
 import os
 import pathlib
 import time
@@ -129,6 +130,40 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
     return tiles.decide_widening(radius=job.radius, order=job.order, **_tile_arguments(job, box))
 
 
+@give_back
+def decide_whole(job: Job, boxes: list) -> list:
+    """A Dask task: the whole cloud's decision, read once (its read kept as decide_tile keeps a tile's), as each
+    tile's (tiles.split_whole): for a run in which some tile would read every point."""
+    args = _tile_arguments(job, job.cloud)
+    d = tiles.decide_widening(radius=job.radius, order=job.order, **args)
+    points, _, ids = args["read"](0.0)
+    return tiles.split_whole(d, points, ids, boxes, job.cloud)
+
+
+@give_back
+def pilot_whole(job: Job, radius: float, below: int) -> Optional[tuple]:
+    """A Dask task: the count search's pilot disks of the whole cloud, read once, as pilot_tile's of a tile."""
+    return tiles.pilot_widening(radius=radius, below=below, **_tile_arguments(job, job.cloud))
+
+
+WHOLE = "whole"  # the whole cloud's task's key in a run's `where`
+
+
+def _reads_whole(job: Job, boxes) -> bool:
+    """Whether some tile of a run would read every point (tiles.reads_whole): every tile's decision is then
+    the whole cloud's, made once."""
+    return any(tiles.reads_whole(b, job.cloud, job.halo, _share(job, b.outer(job.cloud))) for b in boxes)
+
+
+def _placed(where: dict, k) -> dict:
+    """A task's placement: on the worker that last ran task `k` of the job (and keeps its read), if it is free."""
+    return {"workers": where[k], "allow_other_workers": True} if k in where else {}
+
+
+def _share(job: Job, outer: tiles.Box):
+    return lambda halo: job.cells.share_within(outer.lo - halo, outer.hi + halo)
+
+
 def _tile_arguments(job: Job, box: tiles.Box) -> dict:
     """What a tile's task reads and how (tiles.read_tile's arguments), for decide_tile and pilot_tile alike."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
@@ -138,7 +173,7 @@ def _tile_arguments(job: Job, box: tiles.Box) -> dict:
                 reads=_tile_reads() if job.runs_again else None,  # else none is read again
                 job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
                 folder=job.cells.folder if job.runs_again else None,
-                share=lambda halo: job.cells.share_within(outer.lo - halo, outer.hi + halo))
+                share=_share(job, outer))
 
 
 def _tile_candidates(job: Job, outer: tiles.Box):
@@ -360,16 +395,15 @@ def sample_count(d: Optional[tiles.Decision]) -> int:
 def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     """One Poisson run over every tile; `where`: per tile, the worker that last decided it (and keeps its
     read), where its task goes again if that worker is free, updated."""
-    ticks.expect(len(boxes))
     start = time.perf_counter()
-    decisions = [client.submit(decide_tile, job, b, pure=False, **({"workers": where[k], "allow_other_workers": True}
-                                                                   if k in where else {}))
-                 for k, b in enumerate(boxes)]
-    for _ in worker_check.completed(client, decisions):
-        ticks()
+    if _reads_whole(job, boxes):
+        whole = client.submit(decide_whole, job, boxes, pure=False, **_placed(where, WHOLE))
+        _wait(client, {WHOLE: whole}, ticks, where)
+        decisions = [client.submit(operator.getitem, whole, k, pure=False) for k in range(len(boxes))]
+    else:
+        decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k)) for k, b in enumerate(boxes)]
+        _wait(client, dict(enumerate(decisions)), ticks, where)
     decided = time.perf_counter()
-    held = client.who_has(decisions)
-    where.update({k: list(held[f.key])[:1] for k, f in enumerate(decisions) if held.get(f.key)})
     parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
     known = [p for p in parts if p is not None]
     settled = tiles.settle(known, job.seed)
@@ -377,6 +411,15 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     return _Run(job.radius, decisions, parts, settled, int(count),
                 {"tiles": decided - start, "seams": time.perf_counter() - decided},
                 tiles.one_sample_a_part(known, settled))
+
+
+def _wait(client, tasks: dict, ticks: Ticks, where: dict) -> None:
+    """Waits for a run's tile tasks (by their key in `where`), each a tick, and notes where each ran."""
+    ticks.expect(len(tasks))
+    for _ in worker_check.completed(client, list(tasks.values())):
+        ticks()
+    held = client.who_has(list(tasks.values()))
+    where.update({k: list(held[f.key])[:1] for k, f in tasks.items() if held.get(f.key)})
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
@@ -414,15 +457,13 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     radius = _core.PILOT_REACH * guess
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
-    ticks.expect(len(boxes))
-    parts = [client.submit(pilot_tile, job, b, radius, below, pure=False,
-                           **({"workers": where[k], "allow_other_workers": True} if k in where else {}))
-             for k, b in enumerate(boxes)]
-    for _ in worker_check.completed(client, parts):
-        ticks()
-    held = client.who_has(parts)
-    where.update({k: list(held[f.key])[:1] for k, f in enumerate(parts) if held.get(f.key)})
-    got = [p for p in worker_check.gather(client, parts) if p is not None]
+    if _reads_whole(job, boxes):
+        tasks = {WHOLE: client.submit(pilot_whole, job, radius, below, pure=False, **_placed(where, WHOLE))}
+    else:
+        tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k))
+                 for k, b in enumerate(boxes)}
+    _wait(client, tasks, ticks, where)
+    got = [p for p in worker_check.gather(client, list(tasks.values())) if p is not None]
     candidates = sum(c for _, _, _, c in got)
     if not got:
         return 0.0, candidates

@@ -432,9 +432,8 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
         t = None if reads is None else reads.get(job, tile, halo, folder)
         if t is not None:
             return t
-        cover = float(max(np.max(box.lo - cloud.lo), np.max(cloud.hi - box.hi), 0.0)) * (1 + 1e-9)
-        if share is not None and halo < cover and share(halo) >= WHOLE_READ_SHARE:
-            halo = cover
+        if reads_whole(box, cloud, halo, share):
+            halo = max(halo, whole_halo(box, cloud))
         points, normals, ids = read(halo)
         core = box.core_mask(points, cloud)
         if not core.any():
@@ -458,6 +457,36 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
         if reads is not None:
             reads.put(job, tile, t, folder)
         return t
+
+
+def whole_halo(box: Box, cloud: Box) -> float:
+    """The halo around `box` that reaches past the cloud's box on every side (a rounding more)."""
+    return float(max(np.max(box.lo - cloud.lo), np.max(cloud.hi - box.hi), 0.0)) * (1 + 1e-9)
+
+
+def reads_whole(box: Box, cloud: Box, halo: float, share: Optional[Callable[[float], float]] = None) -> bool:
+    """Whether read_tile reads every point for a tile of `box` asked for `halo`: the halo reaches past the
+    cloud's box, or share(halo) (read_tile's `share`) reaches WHOLE_READ_SHARE."""
+    return halo >= whole_halo(box, cloud) or (share is not None and share(halo) >= WHOLE_READ_SHARE)
+
+
+def split_whole(d: Optional[Decision], points: np.ndarray, ids: np.ndarray, boxes: Sequence[Box],
+                cloud: Box) -> list:
+    """Each tile's decision from `d`, the whole cloud's (a read of every point with the cloud's box as its core:
+    nothing open, no band): the samples in the tile's core, or None where its core holds no point, as
+    decide_widening gives. `points` and `ids`: every point, in id order."""
+    if d is not None and len(d.open_ids):
+        raise RuntimeError("the whole cloud's decision left points open")
+    at = np.searchsorted(ids, d.samples) if d is not None else None
+    parts, taken = [], 0
+    for b in boxes:
+        core = b.core_mask(points, cloud)
+        mine = None if d is None or not core.any() else dataclasses.replace(d, samples=d.samples[core[at]])
+        taken += 0 if mine is None else len(mine.samples)
+        parts.append(mine)
+    if d is not None and taken != len(d.samples):
+        raise RuntimeError("the tiles' cores do not partition the whole cloud's samples")
+    return parts
 
 
 def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,

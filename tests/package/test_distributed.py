@@ -126,6 +126,23 @@ def test_a_count_is_met_within_the_tolerance_by_the_radius_search(cloud, client,
     assert sorted(got["gps_time"].astype(np.int64)) == sorted(whole)
 
 
+@pytest.mark.parametrize("order", ["random", "prominence"])
+def test_a_count_whose_disks_span_most_tiles_reads_the_cloud_once(cloud, tmp_path, order):
+    """A small count: some tile's read would hold most of the cloud, so every tile's decision is the whole
+    cloud's. The job reads the cloud once, for the count search's pilot and its runs alike (not once per
+    tile), and gives one machine's samples."""
+    folder, points, records = cloud
+    with dist.local_cluster(2) as cluster, Client(cluster) as c:
+        index = dist.lod_files([str(folder)], tmp_path / "lod", count=40, tolerance=2.0, tile_points=2500,
+                               client=c, threads=1, visit_order=order)
+        reads = c.run(lambda: (0, 0) if dist._reads is None else (dist._reads.misses, dist._reads.hits))
+    assert len(index["tiles"]) >= 8
+    assert sum(m for m, _ in reads.values()) == 1 and sum(h for _, h in reads.values()) >= index["runs"]
+    whole = gl.poisson_lod(points, count=40, tolerance=2.0, visit_order=order)
+    assert index["radius"] == whole.radius
+    assert sorted(output_records(tmp_path / "lod")[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
+
+
 def two_roofs(n=24000, seed=4):
     """An open patch of two flat roofs at different heights, side by side: rims along its outline and the step."""
     rng = np.random.default_rng(seed)
@@ -739,11 +756,13 @@ def test_workers_without_memory_for_the_reads_load_them_from_the_work_folder(clo
             Client(cluster) as c:  # the workers' processes start with this process's config
         index = dist.lod_files([str(folder)], tmp_path / "lod", levels=["20%", "5%"], tolerance=2.0,
                                tile_points=6000, client=c, threads=1)
-        kept = c.run(lambda: (len(dist._reads.reads), dist._reads.loads, dist._reads.written))
+        kept = c.run(lambda: (0, 0, 0) if dist._reads is None else (len(dist._reads.reads), dist._reads.loads,
+                                                                       dist._reads.written))
         assert all(n == 0 for n, _, _ in kept.values()) and sum(loads for _, loads, _ in kept.values()) > 0
         written = sum(w for _, _, w in kept.values())
         dist.lod_files([str(folder)], tmp_path / "once", radius=RADIUS, tile_points=6000, client=c, threads=1)
-        assert sum(c.run(lambda: dist._reads.written).values()) == written  # one run: nothing to load again
+        wrote = c.run(lambda: 0 if dist._reads is None else dist._reads.written)
+        assert sum(wrote.values()) == written  # one run: nothing to load again
     levels = index["levels"]
     written = [t["file"] for lv in levels for t in lv["tiles"]]
     assert files_under(tmp_path / "lod") == sorted([dist.INDEX] + written)  # the work folder's reads gone
