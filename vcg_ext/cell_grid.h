@@ -52,6 +52,9 @@ class CellGrid {
     if (!pos.empty()) IndexColumns(CellOf(box.max));
   }
 
+  /// A cell's Morton key: its coordinates modulo 2^21, interleaved.
+  static uint64_t Key(const Cell& c) { return Spread(uint64_t(c[0])) | Spread(uint64_t(c[1])) << 1 | Spread(uint64_t(c[2])) << 2; }
+
   double CellSide() const { return h_; }
   /// Whether cells are found by column (IndexColumns) rather than by a search of the keys.
   bool ByColumns() const { return !colStart_.empty(); }
@@ -352,7 +355,6 @@ class CellGrid {
     v = (v | v >> 32) & 0x1fffff;
     return v;
   }
-  static uint64_t Key(const Cell& c) { return Spread(c[0]) | Spread(c[1]) << 1 | Spread(c[2]) << 2; }
 
   vcg::Point3d origin_;
   double h_ = 1;

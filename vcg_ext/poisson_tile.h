@@ -28,6 +28,7 @@
 #include <vector>
 #include <vcg/space/box3.h>
 #include "border_order.h"
+#include "cell_grid.h"
 #include "geodesic_domain.h"
 #include "pilot_radius.h"
 #include "poisson_disk.h"
@@ -117,16 +118,21 @@ class PoissonTile {
     // read's edge, are the whole cloud's.
     std::vector<double> toEdge(n);
     for (size_t i = 0; i < n; ++i) toEdge[i] = ToEdge(p, d.points.pos[i]);
-    const double exactFrom = ExactFrom(d, toEdge, p);
+    // The read is exact farther than `exactFrom` from its edge: beyond every
+    // point whose rows or key it may not hold whole.
     std::vector<char> flags(n);
     std::vector<uint64_t> pid(n);
+    double exactFrom = -std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < n; ++i) {
       const size_t row = size_t(d.points.vertIndex[i]);
       pid[i] = id[row];
       const bool may = !p.candidate || (*p.candidate)[row] != 0;
-      flags[i] = char((core[row] ? Core : 0) | (may ? Visit : 0) | (Bad(d, toEdge, i, p) ? 0 : KeyExact) |
-                      (toEdge[i] - radius > exactFrom ? DiskExact : 0));
+      const bool keyExact = Reach(d, i, KeyReach(p)) < toEdge[i];
+      if (!keyExact) exactFrom = std::max(exactFrom, toEdge[i]);
+      flags[i] = char((core[row] ? Core : 0) | (may ? Visit : 0) | (keyExact ? KeyExact : 0));
     }
+    for (size_t i = 0; i < n; ++i)
+      if (toEdge[i] - radius > exactFrom) flags[i] |= DiskExact;
     std::vector<int> order;
     if (p.order == VisitOrder::Random) {
       order = PriorityOrder(pid, p.seed);
@@ -338,17 +344,15 @@ class PoissonTile {
     }
 
    private:
-    // A cell's coordinates modulo 2^21 (CellGrid's keys): cells that share a
-    // key only add points to test.
+    // CellGrid's key (cells that share one only add points to test).
     uint64_t Key(const vcg::Point3<Scalar>& x, int a, int b, int c) const {
       const int d[3] = {a, b, c};
-      uint64_t key = 0;
+      typename CellGrid<Scalar>::Cell cell;
       for (int e = 0; e < 3; ++e) {
         const double q = std::floor((double(x[e]) - double(origin_[e])) / side_);
-        const int64_t k = int64_t(std::max(-0x1p62, std::min(q, 0x1p62))) + d[e];  // far cells: any key
-        key |= (uint64_t(k) & ((uint64_t(1) << 21) - 1)) << (21 * e);
+        cell[e] = int64_t(std::max(-0x1p62, std::min(q, 0x1p62))) + d[e];  // far cells: any key
       }
-      return key;
+      return CellGrid<Scalar>::Key(cell);
     }
     double side_;
     vcg::Point3<Scalar> origin_;
@@ -412,12 +416,11 @@ class PoissonTile {
     double m1 = 0;
     for (size_t i = 0; i < n; ++i)
       if (toCore[i] <= p.radius) m1 = std::max(m1, double(d.reach[i]));
-    const double keyReach = p.order != VisitOrder::Random ? p.keyScale : 0;  // a rank's R-ball
-    double need = p.radius + std::max(m1, keyReach);
+    double need = p.radius + std::max(m1, KeyReach(p));
     bool exact = need < p.halo;  // the rows that matter were all read
     for (size_t i = 0; i < n; ++i) {
       if (!(toCore[i] <= p.radius + m1)) continue;
-      const double reach = std::max(double(d.reach[i]), toCore[i] <= p.radius ? keyReach : 0.0);
+      const double reach = Reach(d, i, toCore[i] <= p.radius ? KeyReach(p) : 0.0);
       need = std::max(need, toCore[i] + reach);
       exact = exact && reach < ToEdge(p, d.points.pos[i]);
     }
@@ -432,21 +435,12 @@ class PoissonTile {
     return true;
   }
 
-  // Whether point i's rows (CheckHalo's reach) or, in a key order, its
-  // rank's ball reach the edge of the read: then they may not be the whole
-  // cloud's.
-  static bool Bad(const Domain& d, const std::vector<double>& toEdge, size_t i, const Param& p) {
-    const double keyReach = p.order != VisitOrder::Random ? p.keyScale : 0;
-    return !(std::max(double(d.reach[i]), keyReach) < toEdge[i]);
-  }
-  // The read is exact farther than this from its edge: beyond every Bad
-  // point. -inf where none is.
-  static double ExactFrom(const Domain& d, const std::vector<double>& toEdge, const Param& p) {
-    double from = -std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < d.size(); ++i)
-      if (Bad(d, toEdge, i, p)) from = std::max(from, toEdge[i]);
-    return from;
-  }
+  // How far a point's key reads: in a key order, its rank's R-ball.
+  static double KeyReach(const Param& p) { return p.order != VisitOrder::Random ? p.keyScale : 0; }
+  // How far point i's result reads: its rows (its kNN rows and the rows of
+  // their points, d.reach) or a `ball` around it. Where that is short of the
+  // read's edge, the result is the whole cloud's.
+  static double Reach(const Domain& d, size_t i, double ball) { return std::max(double(d.reach[i]), ball); }
 
   // Distance from x to the edge of the region read (open where the cloud ends).
   static double ToEdge(const Param& p, const vcg::Point3<Scalar>& x) {
