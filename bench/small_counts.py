@@ -1,7 +1,7 @@
 """Small LODs of a forest: the shared airborne tile lone-star.laz (518,862 points: trees, ground and
 stray returns, 58 connected parts of its neighbour graph) asked for a few dozen to a few thousand
 points, by our Python API (as the command runs a LAS file), by the command on a local cluster of two
-workers (in one tile, and in tiles of TILE_POINTS points), and by MeshLab's point cloud simplification
+workers (in one tile, and in tiles of each of TILINGS' sizes), and by MeshLab's point cloud simplification
 asked for the same count, side by side in one run. At such counts one disk may hold most of the cloud. Writes docs/small_counts.json and prints a
 Markdown table.
 
@@ -25,7 +25,7 @@ from quality_config import DATA
 from results import publish
 
 TILE = DATA / "lidar" / "lone-star.laz"
-TILE_POINTS = 200_000  # three tiles, whose disks span them at small counts
+TILINGS = {"tiled": 200_000, "fine": 20_000}  # three tiles and 34, whose disks span them at small counts
 
 
 def cluster_run(count: int, key: str, *options: str) -> dict:
@@ -62,15 +62,18 @@ def main():
         rows.append({"points": len(points), "count": count, "samples": len(lod.indices), "parts": lod.components,
                      "runs": lod.iterations, "radius": lod.radius, "ours_s": round(ours, 2),
                      **cluster_run(count, "cluster"),
-                     **cluster_run(count, "tiled", "--tile-points", str(TILE_POINTS)),
+                     **{k: v for key, n in TILINGS.items() for k, v in
+                        cluster_run(count, key, "--tile-points", str(n)).items()},
                      "meshlab_samples": ms.current_mesh().vertex_number(), "meshlab_s": round(meshlab, 2),
                      "load": round(load, 2)})
     publish("small_counts", rows, [("count asked", lambda r: f"{r['count']:,}"),
                                    ("ours (Poisson runs)", lambda r: f"{r['ours_s']:.1f} s ({r['runs']})"),
                                    ("the command, 2 workers (runs, its samples)",
                                     lambda r: f"{r['cluster_s']:.1f} s ({r['cluster_runs']}, {r['cluster_samples']:,})"),
-                                   (f"the same, tiles of {TILE_POINTS:,} points",
-                                    lambda r: f"{r['tiled_s']:.1f} s ({r['tiled_runs']}, {r['tiled_samples']:,})"),
+                                   *[(f"the same, tiles of {n:,} points",
+                                      lambda r, k=key: f"{r[k + '_s']:.1f} s ({r[k + '_runs']}, {r[k + '_samples']:,}, "
+                                                       f"{r[k + '_tiles']} tiles)")
+                                     for key, n in TILINGS.items()],
                                    ("MeshLab simplification (its samples)",
                                     lambda r: f"{r['meshlab_s']:.1f} s ({r['meshlab_samples']:,})"),
                                    ("load", lambda r: str(r["load"]))])
