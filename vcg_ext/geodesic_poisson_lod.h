@@ -172,7 +172,12 @@ class GeodesicPoissonLod {
     pp.radius = radius;
     pp.order = &order;
     PoissonDisk::Result r;
-    d.WithSearch([&](auto& search) { r = PoissonDisk::Compute(d.size(), search, pp, progress); });
+    d.WithSearch([&](auto& search) {
+      if (visit == VisitOrder::Random)
+        r = PoissonDisk::Compute(d.size(), search, pp, progress);
+      else  // neighbours one after another
+        r = PoissonDisk::Compute(d.size(), search, pp, progress, ApartBatches<Scalar>{&d.points.pos, d.CellSide()});
+    });
     return r;
   }
 
@@ -209,7 +214,12 @@ class GeodesicPoissonLod {
     // Its runs compute each edge's length as they go, as one run does: disks
     // skip most edges by their straight length, so kept weights (4 bytes an
     // arc) would cost memory and save no time.
-    d.WithSearch([&](auto& search) { r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress); });
+    d.WithSearch([&](auto& search) {
+      if (visit == VisitOrder::Random)
+        r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress);
+      else  // neighbours one after another
+        r = PoissonTargetCount::Compute<Scalar>(d.size(), search, tp, progress, ApartBatches<Scalar>{&d.points.pos, d.CellSide()});
+    });
     return r;
   }
 

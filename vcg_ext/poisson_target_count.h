@@ -242,8 +242,11 @@ class PoissonTargetCount {
 
   /// Search: a disk search and a distance propagator (BoundedDijkstra,
   /// FastMarching, EuclideanBall).
-  template <class Scalar, class Search>
-  static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr)) {
+  ///
+  /// `apart`: how the runs' walks cut their batches (PoissonDisk::Compute's).
+  template <class Scalar, class Search, class Apart = AnyBatches>
+  static Result Compute(size_t n, Search& search, const Param& p, Progress progress = Progress(nullptr),
+                        const Apart& apart = Apart()) {
     const size_t candidates = p.order->size();  // the points that may become samples
     if (p.sampleNum < 1 || p.sampleNum > candidates)
       throw InputError(Field::SampleNum, "must be between 1 and the number of points (" + Counted(candidates) +
@@ -254,7 +257,7 @@ class PoissonTargetCount {
       // Every point: the Poisson set at radius 0, each point its own disk, in one run (no positive
       // radius separates every point of a scan). Points at distance 0 (a mesh's repeated seam vertices)
       // share a disk: the search then goes on. A tolerance searches as a cluster does, which steps alike.
-      Trial every = Run(n, search, 0.0, *p.order, progress.Sub(0, 80.0 / std::max(1, p.maxIterations)));
+      Trial every = Run(n, search, 0.0, *p.order, progress.Sub(0, 80.0 / std::max(1, p.maxIterations)), apart);
       ++out.iterations;
       if (every.count == p.sampleNum) {
         out.samples = std::move(every.samples);
@@ -276,7 +279,8 @@ class PoissonTargetCount {
     const int phase = std::max(1, p.maxIterations);
     for (int it = 0; !steps.Done(); ++it) {
       cache.Keeping(it > 0 || pilot > 0);  // a guess's disks are seldom read again; the pilot's radius errs large
-      Trial t = Run(n, disks, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase));
+      Trial t = Run(n, disks, steps.Radius(), *p.order, progress.Sub(80.0 * it / phase, 80.0 * (it + 1) / phase),
+                    apart);
       ++out.iterations;
       switch (steps.Report(t.count, p.fewest && p.fewest(t.count))) {
         case RadiusSearch::Role::Accepted: accepted = std::move(t); break;
@@ -334,12 +338,13 @@ class PoissonTargetCount {
     std::vector<int> samples, owner;
   };
 
-  template <class Search>
-  static Trial Run(size_t n, Search& search, double r, const std::vector<int>& order, Progress progress) {
+  template <class Search, class Apart>
+  static Trial Run(size_t n, Search& search, double r, const std::vector<int>& order, Progress progress,
+                   const Apart& apart) {
     PoissonDisk::Param pp;
     pp.radius = r;
     pp.order = &order;
-    PoissonDisk::Result pr = PoissonDisk::Compute(n, search, pp, progress);
+    PoissonDisk::Result pr = PoissonDisk::Compute(n, search, pp, progress, apart);
     Trial t;
     t.radius = r;
     t.count = pr.samples.size();

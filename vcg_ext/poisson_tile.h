@@ -23,17 +23,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 #include <vcg/space/box3.h>
 #include "border_order.h"
-#include "cell_grid.h"
 #include "geodesic_domain.h"
 #include "pilot_radius.h"
 #include "poisson_disk.h"
 #include "priority_order.h"
 #include "prominence.h"
+#include "straight_reach.h"
 
 namespace vcg_ext {
 
@@ -175,7 +174,7 @@ class PoissonTile {
     // core's points are reported.
     std::vector<char> covered(n, 0), state(n, Out);
     Coverers coverers(n);
-    OpenCells opens(radius, n ? d.points.pos[0] : vcg::Point3<Scalar>(0, 0, 0));
+    StraightReach<Scalar> opens(radius, d.points.pos);  // the open points so far
     size_t settled = 0;
     // A core point one of whose open coverers dominates it is out for sure
     // (Coverers::Dominated) and takes no disk: otherwise a point that an
@@ -187,7 +186,7 @@ class PoissonTile {
       covered[i] = 2, ++settled;
       return true;
     };
-    auto makeOpen = [&](int i) { state[i] = Open, opens.Add(i, d.points.pos[size_t(i)]); };
+    auto makeOpen = [&](int i) { state[i] = Open, opens.Add(i); };
     // The points decided here with their disks: the core, or every point
     // where the read holds them all.
     auto decidedHere = [&](int i) { return p.readsAll || (flags[size_t(i)] & Core); };
@@ -215,7 +214,7 @@ class PoissonTile {
               // the read is not exact. A sample covers core points, which
               // then take no disk; an open one is found by the core points
               // it may cover in their own disks, searched anyway.
-              if (!(flags[size_t(i)] & DiskExact) || opens.AnyWithin(d.points.pos, i)) return makeOpen(i);
+              if (!(flags[size_t(i)] & DiskExact) || opens.AnyWithin(i)) return makeOpen(i);
               state[i] = In;
               disk.clear();
               halo.Visit(i, radius, [&](int j, double) { disk.push_back(j); });
@@ -240,7 +239,8 @@ class PoissonTile {
               coverers.Add(j, i);
             }
           },
-          [&] { return settled; }, progress);
+          [&] { return settled; }, progress,
+          ApartBatches<Scalar>{&d.points.pos, p.order == VisitOrder::Random ? std::numeric_limits<double>::infinity() : p.keyCellSide});
     });
     for (size_t i = 0; i < n; ++i) {
       if (!(flags[i] & Core)) continue;
@@ -322,42 +322,6 @@ class PoissonTile {
   // are exact (the others are open, and no exact disk reaches them).
   static bool Keyed(char f) { return (f & Visit) && (f & KeyExact); }
 
-  // The open points so far (all before the point being taken) in cells of
-  // side r: whether one lies within r of a point in a straight line (no
-  // weighted path is shorter: a superset of its disk's, with room for the
-  // rounding of the paths' sums). Cost: the open points in 27 cells.
-  class OpenCells {
-   public:
-    OpenCells(double r, const vcg::Point3<Scalar>& origin) : side_(r > 0 ? r * (1 + 1e-6) : 1), origin_(origin) {}
-    void Add(int i, const vcg::Point3<Scalar>& x) { cells_[Key(x, 0, 0, 0)].push_back(i); }
-    bool AnyWithin(const std::vector<vcg::Point3<Scalar>>& pos, int i) const {
-      const vcg::Point3<Scalar>& x = pos[size_t(i)];
-      for (int a = -1; a <= 1; ++a)
-        for (int b = -1; b <= 1; ++b)
-          for (int c = -1; c <= 1; ++c) {
-            const auto it = cells_.find(Key(x, a, b, c));
-            if (it == cells_.end()) continue;
-            for (int j : it->second)
-              if (double(vcg::Distance(pos[size_t(j)], x)) <= side_) return true;
-          }
-      return false;
-    }
-
-   private:
-    // CellGrid's key (cells that share one only add points to test).
-    uint64_t Key(const vcg::Point3<Scalar>& x, int a, int b, int c) const {
-      const int d[3] = {a, b, c};
-      typename CellGrid<Scalar>::Cell cell;
-      for (int e = 0; e < 3; ++e) {
-        const double q = std::floor((double(x[e]) - double(origin_[e])) / side_);
-        cell[e] = int64_t(std::max(-0x1p62, std::min(q, 0x1p62))) + d[e];  // far cells: any key
-      }
-      return CellGrid<Scalar>::Key(cell);
-    }
-    double side_;
-    vcg::Point3<Scalar> origin_;
-    std::unordered_map<uint64_t, std::vector<int>> cells_;
-  };
 
   // Each core point's coverers (the points taken before it, open, whose disks
   // hold it), and the test that one of them settles it.

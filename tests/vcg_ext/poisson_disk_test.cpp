@@ -54,18 +54,22 @@ std::pair<std::vector<int>, std::vector<int>> PlainWalk(const Domain& d, const s
   return {samples, owner};
 }
 
-// A disk search that counts the points its searches report (in `reached`, shared by its copies).
+// A disk search that counts the points its searches report (in `reached`, shared by its copies) and,
+// where given, the disks searched.
 template <class Search>
 struct Counting {
   typedef typename Search::PruneDistance PruneDistance;
   Search search;
-  std::atomic<size_t>* reached;
+  std::atomic<size_t>* reached;          // the points the disks reach
+  std::atomic<size_t>* disks = nullptr;  // the disks searched
   template <class R, class F>
   void Visit(int src, R r, F&& f) {
+    if (disks) ++*disks;
     search.Visit(src, r, [&](int i, PruneDistance di) { ++*reached, f(i, di); });
   }
   template <class R, class B, class F>
   void VisitBeyond(int src, R r, const B* below, F&& f) {
+    if (disks) ++*disks;
     search.VisitBeyond(src, r, below, [&](int i, PruneDistance di) { ++*reached, f(i, di); });
   }
 };
@@ -322,6 +326,46 @@ TEST(PoissonDisk, DisksAfterSmallOnesSearchEachPointAFewTimes) {
     });
     EXPECT_EQ(got.samples, plain.first) << threads << " threads";
     EXPECT_LE(double(reached), 32.0 * double(d.size())) << threads << " threads";
+  }
+}
+
+// An order that visits neighbours one after another, row by row (as a key
+// order follows a ridge): a batch of the next candidates holds points the
+// first one's disk covers, whose disks are searched and dropped. Batches kept
+// apart (ApartBatches) search the samples' disks only, and give the same
+// samples, on any thread count.
+TEST(PoissonDisk, BatchesKeptApartSearchOnlyTheSamplesDisks) {
+  SKIP_WITHOUT_OPENMP();
+  test::TMesh m;
+  test::Plane(m, 80);
+  const Domain d = Build(m, Metric::Geodesic);
+  std::vector<int> order(d.size());
+  for (size_t i = 0; i < d.size(); ++i) order[i] = int(i);
+  const auto& pos = d.points.pos;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::make_pair(pos[size_t(a)][1], pos[size_t(a)][0]) < std::make_pair(pos[size_t(b)][1], pos[size_t(b)][0]);
+  });
+  vcg_ext::PoissonDisk::Param pp;
+  pp.radius = 0.12;
+  pp.order = &order;
+  const vcg_ext::ApartBatches<float> apartBatches{&d.points.pos, d.CellSide()};
+  ASSERT_TRUE(apartBatches.At(pp.radius).Active()) << "disks wide enough for batches kept apart";
+  const auto plain = PlainWalk(d, order, pp.radius);
+  for (int threads : {2, 3}) {
+    std::atomic<size_t> reached{0}, any{0}, apart{0};
+    vcg_ext::PoissonDisk::Result gotAny, gotApart;
+    test::OnThreads(threads, [&] {
+      Counting<vcg_ext::BoundedDijkstra<float>> a{vcg_ext::BoundedDijkstra<float>(d.graph, d.Lengths()), &reached, &any};
+      gotAny = vcg_ext::PoissonDisk::Compute(d.size(), a, pp);
+      Counting<vcg_ext::BoundedDijkstra<float>> b{vcg_ext::BoundedDijkstra<float>(d.graph, d.Lengths()), &reached,
+                                                  &apart};
+      gotApart = vcg_ext::PoissonDisk::Compute(d.size(), b, pp, vcg_ext::Progress(nullptr),
+                                               apartBatches);
+    });
+    EXPECT_EQ(gotAny.samples, plain.first) << threads << " threads";
+    EXPECT_EQ(gotApart.samples, plain.first) << threads << " threads";
+    EXPECT_GT(size_t(any), plain.first.size()) << threads << " threads: batches as the order gives them";
+    EXPECT_EQ(size_t(apart), plain.first.size()) << threads << " threads";
   }
 }
 
