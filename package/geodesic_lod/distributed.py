@@ -155,9 +155,26 @@ def _reads_whole(job: Job, boxes) -> bool:
     return any(tiles.reads_whole(b, job.cloud, job.halo, _share(job, b.outer(job.cloud))) for b in boxes)
 
 
-def _placed(where: dict, k) -> dict:
-    """A task's placement: on the worker that last ran task `k` of the job (and keeps its read), if it is free."""
-    return {"workers": where[k], "allow_other_workers": True} if k in where else {}
+def _submit_whole(client, fn, job: Job, where: dict, *args):
+    """Submits a run's whole-cloud task fn(job, *args) where _placed puts it, with the threads of every worker
+    on that worker's machine (the run's only task: theirs would idle; the samples are the same on any
+    number). On one worker, its threads."""
+    workers = client.scheduler_info()["workers"]
+    placement = _placed(where, WHOLE, workers)
+    if job.threads is not None and placement:
+        host = workers[placement["workers"][0]]["host"]
+        job = dataclasses.replace(job, threads=job.threads * sum(w["host"] == host for w in workers.values()))
+    return client.submit(fn, job, *args, pure=False, **placement)
+
+
+def _placed(where: dict, k, workers) -> dict:
+    """A task's placement among the cluster's `workers` (addresses): on the worker that last ran task `k` of
+    the job (and keeps its read), else for the whole cloud's task the first, if it is free; none where there
+    is one worker, or that one is gone. Dask keeps a task bound to workers that are all gone waiting for
+    them, other workers allowed or not, if none was running when they went (a lone worker past its memory
+    limit)."""
+    mine = [w for w in where.get(k) or (sorted(workers)[:1] if k == WHOLE else []) if w in workers]
+    return {"workers": mine, "allow_other_workers": True} if mine and len(workers) > 1 else {}
 
 
 def _share(job: Job, outer: tiles.Box):
@@ -397,11 +414,13 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     read), where its task goes again if that worker is free, updated."""
     start = time.perf_counter()
     if _reads_whole(job, boxes):
-        whole = client.submit(decide_whole, job, boxes, pure=False, **_placed(where, WHOLE))
+        whole = _submit_whole(client, decide_whole, job, where, boxes)
         _wait(client, {WHOLE: whole}, ticks, where)
         decisions = [client.submit(operator.getitem, whole, k, pure=False) for k in range(len(boxes))]
     else:
-        decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k)) for k, b in enumerate(boxes)]
+        workers = client.scheduler_info()["workers"]
+        decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k, workers))
+                     for k, b in enumerate(boxes)]
         _wait(client, dict(enumerate(decisions)), ticks, where)
     decided = time.perf_counter()
     parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
@@ -458,9 +477,10 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
     if _reads_whole(job, boxes):
-        tasks = {WHOLE: client.submit(pilot_whole, job, radius, below, pure=False, **_placed(where, WHOLE))}
+        tasks = {WHOLE: _submit_whole(client, pilot_whole, job, where, radius, below)}
     else:
-        tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k))
+        workers = client.scheduler_info()["workers"]
+        tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k, workers))
                  for k, b in enumerate(boxes)}
     _wait(client, tasks, ticks, where)
     got = [p for p in worker_check.gather(client, list(tasks.values())) if p is not None]

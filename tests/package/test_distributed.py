@@ -1,6 +1,7 @@
 """Many LAZ files sampled as one cloud on Dask: exactly the single-machine samples for several tilings and
 seeds, on a local cluster, on a real scheduler and workers (127.0.0.1), and with a worker killed in the
 middle; records bit-identical; files that cannot go together refused naming the file."""
+import dataclasses
 import json
 import os
 import pathlib
@@ -141,6 +142,35 @@ def test_a_count_whose_disks_span_most_tiles_reads_the_cloud_once(cloud, tmp_pat
     whole = gl.poisson_lod(points, count=40, tolerance=2.0, visit_order=order)
     assert index["radius"] == whole.radius
     assert sorted(output_records(tmp_path / "lod")[1]["gps_time"].astype(np.int64)) == sorted(whole.indices)
+
+
+def test_a_runs_whole_cloud_task_takes_the_threads_of_the_workers_on_its_machine():
+    """The whole cloud's task is its run's only one: it goes where the last one ran (its read kept there), else to
+    the first worker, with the threads of every worker on that machine (theirs would idle). It is bound to no
+    worker that is gone, nor to a lone worker: Dask would keep it waiting for that worker if it went."""
+    workers = {"tcp://a:1": {"host": "a"}, "tcp://a:2": {"host": "a"}, "tcp://b:1": {"host": "b"}}
+
+    class Client:
+        def __init__(self, workers):
+            self.workers = workers
+
+        def scheduler_info(self):
+            return {"workers": self.workers}
+
+        def submit(self, fn, job, *args, **placement):
+            return fn, job, args, placement
+
+    job = dist.Job(srcs=[], cloud=None, radius=1.0, seed=0, domain={}, threads=3, halo=1.0, cells=None)
+    fn, got, args, placement = dist._submit_whole(Client(workers), dist.decide_whole, job, {}, "boxes")
+    assert fn is dist.decide_whole and args == ("boxes",) and got.threads == 6
+    assert placement == {"workers": ["tcp://a:1"], "allow_other_workers": True, "pure": False}
+    _, got, _, placement = dist._submit_whole(Client(workers), dist.pilot_whole, job, {dist.WHOLE: ["tcp://b:1"]})
+    assert got.threads == 3 and placement["workers"] == ["tcp://b:1"]
+    _, got, _, _ = dist._submit_whole(Client(workers), dist.decide_whole, dataclasses.replace(job, threads=None), {})
+    assert got.threads is None  # all of a worker's cores already
+    for left, where in (({"tcp://a:1": {"host": "a"}}, {}), (workers, {dist.WHOLE: ["tcp://c:1"]})):
+        _, got, _, placement = dist._submit_whole(Client(left), dist.decide_whole, job, where)
+        assert got.threads == 3 and placement == {"pure": False}
 
 
 def two_roofs(n=24000, seed=4):
