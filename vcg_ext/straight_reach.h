@@ -24,7 +24,6 @@ class StraightReach {
       : side_(r > 0 ? r * (1 + 1e-6) : 1), origin_(pos.empty() ? Coord(0, 0, 0) : pos[0]), pos_(&pos) {}
   void Add(int i) { cells_[Key((*pos_)[size_t(i)], 0, 0, 0)].push_back(i); }
   void Clear() { cells_.clear(); }
-  bool Empty() const { return cells_.empty(); }
   /// Whether a point added lies within r of point i.
   bool AnyWithin(int i) const {
     if (cells_.empty()) return false;
