@@ -170,9 +170,8 @@ def _submit_whole(client, fn, job: Job, where: dict, *args):
 def _placed(where: dict, k, workers) -> dict:
     """A task's placement among the cluster's `workers` (addresses): on the worker that last ran task `k` of
     the job (and keeps its read), else for the whole cloud's task the first, if it is free; none where there
-    is one worker, or that one is gone. Dask keeps a task bound to workers that are all gone waiting for
-    them, other workers allowed or not, if none was running when they went (a lone worker past its memory
-    limit)."""
+    is one worker (nothing to choose), or that one is gone. A task whose workers are all lost at once is
+    started elsewhere by the job's wait (worker_check.start_stranded)."""
     mine = [w for w in where.get(k) or (sorted(workers)[:1] if k == WHOLE else []) if w in workers]
     return {"workers": mine, "allow_other_workers": True} if mine and len(workers) > 1 else {}
 

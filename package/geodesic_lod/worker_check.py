@@ -6,13 +6,15 @@ ever on tasks no worker runs. During the job, ``completed`` and ``gather`` wait 
 to start its worker again, or start one that is stopped at once), where every worker stays paused (memory
 not the tasks' results past Dask's pause threshold), nor where the client's results are lost
 with their workers again and again (a worker stopped between tasks, its results computed again by the next
-one, stopped too: Dask's KilledWorker counts only tasks lost while they run). A job stopped or failed
+one, stopped too: Dask's KilledWorker counts only tasks lost while they run). A task bound to workers that
+were all lost at once is started on the others (Dask would leave it waiting). A job stopped or failed
 ``settle``s its tasks before it clears its files.
 """
 from __future__ import annotations
 
 import logging
 import time
+import types
 from collections import Counter
 from contextlib import contextmanager
 from typing import Optional
@@ -141,6 +143,7 @@ class _Watch:
                               f"Dask's pause threshold ({pause:.0%} of their limit), while the job's tasks waited")
         if workers:
             self.alone_since = None
+            self._start_stranded()
             return
         if self.alone_since is None:
             self.alone_since = now
@@ -150,6 +153,12 @@ class _Watch:
                 raise WorkersLost(f"the cluster's last worker was lost during the job (it stopped unexpectedly, as "
                                   f"its nanny stops one past its memory limit) and none joined within "
                                   f"{LOST_WORKER_WAIT:g} s")
+
+    def _start_stranded(self) -> None:
+        try:
+            self.client.run_on_scheduler(_pickled_whole(start_stranded), self.client.id)
+        except Exception:  # another version of Dask on the scheduler: Dask's way
+            pass
 
     def _count_losses(self) -> None:
         import dask
@@ -162,6 +171,27 @@ class _Watch:
         if times > dask.config.get("distributed.scheduler.allowed-failures", 3):
             raise WorkersLost(f"the job's results were lost with their worker {times} times (it stopped "
                               f"unexpectedly, as its nanny stops one past its memory limit)")
+
+
+def start_stranded(client: str, dask_scheduler=None) -> int:
+    """On the scheduler: starts the tasks of `client` bound to workers (`allow_other_workers`) that are all
+    gone, while others run; how many. Dask leaves such a task waiting for its workers if none ran as they
+    went (every worker lost at once: a memory limit's nannies start them again under new addresses), and
+    starts on a worker that joins only the waiting tasks it is allowed: the job would wait for ever."""
+    s = dask_scheduler
+    if not s.running:
+        return 0
+    stranded = [ts.key for ts in s.unrunnable
+                if ts.loose_restrictions and any(c.client_key == client for c in ts.who_wants or ())]
+    if stranded:
+        s.transitions({k: "processing" for k in stranded}, stimulus_id=f"start-stranded-{time.time()}")
+    return len(stranded)
+
+
+def _pickled_whole(fn):
+    """A copy of module function `fn` that Dask pickles with its code, not by its name: a scheduler need not
+    have geodesic_lod installed."""
+    return types.FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__, fn.__closure__)
 
 
 def completed(client, futures):

@@ -2,7 +2,9 @@
 again (a worker stopped by its nanny between tasks, its results computed again by the next, stopped too:
 Dask's KilledWorker counts only tasks lost while running), nor where every worker stays paused."""
 import itertools
+import os
 import pathlib
+import signal
 import time
 
 import dask
@@ -97,3 +99,42 @@ def test_the_readme_gives_the_waits_these_are():
     readme = (pathlib.Path(__file__).parents[2] / "README.md").read_text()
     assert f"none joins within {worker_check.LOST_WORKER_WAIT:g} s" in readme
     assert f"stays paused for {worker_check.PAUSED_WAIT:g} s" in readme
+
+
+def test_a_task_bound_to_workers_all_lost_at_once_runs_on_the_workers_started_again():
+    """Dask keeps a task bound to workers (`allow_other_workers`) waiting for them once they are all gone,
+    if no worker ran as they went, and starts no such task on a worker that joins: the job would wait for
+    ever. Both workers of the cluster are lost while the task runs on one; their nannies start them again."""
+    import threading
+    from dask.distributed import Client
+    from geodesic_lod import distributed as dist
+    with dist.local_cluster(2) as cluster, Client(cluster) as c:
+        first = sorted(c.scheduler_info()["workers"])[0]
+        task = c.submit(time.sleep, 3, workers=[first], allow_other_workers=True, pure=False)
+        deadline = time.monotonic() + 30
+        while first not in {w for w, keys in c.processing().items() if task.key in keys}:
+            assert time.monotonic() < deadline, "the task never started"
+            time.sleep(0.05)
+        time.sleep(0.5)  # running, not only sent
+        for pid in c.run(os.getpid).values():  # both at once, as a memory limit's nanny stops a worker
+            os.kill(pid, signal.SIGKILL)
+        waiter = threading.Thread(target=lambda: list(worker_check.completed(c, [task])), daemon=True)
+        waiter.start()
+        waiter.join(60)
+        stranded = waiter.is_alive()
+        task.cancel()  # ends a waiter still waiting
+        waiter.join(10)
+        assert not stranded, "the task bound to the lost workers never ran"
+        assert task.status == "cancelled" or task.status == "finished"
+
+
+def test_the_function_that_starts_stranded_tasks_needs_no_geodesic_lod_on_the_scheduler(tmp_path):
+    import subprocess
+    import sys
+    from distributed.protocol import pickle
+    (tmp_path / "f.pkl").write_bytes(pickle.dumps(worker_check._pickled_whole(worker_check.start_stranded)))
+    loads = ("import sys; sys.modules['geodesic_lod'] = None; from distributed.protocol import pickle; "
+             f"f = pickle.loads(open({str(tmp_path / 'f.pkl')!r}, 'rb').read()); "
+             "print(f(client='c', dask_scheduler=type('S', (), {'running': set()})()))")
+    out = subprocess.run([sys.executable, "-c", loads], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and out.stdout.strip() == "0", out.stderr
