@@ -134,10 +134,7 @@ def decide_tile(job: Job, box: tiles.Box) -> Optional[tiles.Decision]:
 def decide_whole(job: Job, boxes: list) -> list:
     """A Dask task: the whole cloud's decision, read once (its read kept as decide_tile keeps a tile's), as each
     tile's (tiles.split_whole): for a run in which some tile would read every point."""
-    args = _tile_arguments(job, job.cloud)
-    d = tiles.decide_widening(radius=job.radius, order=job.order, **args)
-    points, _, ids = args["read"](0.0)
-    return tiles.split_whole(d, points, ids, boxes, job.cloud)
+    return tiles.decide_whole(boxes=boxes, radius=job.radius, order=job.order, **_tile_arguments(job, job.cloud))
 
 
 @give_back

@@ -409,16 +409,31 @@ def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, hal
     instead of reading, and a new one kept (in memory, or in the job's work `folder`); share(halo), when
     given, at least the share of the cloud's points a read of that halo holds (read_tile). None when the
     tile's core holds no point."""
+    return _decided(read, box=box, cloud=cloud, halo=halo, domain=domain, radius=radius, seed=seed,
+                    candidates=candidates, threads=threads, order=order, reads=reads, job=job, tile=tile,
+                    folder=folder, share=share)[0]
+
+
+def decide_whole(read: Callable[[float], tuple], *, boxes: Sequence[Box], **args) -> list:
+    """Each of the `boxes`' decisions from the whole cloud's (split_whole), read once: decide_widening's
+    arguments `args`, their box the cloud's."""
+    d, t = _decided(read, **args)
+    return split_whole(d, t, boxes, args["cloud"], lambda: read(0.0)[0])
+
+
+def _decided(read, *, box: Box, cloud: Box, halo: float, domain, radius: float, seed: int = 0, candidates=None,
+             threads=None, order: Order = RANDOM, reads=None, job=None, tile=None, folder=None, share=None) -> tuple:
+    """decide_widening's decision and the read it was made on; (None, None) when the core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
                       tile=tile, folder=folder, share=share)
         if t is None:
-            return None
+            return None, None
         may = None if candidates is None else candidates(t.ids, t.halo)
         d, halo = decide(t, radius=radius, box=box.outer(cloud), cloud=cloud, seed=seed, candidate=may,
                          threads=threads, order=order)
         if d is not None:
-            return d
+            return d, t
 
 
 def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, threads: Optional[int],
@@ -470,23 +485,32 @@ def reads_whole(box: Box, cloud: Box, halo: float, share: Optional[Callable[[flo
     return halo >= whole_halo(box, cloud) or (share is not None and share(halo) >= WHOLE_READ_SHARE)
 
 
-def split_whole(d: Optional[Decision], points: np.ndarray, ids: np.ndarray, boxes: Sequence[Box],
-                cloud: Box) -> list:
-    """Each tile's decision from `d`, the whole cloud's (a read of every point with the cloud's box as its core:
-    nothing open, no band): the samples in the tile's core, or None where its core holds no point, as
-    decide_widening gives. `points` and `ids`: every point, in id order."""
-    if d is not None and len(d.open_ids):
+def split_whole(d: Optional[Decision], t: Optional[TileRead], boxes: Sequence[Box], cloud: Box,
+                points: Callable[[], np.ndarray]) -> list:
+    """Each tile's decision from `d`, the whole cloud's made on the read `t` (every point, the cloud's box as
+    its core: nothing open, no band): the samples in the tile's core, or None where its core holds no point,
+    as decide_widening gives. The samples' positions are the domain's; points() gives every point (in id
+    order), read only where a core holds no sample, to tell whether it holds a point."""
+    if d is None:
+        return [None] * len(boxes)
+    if len(d.open_ids):
         raise RuntimeError("the whole cloud's decision left points open")
-    at = np.searchsorted(ids, d.samples) if d is not None else None
-    parts, taken = [], 0
+    parts = _core.tile_domain_arrays(t.domain)
+    domain_index = np.full(len(t.ids), -1, np.int64)  # per point read, its domain point (a repeat has none)
+    domain_index[parts["vert_index"]] = np.arange(len(parts["vert_index"]))
+    at = parts["pos"][domain_index[np.searchsorted(t.ids, d.samples)]]  # a sample is never a repeat
+    split, taken, every = [], 0, None
     for b in boxes:
-        core = b.core_mask(points, cloud)
-        mine = None if d is None or not core.any() else dataclasses.replace(d, samples=d.samples[core[at]])
+        core = b.core_mask(at, cloud)
+        if not core.any():
+            every = points() if every is None else every
+            core = core if b.core_mask(every, cloud).any() else None
+        mine = None if core is None else dataclasses.replace(d, samples=d.samples[core])
         taken += 0 if mine is None else len(mine.samples)
-        parts.append(mine)
-    if d is not None and taken != len(d.samples):
+        split.append(mine)
+    if taken != len(d.samples):
         raise RuntimeError("the tiles' cores do not partition the whole cloud's samples")
-    return parts
+    return split
 
 
 def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,

@@ -162,6 +162,29 @@ def tile_domain_param(p):
     return domain
 
 
+@pytest.mark.parametrize("radius", [0.3, 0.9])
+def test_the_whole_clouds_decision_split_among_the_tiles_is_each_tiles_own(radius):
+    # A sphere in 3 x 3 x 3 tiles: the middle one holds no point, and at wide disks some hold points but no
+    # sample; repeated points among them.
+    p = uneven(6000)
+    cloud = tiles.Box(p.min(axis=0), p.max(axis=0))
+    boxes = tiles.grid_tiles(cloud, (3, 3, 3))
+    ids = np.arange(len(p), dtype=np.uint64)
+    domain = tile_domain_param(p)
+    args = dict(cloud=cloud, halo=10.0, domain=domain, radius=radius, threads=None, reads=None, job=None, tile=None,
+                folder=None)
+
+    def read(halo, box=cloud):
+        m = np.all((p >= box.outer(cloud).lo - halo) & (p <= box.outer(cloud).hi + halo), axis=1)
+        return p[m], None, ids[m]
+
+    split = tiles.decide_whole(read, boxes=boxes, box=cloud, **args)
+    own = [tiles.decide_widening(lambda halo, b=b: read(halo, b), box=b, **args) for b in boxes]
+    assert [d is None for d in split] == [d is None for d in own]
+    assert all(np.array_equal(d.samples, e.samples) for d, e in zip(split, own) if d is not None)
+    assert None in own and (radius < 0.5 or any(d is not None and not len(d.samples) for d in own))
+
+
 @pytest.mark.parametrize("kind", ["rims", "prominence"])
 def test_a_key_orders_keys_kept_on_a_read_serve_the_later_runs_on_it(kind):
     # A tile's keys, computed by one run (every point's whose key the read holds), serve the later runs in
