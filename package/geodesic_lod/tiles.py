@@ -461,7 +461,7 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
                 if len(e.args) != 2 or e.args[0] != "Points":
                     raise
                 problem = e.args[1]
-        whole = bool(np.all(box.lo - halo <= cloud.lo) and np.all(box.hi + halo >= cloud.hi))
+        whole = halo >= whole_halo(box, cloud)
         if problem:  # a stray point, or a pile of one point's copies, far from the rest: read further
             if whole:
                 raise InputError(f"the cloud {problem}")
