@@ -144,6 +144,7 @@ def pilot_whole(job: Job, radius: float, below: int) -> Optional[tuple]:
 
 
 WHOLE = "whole"  # the whole cloud's task's key in a run's `where`
+WHOLE_TASKS = (decide_whole.__name__, pilot_whole.__name__)  # the tasks reading every point at once
 
 
 def _reads_whole(job: Job, boxes) -> bool:
@@ -354,7 +355,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # a cluster takes every order one machine takes
-    with worker_check.tiles_lost(tile_points):
+    with worker_check.tiles_lost(tile_points, WHOLE_TASKS):
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs, visit_order=visit_order), seed, adaptivity, domain,
                           tile_points, client, threads, progress)

@@ -524,8 +524,8 @@ def test_a_rerun_into_the_same_folder_leaves_only_its_own_tiles(cloud, client, t
     check_equal(tmp_path / "lod", points, records, 0)
 
 
-def dying(client):
-    """The client as it answers when a tile's worker keeps dying (Dask's KilledWorker)."""
+def dying(client, task=dist.decide_tile):
+    """The client as it answers when the worker of a `task` keeps dying (Dask's KilledWorker)."""
     from dask.distributed import KilledWorker
 
     class Dying:
@@ -533,8 +533,8 @@ def dying(client):
             return getattr(client, name)
 
         def submit(self, fn, *args, **kw):
-            if fn is dist.decide_tile:
-                raise KilledWorker("decide_tile-0", "tcp://127.0.0.1:1", 3)
+            if fn is task:
+                raise KilledWorker(f"{task.__name__}-0", "tcp://127.0.0.1:1", 3)
             return client.submit(fn, *args, **kw)
     return Dying()
 
@@ -543,6 +543,15 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
     with pytest.raises(gl.ClusterJobError, match=r"a tile's task \(decide_tile\) was lost with its worker several "
                                                  "times: a worker's memory may be too small for tiles of 6000 points"):
         dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=6000, client=dying(client))
+
+
+@pytest.mark.parametrize("task", [dist.decide_whole, dist.pilot_whole])
+def test_a_whole_cloud_task_lost_again_and_again_asks_for_memory_not_smaller_tiles(cloud, client, tmp_path, task):
+    # Disks spanning most tiles: every point is read in one task, whatever the tile size.
+    with pytest.raises(gl.ClusterJobError) as e:
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", count=20, tile_points=6000, client=dying(client, task))
+    assert e.value.problem.startswith(f"the whole cloud's task ({task.__name__}) was lost with its worker")
+    assert not e.value.lower_tiles and "give workers more memory" in str(e.value)
 
 
 def test_a_cluster_jobs_advice_names_the_commands_options(cloud, client, tmp_path):
