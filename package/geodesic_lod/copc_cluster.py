@@ -29,7 +29,7 @@ from .task_memory import give_back
 from .copc_files import (FINEST_BITS, MAX_DEPTH, Octree, assemble, compress_nodes, copc_format, copc_records,
                          merge_stats, nodes_of, record_stats)
 from .distributed import (Job, Ticks, _ids_file, cluster_choices, domain_fields, finer_samples, forget_reads,
-                          poisson_run, write_tile, WHOLE_TASKS)
+                          poisson_run, write_tile)
 from .octree import cell_shift, deep_enough, node_shift, packed, runs, sorted_codes
 from .worker_check import check_worker_memory
 
@@ -185,7 +185,7 @@ def copc_file(inputs: Sequence[str], output, *, seed: int = 0, metric: str = arr
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # the orders one machine takes
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
-    with worker_check.tiles_lost(tile_points, WHOLE_TASKS):
+    with worker_check.tiles_lost(tile_points):
         return _copc_job(paths, output, seed, domain, visit_order, tile_points, client, threads, progress, overwrite)
 
 

@@ -27,6 +27,7 @@ import operator
 import os
 import pathlib
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Optional, Sequence
 
@@ -144,13 +145,40 @@ def pilot_whole(job: Job, radius: float, below: int) -> Optional[tuple]:
 
 
 WHOLE = "whole"  # the whole cloud's task's key in a run's `where`
-WHOLE_TASKS = (decide_whole.__name__, pilot_whole.__name__)  # the tasks reading every point at once
 
 
 def _reads_whole(job: Job, boxes) -> bool:
     """Whether some tile of a run would read every point (tiles.reads_whole): every tile's decision is then
     the whole cloud's, made once."""
     return any(tiles.reads_whole(b, job.cloud, job.halo, _share(job, b.outer(job.cloud))) for b in boxes)
+
+
+def _reads_whole_at_any_size(job: Job, boxes) -> bool:
+    """Whether some tile of a run would read every point even shrunk to its centre: a tile of any size there
+    reads at least as much, so smaller tiles would not keep the run from reading every point in one task."""
+    for b in boxes:
+        c = (np.maximum(b.lo, job.cloud.lo) + np.minimum(b.hi, job.cloud.hi)) / 2
+        centre = tiles.Box(c, c)
+        if tiles.reads_whole(centre, job.cloud, job.halo, _share(job, centre)):
+            return True
+    return False
+
+
+@contextmanager
+def _whole_lost(job: Job, boxes):
+    """A run's task, or its result, lost with its worker again and again (Dask's KilledWorker) as a
+    ClusterJobError naming the whole cloud where tiles of any size would read it in one task
+    (_reads_whole_at_any_size); else as it is (worker_check.tiles_lost names the tile size)."""
+    from dask.distributed import KilledWorker
+    try:
+        yield
+    except KilledWorker as e:
+        if not _reads_whole_at_any_size(job, boxes):
+            raise
+        kind = str(e.task).split("-")[0]  # Dask's key less its unique token
+        raise ClusterJobError(f"the whole cloud's task ({kind}) was lost with its worker several times: a worker's "
+                              f"memory may be too small for every point at once, which the run reads in one task "
+                              f"at any tile size (its disks span most of the cloud)") from None
 
 
 def _submit_whole(client, fn, job: Job, where: dict, *args):
@@ -355,7 +383,7 @@ def lod_files(inputs: Sequence[str], out_dir, *, radius=None, count: Optional[in
     domain = domain_fields(metric, adaptivity)
     tile_points = tile_points_.checked(tile_points)
     arrays._choice(visit_order, arrays.VISIT_ORDERS, "visit_order")  # a cluster takes every order one machine takes
-    with worker_check.tiles_lost(tile_points, WHOLE_TASKS):
+    with worker_check.tiles_lost(tile_points):
         return _lod_files(paths, out, dict(radius=radius, count=count, rate=rate, levels=levels, tolerance=tolerance,
                                            max_runs=max_runs, visit_order=visit_order), seed, adaptivity, domain,
                           tile_points, client, threads, progress)
@@ -410,20 +438,22 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     """One Poisson run over every tile; `where`: per tile, the worker that last decided it (and keeps its
     read), where its task goes again if that worker is free, updated."""
     start = time.perf_counter()
-    if _reads_whole(job, boxes):
-        whole = _submit_whole(client, decide_whole, job, where, boxes)
-        _wait(client, {WHOLE: whole}, ticks, where)
-        decisions = [client.submit(operator.getitem, whole, k, pure=False) for k in range(len(boxes))]
-    else:
-        workers = client.scheduler_info()["workers"]
-        decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k, workers))
-                     for k, b in enumerate(boxes)]
-        _wait(client, dict(enumerate(decisions)), ticks, where)
-    decided = time.perf_counter()
-    parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
+    with _whole_lost(job, boxes):
+        if _reads_whole(job, boxes):
+            task = _submit_whole(client, decide_whole, job, where, boxes)
+            _wait(client, {WHOLE: task}, ticks, where)
+            decisions = [client.submit(operator.getitem, task, k, pure=False) for k in range(len(boxes))]
+        else:
+            workers = client.scheduler_info()["workers"]
+            decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k, workers))
+                         for k, b in enumerate(boxes)]
+            _wait(client, dict(enumerate(decisions)), ticks, where)
+        decided = time.perf_counter()
+        parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
+        counts = worker_check.gather(client, client.map(sample_count, decisions, pure=False))
     known = [p for p in parts if p is not None]
     settled = tiles.settle(known, job.seed)
-    count = sum(worker_check.gather(client, client.map(sample_count, decisions, pure=False))) + len(settled)
+    count = sum(counts) + len(settled)
     return _Run(job.radius, decisions, parts, settled, int(count),
                 {"tiles": decided - start, "seams": time.perf_counter() - decided},
                 tiles.one_sample_a_part(known, settled))
@@ -473,14 +503,15 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     radius = _core.PILOT_REACH * guess
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
-    if _reads_whole(job, boxes):
-        tasks = {WHOLE: _submit_whole(client, pilot_whole, job, where, radius, below)}
-    else:
-        workers = client.scheduler_info()["workers"]
-        tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k, workers))
-                 for k, b in enumerate(boxes)}
-    _wait(client, tasks, ticks, where)
-    got = [p for p in worker_check.gather(client, list(tasks.values())) if p is not None]
+    with _whole_lost(job, boxes):
+        if _reads_whole(job, boxes):
+            tasks = {WHOLE: _submit_whole(client, pilot_whole, job, where, radius, below)}
+        else:
+            workers = client.scheduler_info()["workers"]
+            tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k, workers))
+                     for k, b in enumerate(boxes)}
+        _wait(client, tasks, ticks, where)
+        got = [p for p in worker_check.gather(client, list(tasks.values())) if p is not None]
     candidates = sum(c for _, _, _, c in got)
     if not got:
         return 0.0, candidates

@@ -17,7 +17,7 @@ import time
 import types
 from collections import Counter
 from contextlib import contextmanager
-from typing import Optional, Sequence
+from typing import Optional
 
 from . import stop_signals
 from .errors import ClusterJobError
@@ -268,20 +268,14 @@ def _running(dask_worker) -> list:
 
 
 @contextmanager
-def tiles_lost(tile_points: int, whole: Sequence[str] = ()):
+def tiles_lost(tile_points: int):
     """A job's tasks lost with their workers (Dask's KilledWorker: one task, several times; WorkersLost: the
-    last worker) as a ClusterJobError naming the tile size, the first thing to lower; or, for one of the
-    tasks named in `whole` (those reading every point at once), naming the whole cloud: smaller tiles
-    would not help."""
+    last worker) as a ClusterJobError naming the tile size, the first thing to lower."""
     from dask.distributed import KilledWorker
     try:
         yield
     except (KilledWorker, WorkersLost) as e:
         kind = str(getattr(e, "task", "?")).split("-")[0]  # Dask's key less its unique token
-        if isinstance(e, KilledWorker) and kind in whole:
-            raise ClusterJobError(f"the whole cloud's task ({kind}) was lost with its worker several times: a "
-                                  f"worker's memory may be too small for every point at once, which a run reads "
-                                  f"in one task where its disks span most tiles") from None
         lost = (f"a tile's task ({kind}) was lost with its worker several times" if isinstance(e, KilledWorker)
                 else e.problem)
         raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points",

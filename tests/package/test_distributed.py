@@ -547,11 +547,19 @@ def test_a_task_lost_with_its_worker_again_and_again_is_a_cluster_job_error(clou
 
 @pytest.mark.parametrize("task", [dist.decide_whole, dist.pilot_whole])
 def test_a_whole_cloud_task_lost_again_and_again_asks_for_memory_not_smaller_tiles(cloud, client, tmp_path, task):
-    # Disks spanning most tiles: every point is read in one task, whatever the tile size.
+    # Disks spanning the cloud: every point is read in one task, whatever the tile size.
     with pytest.raises(gl.ClusterJobError) as e:
         dist.lod_files([str(cloud[0])], tmp_path / "lod", count=20, tile_points=6000, client=dying(client, task))
     assert e.value.problem.startswith(f"the whole cloud's task ({task.__name__}) was lost with its worker")
     assert not e.value.lower_tiles and "give workers more memory" in str(e.value)
+
+
+def test_a_one_tile_jobs_task_lost_again_and_again_asks_for_smaller_tiles(cloud, client, tmp_path):
+    # The one tile is the whole cloud, read in one task, but narrow disks: smaller tiles would read less.
+    with pytest.raises(gl.ClusterJobError, match=r"\(decide_whole\) was lost with its worker several times: a "
+                                                 "worker's memory may be too small for tiles of 1000000 points"):
+        dist.lod_files([str(cloud[0])], tmp_path / "lod", radius=RADIUS, tile_points=1_000_000,
+                       client=dying(client, dist.decide_whole))
 
 
 def test_a_cluster_jobs_advice_names_the_commands_options(cloud, client, tmp_path):
