@@ -175,10 +175,9 @@ def _whole_lost(job: Job, boxes):
     except KilledWorker as e:
         if not _reads_whole_at_any_size(job, boxes):
             raise
-        kind = str(e.task).split("-")[0]  # Dask's key less its unique token
-        raise ClusterJobError(f"the whole cloud's task ({kind}) was lost with its worker several times: a worker's "
-                              f"memory may be too small for every point at once, which the run reads in one task "
-                              f"at any tile size (its disks span most of the cloud)") from None
+        raise ClusterJobError(f"the whole cloud's task ({worker_check.task_kind(e)}) was lost with its worker several "
+                              f"times: a worker's memory may be too small for every point at once, which the run "
+                              f"reads in one task at any tile size (its disks span most of the cloud)") from None
 
 
 def _submit_whole(client, fn, job: Job, where: dict, *args):

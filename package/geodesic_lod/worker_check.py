@@ -267,6 +267,11 @@ def _running(dask_worker) -> list:
     return [ts.key for ts in state.executing | state.long_running]
 
 
+def task_kind(e) -> str:
+    """The kind of task a Dask error names (its `task`): the key less its unique token."""
+    return str(getattr(e, "task", "?")).split("-")[0]
+
+
 @contextmanager
 def tiles_lost(tile_points: int):
     """A job's tasks lost with their workers (Dask's KilledWorker: one task, several times; WorkersLost: the
@@ -275,8 +280,7 @@ def tiles_lost(tile_points: int):
     try:
         yield
     except (KilledWorker, WorkersLost) as e:
-        kind = str(getattr(e, "task", "?")).split("-")[0]  # Dask's key less its unique token
-        lost = (f"a tile's task ({kind}) was lost with its worker several times" if isinstance(e, KilledWorker)
-                else e.problem)
+        lost = (f"a tile's task ({task_kind(e)}) was lost with its worker several times"
+                if isinstance(e, KilledWorker) else e.problem)
         raise ClusterJobError(f"{lost}: a worker's memory may be too small for tiles of {tile_points} points",
                               lower_tiles=True) from None
