@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import os
 import pathlib
+import stat
 import warnings
 from dataclasses import dataclass
 from typing import Any, BinaryIO, Optional, Sequence
@@ -139,6 +140,8 @@ def check_outputs(inputs: Sequence, outputs: Sequence, overwrite: bool = False) 
             raise PointFileError(out, "is a folder: give a file name")
         if any(same_file(out, p) for p in inputs):
             raise PointFileError(out, IS_AN_INPUT)
+        if is_special(out):
+            raise PointFileError(out, NOT_A_FILE)
         key = os.path.abspath(out)
         if key in seen:
             raise PointFileError(out, "would be written twice: give each output its own name")
@@ -156,6 +159,20 @@ def _name_max(folder) -> int:
 
 REPLACE_HINT = "choose another name, or allow replacing it (--overwrite)"
 IS_AN_INPUT = "is an input: choose another output name (the input is never modified)"
+
+
+NOT_A_FILE = ("is not a regular file (a pipe, a socket or a device), which the LOD never replaces, even when "
+              "allowed to replace files: choose another name")
+
+
+def is_special(path) -> bool:
+    """Whether path names a pipe, a socket or a device (itself, not through a link): what another program
+    reads or writes, never replaced by an output."""
+    try:
+        mode = os.lstat(path).st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISLNK(mode) or stat.S_ISDIR(mode))
 
 
 def same_file(a, b) -> bool:
@@ -345,6 +362,8 @@ def _name(tmp: pathlib.Path, path: pathlib.Path, overwrite: bool) -> None:
     """Gives the complete file tmp the name path. Unless `overwrite`, a file found there (made since the
     outputs were checked) stays: the hard link fails where the name is taken, in the same step."""
     if overwrite:
+        if is_special(path):  # made since the outputs were checked
+            raise PointFileError(path, NOT_A_FILE)
         os.replace(tmp, path)
         return
     try:

@@ -4,6 +4,7 @@ input is read (SIGTERM, like Ctrl-C, leaving no partial file: test_cli.py); a wr
 disk, a size limit) is one line and leaves nothing."""
 import os
 import resource
+import socket
 import subprocess
 
 import laspy
@@ -50,6 +51,24 @@ def test_an_existing_file_is_replaced_only_when_asked(tmp_path):
     assert contents(tmp_path) == before
     assert run(src, "-o", tmp_path / "lod.ply", "--rate", "10%", "-q", "--overwrite").returncode == 0
     assert len(pf.read(tmp_path / "lod.ply").points) == 300
+
+
+@pytest.mark.parametrize("kind", ["pipe", "socket"])
+def test_a_pipe_or_socket_at_the_output_name_is_refused_even_when_replacing_is_allowed(tmp_path, kind):
+    """--overwrite allows replacing a file; a pipe or a socket another program reads (or a device node) is
+    not one to replace with the LOD."""
+    src = ply_cloud(tmp_path / "in.ply")
+    out = tmp_path / "lod.ply"
+    if kind == "pipe":
+        os.mkfifo(out)
+    else:
+        with socket.socket(socket.AF_UNIX) as bound:  # its file stays once closed
+            bound.bind(str(out))
+    for replace in ([], ["--overwrite"]):
+        r = run(src, "-o", out, "--rate", "10%", "-q", *replace)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+        assert f"{out}: is not a regular file" in r.stderr, r.stderr
+        assert sorted(os.listdir(tmp_path)) == ["in.ply", "lod.ply"] and not out.is_file()
 
 
 @pytest.mark.parametrize("overwrite", [False, True], ids=["not asked", "--overwrite"])
