@@ -51,6 +51,11 @@ class ClusterJobError(RuntimeError):
         that sets the workers' memory where the front end starts the cluster (None: the user's cluster
         sets it elsewhere)."""
         named = f" ({memory_option})" if memory_option else ""
-        memory = (f"give workers{named} at least {self.memory / 1e6:.0f} MB" if self.memory
+        memory = (f"give workers{named} at least {bytes_worded(self.memory)}" if self.memory
                   else f"give workers more memory{named}")
         return f"{self.problem}; " + (f"lower {tile_option} or " if self.lower_tiles else "") + memory
+
+
+def bytes_worded(n: float) -> str:
+    """A memory size in a message: megabytes, or bytes below half a megabyte (a limit of 1KB is not '0 MB')."""
+    return f"{n / 1e6:.0f} MB" if n >= 5e5 else f"{n:,.0f} bytes"

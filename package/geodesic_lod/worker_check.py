@@ -20,7 +20,7 @@ from contextlib import contextmanager
 from typing import Optional
 
 from . import stop_signals
-from .errors import ClusterJobError
+from .errors import ClusterJobError, bytes_worded
 from .task_memory import process_rss
 
 # How long a cluster whose last worker was lost unexpectedly is given to start another (a nanny
@@ -77,11 +77,11 @@ def check_worker_memory(client) -> None:
         if not limit or (rss is None and not any(t > since and _lost(e, addr) for t, e in _worker_events(client))):
             continue  # no limit, or scaled away
         if rss is None or isinstance(rss, BaseException):
-            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: "
+            raise ClusterJobError(f"a worker's memory limit ({bytes_worded(limit)}) is below what it needs to work: "
                                   f"the worker was lost before any task ({rss or 'it stopped'})")
         if rss >= pause * limit:
-            raise ClusterJobError(f"a worker's memory limit ({limit / 1e6:.0f} MB) is below what it needs to work: it "
-                                  f"takes {rss / 1e6:.0f} MB before any task", memory=2 * rss)
+            raise ClusterJobError(f"a worker's memory limit ({bytes_worded(limit)}) is below what it needs to work: it "
+                                  f"takes {bytes_worded(rss)} before any task", memory=2 * rss)
 
 
 def task_footprint() -> int:

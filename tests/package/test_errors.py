@@ -148,8 +148,10 @@ def test_the_cluster_functions_raise_an_input_error_for_a_bad_tile_size(tmp_path
     (_Client(rss=60e6, limit=50e6), r"a worker's memory limit \(50 MB\) is below what it needs"),
     (_Client(rss=ConnectionError("Stream is closed"), limit=50e6),
      r"a worker's memory limit \(50 MB\) is below what it needs"),
+    (_Client(rss=ConnectionError("Stream is closed"), limit=1000),
+     r"a worker's memory limit \(1,000 bytes\) is below what it needs"),
     (_Client(rss=1e6, limit=4e9), "memory may be too small for tiles of 1000 points"),
-], ids=["workers too small", "a worker lost while asked", "tasks lost"])
+], ids=["workers too small", "a worker lost while asked", "a limit below a megabyte", "tasks lost"])
 def test_lod_files_raises_a_cluster_job_error_for_the_clusters_failure(tmp_path, npy_cloud, client, words):
     pytest.importorskip("dask.distributed")
     from geodesic_lod import distributed
