@@ -438,15 +438,9 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
     read), where its task goes again if that worker is free, updated."""
     start = time.perf_counter()
     with _whole_lost(job, boxes):
-        if _reads_whole(job, boxes):
-            task = _submit_whole(client, decide_whole, job, where, boxes)
-            _wait(client, {WHOLE: task}, ticks, where)
-            decisions = [client.submit(operator.getitem, task, k, pure=False) for k in range(len(boxes))]
-        else:
-            workers = client.scheduler_info()["workers"]
-            decisions = [client.submit(decide_tile, job, b, pure=False, **_placed(where, k, workers))
-                         for k, b in enumerate(boxes)]
-            _wait(client, dict(enumerate(decisions)), ticks, where)
+        tasks = _run_tasks(client, job, boxes, where, ticks, (decide_whole, boxes), (decide_tile,))
+        decisions = ([client.submit(operator.getitem, tasks[WHOLE], k, pure=False) for k in range(len(boxes))]
+                     if WHOLE in tasks else list(tasks.values()))
         decided = time.perf_counter()
         parts = worker_check.gather(client, client.map(seams, decisions, pure=False))
         counts = worker_check.gather(client, client.map(sample_count, decisions, pure=False))
@@ -458,13 +452,22 @@ def poisson_run(client, job: Job, boxes, ticks: Ticks, where: dict) -> _Run:
                 tiles.one_sample_a_part(known, settled))
 
 
-def _wait(client, tasks: dict, ticks: Ticks, where: dict) -> None:
-    """Waits for a run's tile tasks (by their key in `where`), each a tick, and notes where each ran."""
+def _run_tasks(client, job: Job, boxes, where: dict, ticks: Ticks, whole: tuple, tile: tuple) -> dict:
+    """A run's tasks, done: where some tile reads every point (_reads_whole), {WHOLE: whole[0](job, *whole[1:])}
+    for them all; else tile[0](job, box, *tile[1:]) for each tile, by its number, each on the worker keeping
+    its read where that is free (_placed). Each task done is a tick; `where` notes the worker each ran on."""
+    if _reads_whole(job, boxes):
+        tasks = {WHOLE: _submit_whole(client, whole[0], job, where, *whole[1:])}
+    else:
+        workers = client.scheduler_info()["workers"]
+        tasks = {k: client.submit(tile[0], job, b, *tile[1:], pure=False, **_placed(where, k, workers))
+                 for k, b in enumerate(boxes)}
     ticks.expect(len(tasks))
     for _ in worker_check.completed(client, list(tasks.values())):
         ticks()
     held = client.who_has(list(tasks.values()))
     where.update({k: list(held[f.key])[:1] for k, f in tasks.items() if held.get(f.key)})
+    return tasks
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
@@ -503,13 +506,7 @@ def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: 
     job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
     below = _core.pilot_threshold(pool, target)
     with _whole_lost(job, boxes):
-        if _reads_whole(job, boxes):
-            tasks = {WHOLE: _submit_whole(client, pilot_whole, job, where, radius, below)}
-        else:
-            workers = client.scheduler_info()["workers"]
-            tasks = {k: client.submit(pilot_tile, job, b, radius, below, pure=False, **_placed(where, k, workers))
-                     for k, b in enumerate(boxes)}
-        _wait(client, tasks, ticks, where)
+        tasks = _run_tasks(client, job, boxes, where, ticks, (pilot_whole, radius, below), (pilot_tile, radius, below))
         got = [p for p in worker_check.gather(client, list(tasks.values())) if p is not None]
     candidates = sum(c for _, _, _, c in got)
     if not got:
