@@ -398,32 +398,29 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
                     open_whole=r["open_whole"][opened].astype(bool)), None
 
 
-def decide_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
-                    seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
-                    threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
-                    job=None, tile=None, folder=None, share: Optional[Callable[[float], float]] = None
-                    ) -> Optional[Decision]:
-    """One tile, reading a wider halo until the check passes: read(halo) gives the points within halo of
-    the box (points, normals or None, ids; in id order); candidates(ids, halo), when given, which of them
-    may become samples. With `reads`, the read of at least that halo kept for (`job`, `tile`) is used
-    instead of reading, and a new one kept (in memory, or in the job's work `folder`); share(halo), when
-    given, at least the share of the cloud's points a read of that halo holds (read_tile). None when the
+def decide_widening(read: Callable[[float], tuple], **args) -> Optional[Decision]:
+    """One tile's decision, reading a wider halo until the check passes (decided's arguments); None when the
     tile's core holds no point."""
-    return _decided(read, box=box, cloud=cloud, halo=halo, domain=domain, radius=radius, seed=seed,
-                    candidates=candidates, threads=threads, order=order, reads=reads, job=job, tile=tile,
-                    folder=folder, share=share)[0]
+    return decided(read, **args)[0]
 
 
 def decide_whole(read: Callable[[float], tuple], *, boxes: Sequence[Box], **args) -> list:
-    """Each of the `boxes`' decisions from the whole cloud's (split_whole), read once: decide_widening's
+    """Each of the `boxes`' decisions from the whole cloud's (split_whole), read once: decided's
     arguments `args`, their box the cloud's."""
-    d, t = _decided(read, **args)
+    d, t = decided(read, **args)
     return split_whole(d, t, boxes, args["cloud"], lambda: read(0.0)[0])
 
 
-def _decided(read, *, box: Box, cloud: Box, halo: float, domain, radius: float, seed: int = 0, candidates=None,
-             threads=None, order: Order = RANDOM, reads=None, job=None, tile=None, folder=None, share=None) -> tuple:
-    """decide_widening's decision and the read it was made on; (None, None) when the core holds no point."""
+def decided(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
+            seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
+            threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
+            job=None, tile=None, folder=None, share: Optional[Callable[[float], float]] = None) -> tuple:
+    """One tile's decision and the read it was made on, reading a wider halo until the check passes: read(halo)
+    gives the points within halo of the box (points, normals or None, ids; in id order); candidates(ids, halo),
+    when given, which of them may become samples. With `reads`, the read of at least that halo kept for (`job`,
+    `tile`) is used instead of reading, and a new one kept (in memory, or in the job's work `folder`);
+    share(halo), when given, at least the share of the cloud's points a read of that halo holds (read_tile).
+    (None, None) when the tile's core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
                       tile=tile, folder=folder, share=share)
@@ -439,7 +436,7 @@ def _decided(read, *, box: Box, cloud: Box, halo: float, domain, radius: float, 
 def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, threads: Optional[int],
               reads: Optional[TileReads], job, tile, folder,
               share: Optional[Callable[[float], float]] = None) -> Optional[TileRead]:
-    """What a tile reads with a halo of at least `halo` (decide_widening's arguments): kept in `reads`, or read
+    """What a tile reads with a halo of at least `halo` (decided's arguments): kept in `reads`, or read
     and kept there; the whole cloud where share(halo) reaches WHOLE_READ_SHARE. None when the tile's core
     holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
