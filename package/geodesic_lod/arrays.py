@@ -122,6 +122,8 @@ def _float_array(a, name: str, allow_none: bool = False):
         what, fields = ("normals", ("nx", "ny", "nz")) if name == "normals" else ("coordinates", ("x", "y", "z"))
         raise InputError(f"{name} is a table (fields {', '.join(a.dtype.names)}): give its {what} as an (n, 3) array, "
                          f"such as np.column_stack([{', '.join(f'{name}[{f!r}]' for f in fields)}])")
+    if a.dtype.kind == "f" and not a.dtype.isnative:  # read from a big-endian file: the same values
+        a = a.astype(a.dtype.newbyteorder("="))
     if a.dtype not in (np.float32, np.float64):
         raise InputError(f"{name} must hold float32 or float64 values, not {a.dtype} "
                         f"(convert with {name}.astype(np.float64))")

@@ -251,6 +251,13 @@ def test_any_float_layout_gives_the_same_lod(cloud):
     f32 = cloud.astype(np.float32)
     np.testing.assert_array_equal(gl.poisson_lod(f32, count=300).indices,
                                   gl.poisson_lod(f32.astype(np.float64), count=300).indices)
+    # Big-endian floats (read from a big-endian file): the same values, as faces of any byte order are taken.
+    np.testing.assert_array_equal(gl.poisson_lod(cloud.astype(">f8"), count=300).indices, ref)
+    np.testing.assert_array_equal(gl.poisson_lod(f32.astype(">f4"), count=300).indices,
+                                  gl.poisson_lod(f32, count=300).indices)
+    normals = cloud / np.linalg.norm(cloud, axis=1, keepdims=True)
+    np.testing.assert_array_equal(gl.poisson_lod(cloud, normals.astype(">f8"), count=300).indices,
+                                  gl.poisson_lod(cloud, normals, count=300).indices)
 
 
 def test_any_face_layout_gives_the_same_lod():
