@@ -156,12 +156,8 @@ def _reads_whole(job: Job, boxes) -> bool:
 def _reads_whole_at_any_size(job: Job, boxes) -> bool:
     """Whether some tile of a run would read every point even shrunk to its centre: a tile of any size there
     reads at least as much, so smaller tiles would not keep the run from reading every point in one task."""
-    for b in boxes:
-        c = (np.maximum(b.lo, job.cloud.lo) + np.minimum(b.hi, job.cloud.hi)) / 2
-        centre = tiles.Box(c, c)
-        if tiles.reads_whole(centre, job.cloud, job.halo, _share(job, centre)):
-            return True
-    return False
+    centres = ((np.maximum(b.lo, job.cloud.lo) + np.minimum(b.hi, job.cloud.hi)) / 2 for b in boxes)
+    return _reads_whole(job, [tiles.Box(c, c) for c in centres])
 
 
 @contextmanager
