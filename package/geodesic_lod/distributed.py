@@ -172,8 +172,9 @@ def _whole_lost(job: Job, boxes):
         if not _reads_whole_at_any_size(job, boxes):
             raise
         raise ClusterJobError(f"the whole cloud's task ({worker_check.task_kind(e)}) was lost with its worker several "
-                              f"times: a worker's memory may be too small for every point at once, which the run "
-                              f"reads in one task at any tile size (its disks span most of the cloud)") from None
+                              f"times: a worker's memory may be too small for every point at once "
+                              f"({job.cells.points():,} points), which the run reads in one task at any tile "
+                              f"size (its disks span most of the cloud)") from None
 
 
 def _submit_whole(client, fn, job: Job, where: dict, *args):

@@ -277,9 +277,13 @@ class Partition:
             h[np.unravel_index(c, n)] = k.reshape((BLOCKS,) * 3)
         return h.transpose(0, 3, 1, 4, 2, 5).reshape(tuple(v * BLOCKS for v in n))
 
+    def points(self) -> int:
+        """The points in every cell."""
+        return sum(count for count, _, _ in self.bounds.values())
+
     def share_within(self, lo: np.ndarray, hi: np.ndarray) -> float:
         """At least the share of the points within [lo, hi]: that of the blocks that may hold some."""
-        total = sum(count for count, _, _ in self.bounds.values())
+        total = self.points()
         within = sum(int(self.block_counts[c][self.grid.blocks_in(c, lo, hi)].sum())
                      for c in (int(c) for c in self.grid.cells_in(lo, hi)) if c in self.block_counts)
         return within / total if total else 1.0

@@ -551,6 +551,7 @@ def test_a_whole_cloud_task_lost_again_and_again_asks_for_memory_not_smaller_til
     with pytest.raises(gl.ClusterJobError) as e:
         dist.lod_files([str(cloud[0])], tmp_path / "lod", count=20, tile_points=6000, client=dying(client, task))
     assert e.value.problem.startswith(f"the whole cloud's task ({task.__name__}) was lost with its worker")
+    assert f"every point at once ({len(cloud[1]):,} points)" in e.value.problem  # what a worker must hold
     assert not e.value.lower_tiles and "give workers more memory" in str(e.value)
 
 
