@@ -153,11 +153,13 @@ def counted(n: int, noun: str) -> str:
     return f"{n:,} {noun}{'' if n == 1 else 's'}"
 
 
-def point_arrays(points, normals):
+def point_arrays(points, normals, least: int = 2):
+    """The points and normals checked: at least `least` points (an octree's root node takes one whole)."""
     p = _float_array(points, "points")
-    if p.shape[0] < 2:
-        raise InputError(f"points holds {counted(p.shape[0], 'point')}: "
-                         "at least 2 are needed to sample from")
+    if p.shape[0] < least:
+        problem = f"holds {counted(p.shape[0], 'point')}: at least {least} {'is' if least == 1 else 'are'} " \
+                  "needed to sample from"
+        raise InputError(f"points {problem}", "points", problem)
     n = _float_array(normals, "normals", allow_none=True)
     if n is not None and n.shape[0] != p.shape[0]:
         raise InputError(f"normals must have one row per point ({p.shape[0]:,}), got {n.shape[0]:,}")
@@ -379,7 +381,7 @@ class DomainOptions:
                      if used and k == default]
             problem = too_few_points(n, max(unmet)) if unmet else None
             if problem:
-                raise InputError(f"points {problem}")
+                raise InputError(f"points {problem}", "points", problem)
         most = None if n is None else n - 1
         below_n = "" if n is None else f" (below the number of points, {n:,})"
         d.normal_neighbors = whole_number(self.normal_neighbors, "normal_neighbors", 1, most, below_n)

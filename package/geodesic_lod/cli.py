@@ -373,8 +373,8 @@ def _choices_line(args, taken) -> list:
     `taken` a result (or a cluster's index) with the metric, the visiting order (Poisson) and the scatter
     share."""
     get = taken.get if isinstance(taken, dict) else lambda k: getattr(taken, k, None)
-    if taken is None or "automatic" not in (args.metric, args.visit_order if not args.fps else None):
-        return []
+    if taken is None or not get("metric") or "automatic" not in (args.metric, args.visit_order if not args.fps else None):
+        return []  # none taken: a COPC file whose root node takes every point samples nothing
     order = f", visiting order {get('visit_order')}" if get("visit_order") else ""
     return [f"metric {get('metric')}{order} (automatic: {100 * get('scatter_share'):.1f}% of the points' "
             f"neighbourhoods scatter; above {100 * _core.SCATTERED_ABOVE:g}% a cloud counts as scattered)"]
@@ -458,7 +458,7 @@ def _copc(args, progress) -> list:
 def _copc_points(points: int, deepest: int, per_depth: str = "") -> str:
     """A COPC file's points and depths in its summary; `per_depth`: their counts, where known."""
     if deepest == 0:
-        return f"{points:,} points at depth 0"
+        return f"{arrays.counted(points, 'point')} at depth 0"
     return f"{points:,} points at depths 0 to {deepest}" + (f" ({per_depth})" if per_depth else "")
 
 

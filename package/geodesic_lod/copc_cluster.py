@@ -194,7 +194,6 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
     start = time.perf_counter()
     srcs = cloud_files.sources(paths, worker_check.gather(client, client.map(cloud_files.survey, paths, pure=False)))
     total = sum(s.count for s in srcs)
-    cloud_files.check_count(total)
     out = pathlib.Path(output)
     before = set(client.futures)  # this job's tasks: those started from here
     work = pathlib.Path(tempfile.mkdtemp(prefix=point_files.PARTIAL_PREFIX, suffix=point_files.PARTIAL_SUFFIX,
@@ -217,17 +216,22 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         keys = [int(k) for k in per_depth[t][0]]
         cloud = tiles.Box(lo, hi)
         boxes = [NodeTile.of(octree, t, k) for k in keys]
-        choices = cluster_choices(client, cells, domain, visit_order, total)
-        job = Job(srcs, cloud, 0.0, seed, choices.domain, threads, 0.0, cells)
+        job = Job(srcs, cloud, 0.0, seed, domain, threads, 0.0, cells)
         n = len(keys)
         stats = worker_check.gather(client, client.map(_depth_stats, [job] * n, boxes, pure=False))
         depths = depth_count(stats, t)
         radii = [octree.spacing / 2 ** d for d in range(depths)]
         spacing = tiles.spacing_of(cloud, total)
         levels = [None] * depths
-        visit = choices.order
-        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth. With no
-        # depth (the root node takes every point, as on one machine) there is no Poisson run.
+        # With no depth (the root node takes every point, as on one machine) there is no Poisson run: no
+        # metric is taken, and a few points need no neighbours.
+        visit, taken = None, dict(metric="", visit_order="", scatter_share=0.0)
+        if depths:
+            cloud_files.check_count(total)
+            choices = cluster_choices(client, cells, domain, visit_order, total)
+            job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
+            taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
+        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
         halo = tiles.first_halo(radii[0], spacing, visit) if depths else None
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
@@ -269,6 +273,5 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
     finally:
         with stop_signals.held():  # a second Ctrl-C does not leave the work folder
             shutil.rmtree(work, ignore_errors=True)
-    return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii,
-            "metric": choices.metric, "visit_order": choices.order.kind, "scatter_share": choices.scatter_share,
+    return {"points": total, "tiles": n, "tile_depth": t, "depths": depths, "radii": radii, **taken,
             "spacing": octree.spacing, "seconds": round(time.perf_counter() - start, 3)}

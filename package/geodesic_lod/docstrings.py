@@ -537,7 +537,9 @@ TEXTS = {
     The octree is PDAL's: a cube from the points' lowest corner with their bounding box's longest side,
     ``spacing`` its side / 128, the spacing viewers assume for depth 0, halving per depth. The Poisson
     depths go on until the occupied cells of a depth's spacing are half as many as the points and no
-    node of that depth holds more than 100,000 points.
+    node of that depth holds more than 100,000 points. A cloud the root node takes whole has no Poisson
+    depth and is not sampled: any number of points from one; a Poisson depth needs more points than the
+    neighbours each normal and the geodesics are built from (21 with the defaults).
 
     Parameters
     ----------

@@ -102,17 +102,19 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
                recompute_normals: bool = not DOMAIN_DEFAULTS.use_input_normals,
                visit_order: str = DEFAULT_VISIT_ORDER, seed: int = 0,
                threads: Optional[int] = None, progress: Progress = None) -> OctreeLod:
-    p, n = point_arrays(points, normals)
+    p, n = point_arrays(points, normals, least=1)
     finite_points(p)  # before the octree is placed around them
     _choice(visit_order, VISIT_ORDERS, "visit_order")
     options = DomainOptions(metric=metric, geodesics=geodesics, adaptivity=adaptivity,
                             curvature_exponent=curvature_exponent, normal_neighbors=normal_neighbors,
                             graph_neighbors=graph_neighbors, recompute_normals=recompute_normals)
-    options.param(p.shape[0])  # checked before any work, however many depths there are
+    options.param()  # checked before any work, however many depths there are
     seed, threads = run_options(seed, threads, progress, False, False)
     part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
     octree = Octree.around(p) if len(p) else Octree(np.zeros(3), 0.5, 1 / 128)
     depths = depth_count(octree, p)
+    if depths:  # a Poisson depth samples: each point needs its neighbours (the root node taking every point, none)
+        options.param(p.shape[0])
     radii = [octree.spacing / 2 ** d for d in range(depths)]
     depth = np.full(p.shape[0], depths, dtype=np.int32)
     taken = {}
@@ -144,7 +146,7 @@ def write_copc(input, output, *, metric: str = DEFAULT_METRIC, adaptivity: float
     _choice(visit_order, VISIT_ORDERS, "visit_order")
     thread_count(threads)  # before the file is decoded on them
     source = point_files.read(input, threads=threads)
-    problem = too_few_points(len(source.points))
+    problem = too_few_points(len(source.points), 0)  # none: a few the root node takes whole need no neighbours
     if problem:
         raise PointFileError(source.path, problem)
     point_files.check_writable(source, [output])

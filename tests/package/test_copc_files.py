@@ -136,6 +136,30 @@ def test_every_shared_lidar_file_becomes_a_copc_file(tmp_path, name):
     assert copclib.FileReader(str(out)).ValidateSpatialBounds(False)
 
 
+@pytest.mark.parametrize("n", [1, 5, 20])
+def test_a_file_of_a_few_points_becomes_a_copc_file_of_one_node(tmp_path, n):
+    # A survey's edge tile: the root node takes every point, no Poisson depth, so no neighbours are needed.
+    src = las_cloud(tmp_path / "few.las", points=np.random.default_rng(n).random((n, 3)) * 50)
+    out = tmp_path / "few.copc.laz"
+    r = run(src, "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert f"{n:,} point{'s' if n > 1 else ''} at depth 0" in r.stderr
+    with laspy.CopcReader.open(str(out)) as reader:
+        got = reader.query()
+    assert record_bytes(got.array) == record_bytes(laspy.read(str(src)).points.array)
+    assert copclib.FileReader(str(out)).ValidateSpatialBounds(False)
+
+
+def test_a_file_of_a_few_points_that_need_a_poisson_depth_is_refused_in_one_line(tmp_path):
+    from test_octree import clump
+    src = las_cloud(tmp_path / "few.las", points=clump())
+    r = run(src, "-o", tmp_path / "few.copc.laz")
+    assert r.returncode == 2 and r.stderr.strip().splitlines() == [
+        f"geodesic-lod: error: {src}: holds 20 points: at least 21 are needed (the neighbours each normal and "
+        "the geodesics are built from)"]
+    assert names(tmp_path) == ["few.las"]
+
+
 def wkt_crs(path):
     """The CRS of a file's WKT record (None without one)."""
     h = laspy.read(str(path)).header

@@ -85,6 +85,32 @@ def test_a_cloud_sparser_than_the_root_spacing_is_all_depth_0():
     assert lod.radii == [] and not lod.depth.any()
 
 
+def clump(n=20):
+    """n points, all but one within a hundredth of a root cell: depth 0 cannot take them all (a Poisson
+    depth is needed)."""
+    rng = np.random.default_rng(3)
+    return np.vstack([np.zeros((1, 3)), 10 + 0.001 * rng.random((n - 1, 3))])
+
+
+@pytest.mark.parametrize("n", [1, 2, 5, 20])
+def test_a_few_points_the_root_node_takes_whole_need_no_neighbours(n):
+    # No Poisson depth: nothing is sampled, so fewer points than a normal's neighbours are no obstacle.
+    rng = np.random.default_rng(1)
+    lod = gl.octree_lod(rng.random((n, 3)) * 100)
+    assert lod.radii == [] and len(lod.depth) == n and not lod.depth.any()
+
+
+def test_no_points_are_refused():
+    with pytest.raises(gl.InputError, match="^points holds 0 points: at least 1 is needed"):
+        gl.octree_lod(np.empty((0, 3)))
+
+
+def test_a_few_points_that_need_a_poisson_depth_are_refused_for_their_neighbours():
+    with pytest.raises(gl.InputError, match="^points holds 20 points: at least 21 are needed") as e:
+        gl.octree_lod(clump())
+    assert e.value.subject == "points"
+
+
 def test_bad_input_is_named():
     with pytest.raises(ValueError, match="metric"):
         gl.octree_lod(wavy_strip(200), metric="manhattan")
