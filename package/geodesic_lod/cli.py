@@ -144,8 +144,8 @@ def _run_on_cluster(args, request: dict) -> int:
     from . import distributed
     copc = "copc" in request
     if args.fps or args.height_field:
-        raise ValueError("on a cluster give --radius, --count, --rate or --levels (--fps and --height-field run on "
-                         "one machine)")
+        raise ValueError(f"{'--fps' if args.fps else '--height-field'} runs on one machine (a cluster takes --radius, "
+                         "--count, --rate or --levels)")
     for flag, given in (("--recompute-normals", args.recompute_normals),
                         ("--overwrite", args.overwrite and not copc)):
         if given:
@@ -496,7 +496,8 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             paths = _outputs(args, request)
             point_files.check_outputs(args.input, paths, overwrite=args.overwrite)
             source = point_files.read(args.input[0], threads=args.threads)
-            problem = arrays.too_few_points(source.points.shape[0])
+            # Greedy insertion builds no normals and no geodesics: its own count check words what few points allow.
+            problem = arrays.too_few_points(source.points.shape[0], 0 if args.height_field else None)
             if problem:
                 raise point_files.PointFileError(source.path, problem)
             point_files.check_writable(source, paths)

@@ -162,6 +162,19 @@ def test_height_field_levels_are_prefixes_of_one_lod(tmp_path):
     assert laspy.read(str(tmp_path / "one.laz")).points.array.tobytes() == records[np.sort(lod[:150])].tobytes()
 
 
+def test_a_height_field_of_a_few_points_needs_no_normals_neighbours(tmp_path):
+    # Greedy insertion builds no normals and no geodesics: a few points are the Python API's to take or refuse.
+    rng = np.random.default_rng(4)
+    src = las_cloud(tmp_path / "few.las", points=np.column_stack([rng.random((12, 2)) * 50, rng.random(12)]))
+    r = run(src, "-o", tmp_path / "tin.laz", "--height-field", "--count", 10, "-q")
+    assert r.returncode == 0, r.stderr
+    records = laspy.read(str(src)).points.array
+    lod = gl.height_field_lod(pf.read(src).points, count=10).indices
+    assert laspy.read(str(tmp_path / "tin.laz")).points.array.tobytes() == records[np.sort(lod)].tobytes()
+    r = run(src, "-o", tmp_path / "one.laz", "--height-field", "--count", 1)
+    assert r.returncode == 2 and "--count must be between the" in r.stderr and "neighbours" not in r.stderr, r.stderr
+
+
 def closed_ply(path, n=2000):
     """A closed triangle mesh (the convex hull of a sphere's points, wound outwards) as a PLY."""
     from scipy.spatial import ConvexHull

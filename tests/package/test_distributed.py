@@ -601,7 +601,8 @@ def test_a_worker_memory_too_small_for_a_tile_is_reported_and_smaller_tiles_fit(
 @pytest.mark.parametrize("args, problem", [
     (["--levels", "10%,50%", "--workers", "2"], "--levels must get strictly coarser"),
     (["--levels", "50%,1e19", "--workers", "2"], "--levels: '1e19' is neither a whole number of samples"),
-    (["--count", "100", "--fps", "--workers", "2"], "--fps and --height-field run on one machine"),
+    (["--count", "100", "--fps", "--workers", "2"], "--fps runs on one machine (a cluster takes --radius, --count"),
+    (["--count", "100", "--height-field", "--workers", "2"], "--height-field runs on one machine (a cluster takes"),
     (["--radius", "0.5", "--tolerance", "2", "--workers", "2"], "--tolerance goes with --count, --rate or --levels"),
     (["--radius", "0.5", "--workers", "0"], "--workers must be at least 1"),
     (["--radius", "0.5", "--workers", "1000000"], "--workers 1000000: this machine's available memory"),
