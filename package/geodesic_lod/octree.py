@@ -111,7 +111,7 @@ def octree_lod(points, normals=None, *, metric: str = DEFAULT_METRIC, geodesics:
     options.param()  # checked before any work, however many depths there are
     seed, threads = run_options(seed, threads, progress, False, False)
     part = (lambda a, b: None) if progress is None else (lambda a, b: lambda f: progress(a + (b - a) * f))
-    octree = Octree.around(p) if len(p) else Octree(np.zeros(3), 0.5, 1 / 128)
+    octree = Octree.around(p)
     depths = depth_count(octree, p)
     if depths:  # a Poisson depth samples: each point needs its neighbours (the root node taking every point, none)
         options.param(p.shape[0])
