@@ -37,7 +37,7 @@ from . import _core, arrays, cloud_files, core_diagonal, partition, point_files,
 from . import tile_points as tile_points_
 from .cloud_files import Source
 from .docstrings import documented
-from .errors import ClusterJobError, InputError
+from .errors import ClusterJobError, InputError, bytes_worded
 from .output_folder import INDEX, OutputFolder, remove_own  # noqa: F401 (INDEX: the index's name)
 from .task_memory import TRIM, USERS_TRIM, give_back, process_rss, worker_memory_limit
 from .worker_check import check_worker_memory
@@ -331,7 +331,7 @@ def check_room_for(workers: int, name: str = "workers") -> None:
     room = (dask.config.get("distributed.worker.memory.pause", 0.8) or 1.0) * available
     if workers * each > room:
         raise InputError(f"{name} {workers}: this machine's available memory ({available / 1e9:.1f} GB) "
-                         f"holds at most {max(1, int(room // each)):,} workers of about {each / 1e6:.0f} MB each "
+                         f"holds at most {max(1, int(room // each)):,} workers of about {bytes_worded(each)} each "
                          f"before any task")
 
 
