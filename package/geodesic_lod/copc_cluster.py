@@ -225,14 +225,14 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         levels = [None] * depths
         # With no depth (the root node takes every point, as on one machine) there is no Poisson run: no
         # metric is taken, and a few points need no neighbours.
-        visit, taken = None, dict(metric="", visit_order="", scatter_share=0.0)
+        taken, halo = dict(metric="", visit_order="", scatter_share=0.0), None
         if depths:
             cloud_files.check_count(total)
             choices = cluster_choices(client, cells, domain, visit_order, total)
             job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
             taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
-        # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
-        halo = tiles.first_halo(radii[0], spacing, visit) if depths else None
+            # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
+            halo = tiles.first_halo(radii[0], spacing, visit)
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
             job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),
