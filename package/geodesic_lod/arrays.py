@@ -114,10 +114,19 @@ GRID_HINT = ("A grid of heights? Give its nodes as rows x, y, z: y, x = np.mgrid
              "points = np.column_stack([x.ravel(), y.ravel(), heights.ravel()]) (voids left out)")
 
 
+def _unmasked(a, name: str):
+    """`a` as an array, refused where it is a masked array with masked values: np.asarray would keep the
+    values under the mask (often a fill value) and drop the mask."""
+    if np.ma.is_masked(a):
+        raise InputError(f"{name} is a masked array with {np.ma.count_masked(a):,} masked values: give the rows to "
+                         f"sample, such as {name}[~np.ma.getmaskarray({name}).any(axis=1)]")
+    return np.asarray(a)
+
+
 def _float_array(a, name: str, allow_none: bool = False):
     if a is None and allow_none:
         return None
-    a = np.asarray(a)
+    a = _unmasked(a, name)
     if a.dtype.names:  # a table, such as the command's .npy of a LAS file
         what, fields = ("normals", ("nx", "ny", "nz")) if name == "normals" else ("coordinates", ("x", "y", "z"))
         raise InputError(f"{name} is a table (fields {', '.join(a.dtype.names)}): give its {what} as an (n, 3) array, "
@@ -176,7 +185,7 @@ def input_arrays(points, normals, faces):
 def _faces(faces):
     if faces is None:
         return None
-    f = np.asarray(faces)
+    f = _unmasked(faces, "faces")
     if not np.issubdtype(f.dtype, np.integer):
         raise InputError(f"faces must hold integer vertex indices, not {f.dtype}")
     if f.ndim != 2 or f.shape[1] != 3:

@@ -258,6 +258,8 @@ def test_any_float_layout_gives_the_same_lod(cloud):
     normals = cloud / np.linalg.norm(cloud, axis=1, keepdims=True)
     np.testing.assert_array_equal(gl.poisson_lod(cloud, normals.astype(">f8"), count=300).indices,
                                   gl.poisson_lod(cloud, normals, count=300).indices)
+    # A masked array with nothing masked (as the rows kept of one that had) is its values.
+    np.testing.assert_array_equal(gl.poisson_lod(np.ma.masked_array(cloud, mask=False), count=300).indices, ref)
 
 
 def test_any_face_layout_gives_the_same_lod():

@@ -51,6 +51,13 @@ CASES = {
     "normals a table": (gl.poisson_lod, (P, TABLE), dict(count=5), gl.InputError,
                         "normals is a table (fields x, y, z, nx, ny, nz, intensity): give its normals as an (n, 3) "
                         "array, such as np.column_stack([normals['nx'], normals['ny'], normals['nz']])"),
+    # np.asarray drops a mask and keeps the values under it (often a fill value): sampled as points, silently.
+    "points masked": (gl.poisson_lod, (np.ma.masked_array(P, mask=np.eye(500, 3, dtype=bool)),), dict(count=5),
+                      gl.InputError, "points is a masked array with 3 masked values: give the rows to sample"),
+    "normals masked": (gl.poisson_lod, (P, np.ma.masked_invalid(NAN)), dict(count=5), gl.InputError,
+                       "normals is a masked array with 6 masked values"),
+    "faces masked": (gl.poisson_lod, (MESH_P,), dict(faces=np.ma.masked_equal(MESH_F, 0), count=5), gl.InputError,
+                     "faces is a masked array with"),
     "normals rows": (gl.poisson_lod, (P, P[:10]), dict(count=5), gl.InputError,
                      "normals must have one row per point (500), got 10"),
     "normals int": (gl.poisson_lod, (P, P.astype(np.int32)), dict(count=5), gl.InputError,
