@@ -288,14 +288,28 @@ def _read_las(path, threads=None):
     return PointFile(path, "las", points, None, None, records, source)
 
 
+def _npy_layout(path) -> tuple:
+    """An NPY file's (shape, dtype), from its header: numpy's loader calls any other file a pickle, and an
+    array of Python objects one it cannot map."""
+    from numpy.lib import format as npy
+    with open(path, "rb") as f:
+        try:
+            version = npy.read_magic(f)
+        except ValueError:
+            raise PointFileError(path, "is not an NPY file (it does not begin with NumPy's format marker)") from None
+        shape, _, dtype = (npy.read_array_header_1_0 if version == (1, 0) else npy.read_array_header_2_0)(f)
+    return shape, dtype
+
+
 def _read_npy(path):
+    shape, dtype = _npy_layout(path)  # checked before any of it is loaded
+    if not dtype.names and (len(shape) != 2 or shape[1] not in (3, 6) or dtype.kind != "f"):
+        grid = f". {arrays.GRID_HINT}" if len(shape) == 2 and shape[1] not in (3, 6) else ""
+        raise PointFileError(path, f"holds an array of shape {shape} of {dtype}: expected floats of shape "
+                             f"(n, 3) (x y z), (n, 6) (x y z nx ny nz) or a table with fields x, y, z{grid}")
     a = np.load(str(path), mmap_mode="r", allow_pickle=False)
     if a.dtype.names:
         return PointFile(path, "npy", _xyz(a, path), _normals(a), None, a, None)
-    if a.ndim != 2 or a.shape[1] not in (3, 6) or a.dtype.kind != "f":
-        grid = f". {arrays.GRID_HINT}" if a.ndim == 2 and a.shape[1] not in (3, 6) else ""
-        raise PointFileError(path, f"holds an array of shape {a.shape} of {a.dtype}: expected floats of shape "
-                             f"(n, 3) (x y z), (n, 6) (x y z nx ny nz) or a table with fields x, y, z{grid}")
     return PointFile(path, "npy", np.asarray(a[:, :3], dtype=np.float64),
                      np.asarray(a[:, 3:], dtype=np.float64) if a.shape[1] == 6 else None, None, a, None)
 
