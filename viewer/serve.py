@@ -132,10 +132,27 @@ def snapshots(copc, folder, timeout: float = 300, query: str = "") -> dict:
         thread.join()
 
 
+def port(text: str) -> int:
+    """A TCP port from the command line: 0 to 65535 (0: any free port)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"{text} is not a port: give one from 0 to 65535 (0: any free port)")
+    return value
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, as every other error here, not argparse's usage block
+        print(f"serve.py: error: {message} (see serve.py --help)", file=sys.stderr)
+        sys.exit(2)
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = Parser(description=__doc__.splitlines()[0])
     ap.add_argument("copc", help="a COPC file, such as geodesic-lod's scan.copc.laz")
-    ap.add_argument("--port", type=int, default=8000)
+    ap.add_argument("--port", type=port, default=8000, help="0 to 65535; 0: any free port (default: 8000)")
     ap.add_argument("--snapshots", metavar="DIR", help="screenshots from headless Chromium into DIR, then stop")
     args = ap.parse_args(argv)
     try:

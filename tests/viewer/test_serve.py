@@ -83,3 +83,15 @@ def test_a_port_in_use_names_the_port_and_the_option(plain_laz, tmp_path):
         held.listen()
         port = held.getsockname()[1]
         one_error_line(serve(copc, "--port", port), f"port {port}", "--port")
+
+
+@pytest.mark.parametrize("port", ["65536", "99999", "-5"])
+def test_a_port_outside_0_to_65535_is_named(plain_laz, port):
+    # The socket's own OverflowError was a traceback.
+    one_error_line(serve(plain_laz, "--port", port),
+                   f"argument --port: {port} is not a port: give one from 0 to 65535 (0: any free port)")
+
+
+def test_a_bad_option_is_one_line(plain_laz):
+    one_error_line(serve(plain_laz, "--port", "abc"), "argument --port: abc is not a port")
+    one_error_line(serve(plain_laz, "--zoom", "2"), "unrecognized arguments: --zoom 2")
