@@ -2,7 +2,8 @@
 HTTP range requests a streaming viewer makes.
 
 usage: python3 viewer/serve.py scan.copc.laz [--port 8000]   (then open the address it prints)
-       python3 viewer/serve.py scan.copc.laz --snapshots DIR (far.png and near.png from headless Chromium)
+       python3 viewer/serve.py scan.copc.laz --snapshots DIR [--overwrite]  (far.png and near.png from headless
+                                                                            Chromium; --overwrite replaces DIR's)
 """
 import argparse
 import errno
@@ -112,10 +113,21 @@ def server(copc, port: int = 0) -> http.server.ThreadingHTTPServer:
         raise
 
 
-def snapshots(copc, folder, timeout: float = 300, query: str = "") -> dict:
+SHOTS = ("far.png", "near.png")  # what screenshot.mjs writes into its folder
+
+
+def snapshots(copc, folder, timeout: float = 300, query: str = "", overwrite: bool = False) -> dict:
     """Serves copc on a free port of 127.0.0.1 while screenshot.mjs views it in headless Chromium (the
-    page's URL query `query`, e.g. "budget=100000"), far, near and far again; returns the viewer's state
-    at the three and the errors it logged, and stops the server."""
+    page's URL query `query`, e.g. "budget=100000"), far, near and far again, its screenshots SHOTS in
+    `folder`; returns the viewer's state at the three and the errors it logged, and stops the server. A
+    folder already holding one of SHOTS is refused unless `overwrite`."""
+    folder = pathlib.Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"{folder}: is a file, not a folder for the screenshots")
+    held = [name for name in SHOTS if (folder / name).exists()]
+    if held and not overwrite:
+        raise ValueError(f"{folder}: holds {' and '.join(held)}, which the screenshots would replace: give another "
+                         "folder, or --overwrite")
     httpd = server(copc)
     thread = threading.Thread(target=httpd.serve_forever, daemon=True)
     thread.start()
@@ -154,10 +166,11 @@ def main(argv=None):
     ap.add_argument("copc", help="a COPC file, such as geodesic-lod's scan.copc.laz")
     ap.add_argument("--port", type=port, default=8000, help="0 to 65535; 0: any free port (default: 8000)")
     ap.add_argument("--snapshots", metavar="DIR", help="screenshots from headless Chromium into DIR, then stop")
+    ap.add_argument("--overwrite", action="store_true", help="with --snapshots: replace DIR's far.png and near.png")
     args = ap.parse_args(argv)
     try:
         if args.snapshots:
-            print(json.dumps(snapshots(args.copc, args.snapshots)))
+            print(json.dumps(snapshots(args.copc, args.snapshots, overwrite=args.overwrite)))
             return 0
         httpd = server(args.copc, args.port)
     except (ValueError, OSError, RuntimeError) as e:

@@ -95,3 +95,18 @@ def test_a_port_outside_0_to_65535_is_named(plain_laz, port):
 def test_a_bad_option_is_one_line(plain_laz):
     one_error_line(serve(plain_laz, "--port", "abc"), "argument --port: abc is not a port")
     one_error_line(serve(plain_laz, "--zoom", "2"), "unrecognized arguments: --zoom 2")
+
+
+def test_screenshots_never_replace_the_users_files(plain_laz, tmp_path):
+    """--snapshots DIR writes DIR/far.png and DIR/near.png: a folder holding either is refused unless
+    --overwrite, and a file at DIR's name is named; nothing is served."""
+    copc = tmp_path / "scan.copc.laz"
+    r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(plain_laz), "-o", str(copc), "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    mine = tmp_path / "pictures"
+    mine.mkdir()
+    (mine / "far.png").write_bytes(b"the user's own picture")
+    one_error_line(serve(copc, "--snapshots", mine), str(mine), "far.png", "--overwrite")
+    assert (mine / "far.png").read_bytes() == b"the user's own picture"
+    one_error_line(serve(copc, "--snapshots", plain_laz), str(plain_laz), "is a file, not a folder")

@@ -49,7 +49,7 @@ def view(copc, folder, query=""):
     folder.mkdir(parents=True, exist_ok=True)
     sys.path.insert(0, str(VIEWER))
     import serve
-    return serve.snapshots(copc, folder, query=query)
+    return serve.snapshots(copc, folder, query=query, overwrite=True)  # the folder holds this test's own
 
 
 @pytest.fixture(scope="module")
@@ -150,3 +150,20 @@ def test_a_copc_file_the_page_cannot_open_is_one_line_naming_the_pages_error(cop
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
     assert r.stderr.startswith(f"serve.py: error: {cut}: the page stopped: ") and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("n", [1, 50])
+def test_a_copc_file_of_points_at_one_position_is_drawn(copc_file, tmp_path, n):
+    """No extent to frame (one point, or a clump at one position): the camera still stands off them."""
+    header = laspy.LasHeader(point_format=6, version="1.4")
+    header.scales, header.offsets = [0.01] * 3, [300000.0, 5000000.0, 0.0]
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = np.full(n, 300010.0), np.full(n, 5000020.0), np.full(n, 3.0)
+    las.write(str(tmp_path / "one.laz"))
+    r = subprocess.run([sys.executable, "-m", "geodesic_lod", str(tmp_path / "one.laz"), "-o",
+                        str(tmp_path / "one.copc.laz"), "-q"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    state = view(tmp_path / "one.copc.laz", tmp_path / "shots")
+    assert not state["errors"]
+    for where in ("far", "near"):
+        assert state[where]["drawnPoints"] == n, state[where]

@@ -81,7 +81,10 @@ async function main() {
   const extent = new THREE.Vector3(copc.header.max[0] - copc.header.min[0], copc.header.max[1] - copc.header.min[1],
                                    copc.header.max[2] - copc.header.min[2]);
   const middle = new THREE.Vector3(...copc.header.min).add(extent.clone().multiplyScalar(0.5)).sub(centre);
-  camera.position.copy(middle).add(new THREE.Vector3(0, -1, 0.8).multiplyScalar(0.8 * extent.length()));
+  // Stand off the points' box by its diagonal, or by the cube's side where the points have no extent (one
+  // point, or all at one position): a camera on its target sees nothing.
+  const standOff = 0.8 * (extent.length() || side);
+  camera.position.copy(middle).add(new THREE.Vector3(0, -1, 0.8).multiplyScalar(standOff));
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(middle);
   controls.update();
