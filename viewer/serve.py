@@ -168,6 +168,8 @@ def main(argv=None):
     ap.add_argument("--snapshots", metavar="DIR", help="screenshots from headless Chromium into DIR, then stop")
     ap.add_argument("--overwrite", action="store_true", help="with --snapshots: replace DIR's far.png and near.png")
     args = ap.parse_args(argv)
+    if args.overwrite and not args.snapshots:
+        ap.error("--overwrite goes with --snapshots (serving replaces nothing)")
     try:
         if args.snapshots:
             print(json.dumps(snapshots(args.copc, args.snapshots, overwrite=args.overwrite)))

@@ -95,6 +95,7 @@ def test_a_port_outside_0_to_65535_is_named(plain_laz, port):
 def test_a_bad_option_is_one_line(plain_laz):
     one_error_line(serve(plain_laz, "--port", "abc"), "argument --port: abc is not a port")
     one_error_line(serve(plain_laz, "--zoom", "2"), "unrecognized arguments: --zoom 2")
+    one_error_line(serve(plain_laz, "--overwrite"), "--overwrite goes with --snapshots")
 
 
 def test_screenshots_never_replace_the_users_files(plain_laz, tmp_path):
