@@ -293,10 +293,10 @@ def _npy_layout(path) -> tuple:
     array of Python objects one it cannot map."""
     from numpy.lib import format as npy
     with open(path, "rb") as f:
-        try:
-            version = npy.read_magic(f)
-        except ValueError:
-            raise PointFileError(path, "is not an NPY file (it does not begin with NumPy's format marker)") from None
+        if f.read(len(npy.MAGIC_PREFIX)) != npy.MAGIC_PREFIX:
+            raise PointFileError(path, "is not an NPY file (it does not begin with NumPy's format marker)")
+        f.seek(0)
+        version = npy.read_magic(f)  # a file cut within its header: the reader's ValueError, named by read()
         shape, _, dtype = (npy.read_array_header_1_0 if version == (1, 0) else npy.read_array_header_2_0)(f)
     return shape, dtype
 
