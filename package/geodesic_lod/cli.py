@@ -452,7 +452,7 @@ def _copc(args, progress) -> list:
     args.kept[:] = [args.output]
     per_depth = ", ".join(f"{c:,}" for c in np.bincount(lod.depth))
     return [f"{args.output}: {_copc_points(len(lod.depth), len(lod.radii), per_depth)}, spacing "
-            f"{lod.octree.spacing:.6g} at depth 0"] + (_choices_line(args, lod) if lod.metric else [])
+            f"{lod.octree.spacing:.6g} at depth 0"] + _choices_line(args, lod)
 
 
 def _copc_points(points: int, deepest: int, per_depth: str = "") -> str:
