@@ -47,7 +47,8 @@ class PoissonTile {
     uint64_t seed = 0;
     vcg::Box3d core;           ///< the tile's own points lie in it (half-open boxes partition the cloud)
     double halo = 0;           ///< the points within this distance of `core` were read too (on every side
-                               ///< where the cloud goes on)
+                               ///< where the cloud goes on); a read kept from a run of a wider halo holds
+                               ///< more, which this run neither visits nor counts as read
     vcg::Box3d cloud;          ///< the whole cloud's bounding box: no points beyond it
     /// Per input row: whether it may become a sample (nullptr: every row). Nested
     /// levels pass a finer level's samples: core and halo alike, as settled.
@@ -112,7 +113,7 @@ class PoissonTile {
     r.neededHalo = halo.second;
     if (!r.certified) return r;
 
-    // The tile visits every point it read that may be a sample. Its keys,
+    // The tile visits every point within its halo that may be a sample. Its keys,
     // and the disks of the points farther than r beyond `exactFrom` from the
     // read's edge, are the whole cloud's.
     std::vector<double> toEdge(n);
@@ -125,7 +126,10 @@ class PoissonTile {
     for (size_t i = 0; i < n; ++i) {
       const size_t row = size_t(d.points.vertIndex[i]);
       pid[i] = id[row];
-      const bool may = !p.candidate || (*p.candidate)[row] != 0;
+      // Beyond the halo (a wider read's) the rows are exact, but a run of this
+      // radius needs no decision there: the points are left as a read of
+      // this halo would leave them, unread.
+      const bool may = (!p.candidate || (*p.candidate)[row] != 0) && toEdge[i] >= 0;
       const bool keyExact = Reach(d, i, KeyReach(p)) < toEdge[i];
       if (!keyExact) exactFrom = std::max(exactFrom, toEdge[i]);
       flags[i] = char((core[row] ? Core : 0) | (may ? Visit : 0) | (keyExact ? KeyExact : 0));
@@ -312,7 +316,7 @@ class PoissonTile {
 
  private:
   // Per point: whether it is the tile's own (Core) and whether it may be
-  // visited (Visit: within r of the core, and a candidate). One byte a point,
+  // visited (Visit: within the halo, and a candidate). One byte a point,
   // read where each disk lands.
   // Also: whether its key (KeyExact) and its disk (DiskExact) are the whole
   // cloud's, as the read holds what they depend on.

@@ -225,18 +225,20 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
         levels = [None] * depths
         # With no depth (the root node takes every point, as on one machine) there is no Poisson run: no
         # metric is taken, and a few points need no neighbours.
-        taken, halo = dict(metric="", visit_order="", scatter_share=0.0), None
+        taken = dict(metric="", visit_order="", scatter_share=0.0)
         if depths:
             cloud_files.check_count(total)
             choices = cluster_choices(client, cells, domain, visit_order, total)
             job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
             taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
-            # Every depth reads the halo the coarsest needs: the tiles' reads then serve every depth.
-            halo = tiles.first_halo(radii[0], spacing, visit)
+            # A tile read reads the halo the coarsest depth needs, so that it serves every depth; each decides
+            # within its own.
+            read_halo = tiles.first_halo(radii[0], spacing, visit)
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
-            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),
-                                      halo=halo)
+            order = dataclasses.replace(visit, scale=radii[d])
+            job = dataclasses.replace(job, radius=radii[d], order=order, read_halo=read_halo,
+                                      halo=tiles.first_halo(radii[d], spacing, order))
             run = poisson_run(client, job, boxes, ticks, where)
             folder = work / f"level_{d}"
             folder.mkdir()

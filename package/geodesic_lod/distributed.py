@@ -65,7 +65,7 @@ class Job:
     threads : int or None
         Threads per task (None: all the worker machine's cores).
     halo : float
-        The width of the first halo a tile reads around its core, in the input's units.
+        The width of the first halo a run decides a tile within, in the input's units.
     cells : partition.Partition
         The input decoded once, which the tasks read instead of the files.
     within : (str, list of tiles.Box) or None
@@ -76,6 +76,9 @@ class Job:
     runs_again : bool
         Whether the job runs on the tiles again (levels, count searches, a COPC file's depths): only then
         are reads that do not fit in a worker's memory written to the work folder.
+    read_halo : float
+        Where a tile is read (not kept from an earlier run), at least this wide: the halo the job's coarsest
+        run likely needs, so that one read serves every run (each decides within its own `halo`).
     """
     srcs: list
     cloud: tiles.Box
@@ -88,6 +91,7 @@ class Job:
     within: Optional[tuple] = None
     order: tiles.Order = tiles.RANDOM
     runs_again: bool = True
+    read_halo: float = 0.0
 
     def domain_param(self):
         d = _core.DomainParam()
@@ -150,7 +154,8 @@ WHOLE = "whole"  # the whole cloud's task's key in a run's `where`
 def _reads_whole(job: Job, boxes) -> bool:
     """Whether some tile of a run would read every point (tiles.reads_whole): every tile's decision is then
     the whole cloud's, made once."""
-    return any(tiles.reads_whole(b, job.cloud, job.halo, _share(job, b.outer(job.cloud))) for b in boxes)
+    return any(tiles.reads_whole(b, job.cloud, max(job.halo, job.read_halo), _share(job, b.outer(job.cloud)))
+               for b in boxes)
 
 
 def _reads_whole_at_any_size(job: Job, boxes) -> bool:
@@ -206,7 +211,7 @@ def _tile_arguments(job: Job, box: tiles.Box) -> dict:
     """What a tile's task reads and how (tiles.read_tile's arguments), for decide_tile and pilot_tile alike."""
     outer = box.outer(job.cloud)  # points a rounding beyond the headers' bounds are read too
     return dict(read=lambda halo: job.cells.read_region(outer.lo - halo, outer.hi + halo), box=box,
-                cloud=job.cloud, halo=job.halo, domain=job.domain_param(), seed=job.seed,
+                cloud=job.cloud, halo=job.halo, read_halo=job.read_halo, domain=job.domain_param(), seed=job.seed,
                 candidates=_tile_candidates(job, outer), threads=job.threads,
                 reads=_tile_reads() if job.runs_again else None,  # else none is read again
                 job=(job.cells.folder, tuple(sorted(job.domain.items()))), tile=box.as_tuple(),
@@ -483,8 +488,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     best, spent = None, {"tiles": time.perf_counter() - start, "seams": 0.0}
     while not steps.done:
         r = steps.radius
-        halo = tiles.first_halo(max(r, reach), spacing, job.order)
-        run = poisson_run(client, dataclasses.replace(job, radius=r, halo=halo), boxes, ticks, where)
+        run = poisson_run(client, _run_job(job, r, reach, spacing), boxes, ticks, where)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
         if steps.report(run.count, run.parts_whole) == _core.SearchRole.Accepted:
             best = run
@@ -492,6 +496,13 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
             best = run
     best.seconds = spent  # every run's, not only the one kept
     return best, steps.runs
+
+
+def _run_job(job: Job, radius: float, reach: float, spacing: float) -> Job:
+    """`job` for a run of `radius` among runs of radii up to `reach`: it decides each tile within the halo of
+    its radius, and a tile read reads the halo of the coarsest."""
+    return dataclasses.replace(job, radius=radius, halo=tiles.first_halo(radius, spacing, job.order),
+                               read_halo=tiles.first_halo(max(radius, reach), spacing, job.order))
 
 
 def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, reach: float,
@@ -694,8 +705,8 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     order = choices.order
-    # Every run reads the halo the coarsest level likely needs, so that a tile's read (its points and their
-    # domain, kept on its worker) serves every level and every step of the count searches.
+    # A tile read reads the halo the coarsest level likely needs, so that it (its points and their domain, kept
+    # on its worker) serves every level and every step of the count searches; each run decides within its own.
     reach = max(value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)
                 for kind, value in targets)
     where = {}
@@ -703,7 +714,7 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
         search = {}
         if kind == "radius":
             job = dataclasses.replace(job, radius=value, order=dataclasses.replace(order, scale=value))
-            job = dataclasses.replace(job, halo=tiles.first_halo(max(value, reach), spacing, job.order))
+            job = _run_job(job, value, reach, spacing)
             run = poisson_run(client, job, boxes, ticks, where)
         else:
             first = _core.RadiusSearch.first_radius(diagonal, value)

@@ -371,20 +371,23 @@ def _load_read(path: pathlib.Path) -> Optional[TileRead]:
 
 def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
            candidate: Optional[np.ndarray] = None, threads: Optional[int] = None, progress=None,
-           order: Order = RANDOM) -> tuple:
-    """One tile's run on what it read; `candidate`: per point, whether it may become a sample (None: all).
+           order: Order = RANDOM, halo: Optional[float] = None) -> tuple:
+    """One tile's run on what it read, within `halo` of the box (None: all it read); `candidate`: per point,
+    whether it may become a sample (None: all). A read kept from a job's coarsest run holds a halo its finer
+    runs do not need: each decides within its own, as a read of that halo would, and visits no point beyond.
     Returns (Decision, None) or, when the halo is too narrow for the check, (None, a halo that will do)."""
+    looked = t.halo_read() if halo is None or t.whole else min(halo, t.halo)
     if candidate is not None:
         candidate = np.ascontiguousarray(candidate, dtype=bool)
     args = order.core_args()
     known = t.keys if order.keyed and t.keys is not None and t.keys[0] == args else None
-    r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), t.halo_read(),
+    r = _core.poisson_tile(t.domain, t.ids, t.core, float(radius), int(seed), box.as_tuple(), looked,
                            cloud.as_tuple(), candidate, threads, progress, **args, reads_all=t.whole,
                            **({"given_key": known[1], "given_keyed": known[2]} if known else {}))
     if order.keyed and len(r["keyed"]):  # computed here: kept for the next run
         t.keys = (args, r["key"], r["keyed"].astype(bool))
     if not r["certified"]:
-        return None, max(r["needed_halo"] * 1.01, 1.5 * t.halo)
+        return None, max(r["needed_halo"] * 1.01, 1.5 * looked)
     status, offset = r["status"], r["cover_offset"]
     ids = t.ids
     opened = np.flatnonzero(status == OPEN)
@@ -393,7 +396,7 @@ def decide(t: TileRead, *, radius: float, box: Box, cloud: Box, seed: int = 0,
     return Decision(samples=ids[status == IN].astype(np.uint64), band_ids=ids[r["band"]].astype(np.uint64),
                     band_status=status[r["band"]], open_ids=ids[opened].astype(np.uint64),
                     cover_offset=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
-                    coverers=r["coverers"][picks], halo=t.halo, read=len(ids),
+                    coverers=r["coverers"][picks], halo=min(looked, t.halo), read=len(ids),
                     open_keys=r["key"][opened] if order.keyed else None, whole_parts=bool(r["whole_parts"]),
                     open_whole=r["open_whole"][opened].astype(bool)), None
 
@@ -414,29 +417,31 @@ def decide_whole(read: Callable[[float], tuple], *, boxes: Sequence[Box], **args
 def decided(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
             seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
             threads: Optional[int] = None, order: Order = RANDOM, reads: Optional[TileReads] = None,
-            job=None, tile=None, folder=None, share: Optional[Callable[[float], float]] = None) -> tuple:
+            job=None, tile=None, folder=None, share: Optional[Callable[[float], float]] = None,
+            read_halo: float = 0.0) -> tuple:
     """One tile's decision and the read it was made on, reading a wider halo until the check passes: read(halo)
     gives the points within halo of the box (points, normals or None, ids; in id order); candidates(ids, halo),
     when given, which of them may become samples. With `reads`, the read of at least that halo kept for (`job`,
     `tile`) is used instead of reading, and a new one kept (in memory, or in the job's work `folder`);
-    share(halo), when given, at least the share of the cloud's points a read of that halo holds (read_tile).
-    (None, None) when the tile's core holds no point."""
+    share(halo), when given, at least the share of the cloud's points a read of that halo holds (read_tile);
+    a tile read reads at least `read_halo` (read_tile). (None, None) when the tile's core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
-                      tile=tile, folder=folder, share=share)
+                      tile=tile, folder=folder, share=share, read_halo=read_halo)
         if t is None:
             return None, None
         may = None if candidates is None else candidates(t.ids, t.halo)
         d, halo = decide(t, radius=radius, box=box.outer(cloud), cloud=cloud, seed=seed, candidate=may,
-                         threads=threads, order=order)
+                         threads=threads, order=order, halo=halo)
         if d is not None:
             return d, t
 
 
 def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, threads: Optional[int],
               reads: Optional[TileReads], job, tile, folder,
-              share: Optional[Callable[[float], float]] = None) -> Optional[TileRead]:
+              share: Optional[Callable[[float], float]] = None, read_halo: float = 0.0) -> Optional[TileRead]:
     """What a tile reads with a halo of at least `halo` (decided's arguments): kept in `reads`, or read
+    (at least `read_halo` wide: the widest a job's runs will likely ask, so that one read serves them all)
     and kept there; the whole cloud where share(halo) reaches WHOLE_READ_SHARE. None when the tile's core
     holds no point."""
     neighbours = max(domain.normal_neighbors, domain.graph_neighbors)
@@ -444,6 +449,7 @@ def read_tile(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: flo
         t = None if reads is None else reads.get(job, tile, halo, folder)
         if t is not None:
             return t
+        halo = max(halo, read_halo)
         if reads_whole(box, cloud, halo, share):
             halo = max(halo, whole_halo(box, cloud))
         points, normals, ids = read(halo)
@@ -513,13 +519,14 @@ def split_whole(d: Optional[Decision], t: Optional[TileRead], boxes: Sequence[Bo
 def pilot_widening(read: Callable[[float], tuple], *, box: Box, cloud: Box, halo: float, domain, radius: float,
                    below: int, seed: int = 0, candidates: Optional[Callable[[np.ndarray, float], np.ndarray]] = None,
                    threads: Optional[int] = None, reads: Optional[TileReads] = None, job=None, tile=None,
-                   folder=None, share: Optional[Callable[[float], float]] = None) -> Optional[tuple]:
+                   folder=None, share: Optional[Callable[[float], float]] = None,
+                   read_halo: float = 0.0) -> Optional[tuple]:
     """The count search's pilot disks of one tile's core at `radius` (``_core.pilot_tile``: hash, offset,
     dist, and the core's candidates), reading a wider halo until the check passes, as decide_widening. None
     when the core holds no point."""
     while True:
         t = read_tile(read, box=box, cloud=cloud, halo=halo, domain=domain, threads=threads, reads=reads, job=job,
-                      tile=tile, folder=folder, share=share)
+                      tile=tile, folder=folder, share=share, read_halo=read_halo)
         if t is None:
             return None
         may = None if candidates is None else np.ascontiguousarray(candidates(t.ids, t.halo), dtype=bool)

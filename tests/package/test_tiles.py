@@ -86,6 +86,29 @@ def test_a_tiles_read_serves_the_next_runs_on_its_points():
     assert np.array_equal(coarse, dom.poisson_lod(radius=0.12, within=fine, visit_order="random").indices)
 
 
+@pytest.mark.parametrize("seed", [0, 4])
+def test_runs_on_a_read_wider_than_they_need_decide_within_their_own_halo(seed):
+    """Nested levels on reads of the coarsest level's halo, each run deciding within its own: the whole
+    cloud's samples, one read per tile, and no decision looking beyond the halo its radius asks."""
+    rng = np.random.default_rng(seed)
+    xy = rng.random((20000, 2)) * 4
+    p = np.column_stack([xy, 0.3 * np.sin(2 * xy[:, 0]) * np.cos(3 * xy[:, 1])])
+    spacing = tiles.spacing_of(tiles.Box(p.min(axis=0), p.max(axis=0)), len(p))
+    wide = 1.5 * tiles.first_halo(0.2, spacing)
+    reads, looked = tiles.TileReads(1 << 30), []
+    fine = poisson_lod_tiled(p, radius=0.05, shape=(4, 4, 1), seed=seed, halo=tiles.first_halo(0.05, spacing),
+                             read_halo=wide, reads=reads, on_tile=lambda t, d: looked.append(d.halo))
+    kept = dict(reads.reads)
+    coarse = poisson_lod_tiled(p, radius=0.2, shape=(4, 4, 1), seed=seed, halo=tiles.first_halo(0.2, spacing),
+                               read_halo=wide, within=fine, reads=reads)
+    assert reads.reads.keys() == kept.keys() and all(reads.reads[k] is kept[k] for k in kept)
+    assert all(k.halo >= wide and not k.whole for k in kept.values())
+    assert all(halo < wide for halo in looked), looked
+    dom = gl.Domain(p)
+    assert np.array_equal(fine, dom.poisson_lod(radius=0.05, seed=seed, visit_order="random").indices)
+    assert np.array_equal(coarse, dom.poisson_lod(radius=0.2, seed=seed, within=fine, visit_order="random").indices)
+
+
 def test_a_tile_domain_is_the_same_after_a_round_trip_through_its_arrays():
     p = bumpy_sphere(3000)
     param = gl.arrays.DomainOptions(metric="curvature-density", geodesics="point-graph").param(len(p))

@@ -11,14 +11,14 @@ from geodesic_lod.tiles import (Box, Decision, TileReads, decide_widening, first
 
 def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), seed: int = 0,
                       metric: str = arrays.DEFAULT_METRIC, adaptivity: float = arrays.DOMAIN_DEFAULTS.adaptivity,
-                      halo: Optional[float] = None, within: Optional[np.ndarray] = None,
+                      halo: Optional[float] = None, read_halo: float = 0.0, within: Optional[np.ndarray] = None,
                       threads: Optional[int] = None,
                       on_tile: Optional[Callable[[int, Decision], None]] = None,
                       reads: Optional[TileReads] = None, folder=None) -> np.ndarray:
     """poisson_lod(points, normals, radius=radius, seed=seed, within=within, visit_order="random").indices,
     computed tile by tile in one process (shape: tiles per axis), by the steps the Dask pipeline runs on
     workers; `reads`: the tiles' reads kept across runs, keyed by the tile's number (those that do not fit in
-    memory written to `folder`)."""
+    memory written to `folder`); `read_halo`: the least width a tile reads (each decides within `halo`)."""
     p, n = arrays.point_arrays(points, normals)
     domain = arrays.DomainOptions(metric=metric, geodesics="point-graph", adaptivity=adaptivity).param(len(p))
     domain.metric = _core.chosen_metric(domain.metric, arrays.scatter_share(p))  # as a cluster, for the whole cloud
@@ -38,7 +38,7 @@ def poisson_lod_tiled(points, normals=None, *, radius: float, shape=(2, 2, 1), s
             return p[m], None if n is None else n[m], ids[m]
         d = decide_widening(read, box=box, cloud=cloud, halo=width, domain=domain, radius=radius, seed=seed,
                             candidates=may, threads=threads, reads=reads, job="test", tile=t,
-                            folder=folder)
+                            folder=folder, read_halo=read_halo)
         if d is None:
             continue
         if on_tile:
