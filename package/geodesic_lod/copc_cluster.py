@@ -231,14 +231,16 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
             choices = cluster_choices(client, cells, domain, visit_order, total)
             job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
             taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
-            # A tile read reads the halo the coarsest depth needs, so that it serves every depth; each decides
+            # A depth coarser than the finest is among the finer one's samples: few of its points are left open
+            # at the seams, and it takes no ring (tiles.first_halo), which at depth 0 would double the halo
+            # every tile reads. A tile read reads the widest halo, so that it serves every depth; each decides
             # within its own.
-            read_halo = tiles.first_halo(radii[0], spacing, visit)
+            halos = [tiles.first_halo(radii[d], spacing, dataclasses.replace(visit, scale=radii[d]),
+                                      ring=None if d == depths - 1 else False) for d in range(depths)]
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
-            order = dataclasses.replace(visit, scale=radii[d])
-            job = dataclasses.replace(job, radius=radii[d], order=order, read_halo=read_halo,
-                                      halo=tiles.first_halo(radii[d], spacing, order))
+            job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),
+                                      halo=halos[d], read_halo=max(halos))
             run = poisson_run(client, job, boxes, ticks, where)
             folder = work / f"level_{d}"
             folder.mkdir()
