@@ -231,10 +231,10 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
             choices = cluster_choices(client, cells, domain, visit_order, total)
             job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
             taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
-            # A depth coarser than the finest is among the finer one's samples: few of its points are left open
-            # at the seams, and it takes no ring (tiles.first_halo), which at depth 0 would double the halo
-            # every tile reads. A tile read reads the widest halo, so that it serves every depth; each decides
-            # within its own.
+            # A depth coarser than the finest is among the finer one's samples and takes no ring, as a level
+            # among a finer one's does (distributed._first_halo): at depth 0 it would double the halo every
+            # tile reads. A tile read reads the widest halo, so that it serves every depth; each decides within
+            # its own.
             halos = [tiles.first_halo(radii[d], spacing, dataclasses.replace(visit, scale=radii[d]),
                                       ring=None if d == depths - 1 else False) for d in range(depths)]
         where = {}

@@ -473,13 +473,13 @@ def _run_tasks(client, job: Job, boxes, where: dict, ticks: Ticks, whole: tuple,
 
 
 def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_runs: int, ticks: Ticks,
-                  spacing: float, pool: int, first_radius: float, reach: float, where: dict, subject: str) -> tuple:
+                  spacing: float, pool: int, first_radius: float, read_halo: float, where: dict, subject: str) -> tuple:
     """poisson_lod's count search (vcg_ext's RadiusSearch, the same steps from the same first radius), each
-    run over all tiles, among `pool` points that may be samples, reading the halo of a radius of at least
-    `reach`: (the accepted or nearest run, runs made). A target above the points that may be samples (a
+    run over all tiles, among `pool` points that may be samples, a tile read reading at least `read_halo`:
+    (the accepted or nearest run, runs made). A target above the points that may be samples (a
     repeated position's first point only) is refused as one machine refuses it, naming the `subject`."""
     start = time.perf_counter()
-    pilot, candidates = _pilot_radius(client, job, boxes, target, tolerance, pool, first_radius, reach, spacing,
+    pilot, candidates = _pilot_radius(client, job, boxes, target, tolerance, pool, first_radius, read_halo, spacing,
                                       ticks, where)
     if target > candidates:
         problem = _core.beyond_distinct(candidates, pool - candidates, target)
@@ -488,7 +488,7 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     best, spent = None, {"tiles": time.perf_counter() - start, "seams": 0.0}
     while not steps.done:
         r = steps.radius
-        run = poisson_run(client, _run_job(job, r, reach, spacing), boxes, ticks, where)
+        run = poisson_run(client, _run_job(job, r, read_halo, spacing), boxes, ticks, where)
         spent = {k: spent[k] + run.seconds[k] for k in spent}
         if steps.report(run.count, run.parts_whole) == _core.SearchRole.Accepted:
             best = run
@@ -498,20 +498,26 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
     return best, steps.runs
 
 
-def _run_job(job: Job, radius: float, reach: float, spacing: float) -> Job:
-    """`job` for a run of `radius` among runs of radii up to `reach`: it decides each tile within the halo of
-    its radius, and a tile read reads the halo of the coarsest."""
-    return dataclasses.replace(job, radius=radius, halo=tiles.first_halo(radius, spacing, job.order),
-                               read_halo=tiles.first_halo(max(radius, reach), spacing, job.order))
+def _run_job(job: Job, radius: float, read_halo: float, spacing: float) -> Job:
+    """`job` for a run of `radius`: it decides each tile within the halo of its radius (_first_halo), and a tile
+    read reads at least `read_halo` (the job's coarsest run's)."""
+    halo = _first_halo(job, radius, spacing)
+    return dataclasses.replace(job, radius=radius, halo=halo, read_halo=max(halo, read_halo))
 
 
-def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, reach: float,
+def _first_halo(job: Job, radius: float, spacing: float) -> float:
+    """tiles.first_halo of a run of `job` at `radius`: without the ring among a finer level's samples, few of
+    which are left open at the seams (the ring of the coarsest level would set the halo every tile reads)."""
+    return tiles.first_halo(radius, spacing, job.order, None if job.within is None else False)
+
+
+def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, read_halo: float,
                   spacing: float, ticks: Ticks, where: dict) -> tuple:
     """The count search's first radius from the pilot disks of every tile (as poisson_lod's, to the bit), or
     0 to start from the guess; and the points that may be samples, summed over the tiles. The tiles' reads
     serve the runs after it."""
     radius = _core.PILOT_REACH * guess
-    job = dataclasses.replace(job, halo=tiles.first_halo(max(radius, reach), spacing, job.order))
+    job = _run_job(job, radius, read_halo, spacing)
     below = _core.pilot_threshold(pool, target)
     with _whole_lost(job, boxes):
         tasks = _run_tasks(client, job, boxes, where, ticks, (pilot_whole, radius, below), (pilot_tile, radius, below))
@@ -705,22 +711,25 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     order = choices.order
-    # A tile read reads the halo the coarsest level likely needs, so that it (its points and their domain, kept
-    # on its worker) serves every level and every step of the count searches; each run decides within its own.
-    reach = max(value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)
-                for kind, value in targets)
+    # A tile read reads the widest halo the levels likely need (the finest's with its ring, the coarser ones'
+    # among its samples without: _first_halo), so that it (its points and their domain, kept on its worker)
+    # serves every level and every step of the count searches; each run decides within its own.
+    reaches = [value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)
+               for kind, value in targets]
+    read_halo = max(tiles.first_halo(r, spacing, dataclasses.replace(order, scale=r), None if k == 0 else False)
+                    for k, r in enumerate(reaches))
     where = {}
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
             job = dataclasses.replace(job, radius=value, order=dataclasses.replace(order, scale=value))
-            job = _run_job(job, value, reach, spacing)
+            job = _run_job(job, value, read_halo, spacing)
             run = poisson_run(client, job, boxes, ticks, where)
         else:
             first = _core.RadiusSearch.first_radius(diagonal, value)
             job = dataclasses.replace(job, order=dataclasses.replace(order, scale=first))
             run, runs = _count_search(client, job, boxes, value, size["tolerance"], size["max_runs"], ticks, spacing,
-                                      pool, first, reach, where, "count" if len(targets) == 1 else arrays.FINEST_COUNT)
+                                      pool, first, read_halo, where, "count" if len(targets) == 1 else arrays.FINEST_COUNT)
             job = dataclasses.replace(job, radius=run.radius)
             search = {"target": value, "tolerance_percent": size["tolerance"], "runs": runs}
         ids_dir = work / str(k) if k + 1 < len(targets) else None
