@@ -474,7 +474,7 @@ def main(argv=None, kept: Optional[list] = None) -> int:
     """The command; `kept` (an empty list) gets the output files (or folder) once complete."""
     args = parser().parse_args(argv)
     args.kept = [] if kept is None else kept  # the output files once complete: a stop after names them
-    with stop_signals.stopping():
+    with stop_signals.stopping(), point_files.outputs_placed() as placed:
         try:
             start = time.perf_counter()
             request = _request(args)
@@ -512,11 +512,11 @@ def main(argv=None, kept: Optional[list] = None) -> int:
             args.kept[:] = paths
             return _done(args, summary + _choices_line(args, lod), start)
         except stop_signals.broken_by_a_stop():  # a codec's write or a nanny's start that the stop broke
-            return stopped(args.kept)
+            return stopped(args.kept or placed)
         except (ValueError, ClusterJobError) as e:  # InputError, and the command's own option checks
             _fail(command_words(e, not args.scheduler) if isinstance(e, ClusterJobError) else str(e))
-        except KeyboardInterrupt:
-            return stopped(args.kept)
+        except KeyboardInterrupt:  # after the files were put in place, before the run returned: they are kept
+            return stopped(args.kept or placed)
         except MemoryError as e:
             _fail(str(e) or f"{args.input[0]}: not enough memory for this input")
         except OSError as e:  # writing: a full disk, a folder without permission

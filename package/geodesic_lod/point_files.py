@@ -14,6 +14,7 @@ import os
 import pathlib
 import stat
 import warnings
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, BinaryIO, Optional, Sequence
 
@@ -392,6 +393,21 @@ def _name(tmp: pathlib.Path, path: pathlib.Path, overwrite: bool) -> None:
     tmp.unlink()
 
 
+_placed: Optional[list] = None  # within outputs_placed(): the outputs write_files put in place
+
+
+@contextmanager
+def outputs_placed():
+    """A list of the outputs write_files puts in place within (each call's once all its names are given):
+    a run stopped after that, before it returns, names them as complete (cli.main)."""
+    global _placed
+    before, _placed = _placed, []
+    try:
+        yield _placed
+    finally:
+        _placed = before
+
+
 def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
     """Each (path, write(f)) under a temporary name beside path, renamed to it once all are complete; on
     any failure or interruption the temporary files are removed and nothing else is touched. A file at a
@@ -422,6 +438,8 @@ def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
                         for _, earlier in done[:k]:
                             earlier.unlink(missing_ok=True)
                     raise
+            if _placed is not None:
+                _placed.extend(path for _, path in done)
     except BaseException:
         with stop_signals.held():  # a second Ctrl-C does not leave a partial file
             for tmp, _ in done:

@@ -192,6 +192,30 @@ def test_a_stop_once_a_copc_file_is_complete_says_it_is_kept(tmp_path, monkeypat
     assert sorted(p.name for p in tmp_path.iterdir()) == ["in.laz", "lod.copc.laz"]
 
 
+@pytest.mark.parametrize("out, options, kept", [
+    ("lod.npy", ["--rate", "10%"], ["lod.npy"]),
+    ("lod.npy", ["--levels", "10%,2%"], ["lod_10pct.npy", "lod_2pct.npy"]),
+    ("lod.copc.laz", [], ["lod.copc.laz"]),
+    ("lod.copc.laz", ["--workers", "1"], ["lod.copc.laz"]),
+], ids=["one file", "levels", "COPC", "COPC on a cluster"])
+def test_a_stop_as_the_output_is_put_in_place_says_it_is_kept(tmp_path, monkeypatch, capsys, out, options, kept):
+    """Stopped once the files are renamed into place, before the run returns: they are complete, and named."""
+    from geodesic_lod import cli, point_files
+    if out.endswith(".laz"):
+        pytest.importorskip("laspy")
+        from point_file_inputs import las_cloud
+        src = las_cloud(tmp_path / "in.laz")
+    else:
+        src = tmp_path / "in.npy"
+        np.save(src, bumpy_sphere(3000))
+    monkeypatch.setattr(point_files, "write_files", _stops_once_done(signal.SIGTERM, point_files.write_files))
+    code = cli.main([str(src), "-o", str(tmp_path / out), *options, "-q"])
+    assert code == 128 + signal.SIGTERM
+    assert capsys.readouterr().err.strip().splitlines()[-1] == \
+        f"geodesic-lod: stopped; the output was complete and is kept: {', '.join(str(tmp_path / k) for k in kept)}"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([src.name, *kept])
+
+
 def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp_path, monkeypatch, capsys):
     """Stopped as the client closes: the cluster is closed still (its workers gone), the output named."""
     pytest.importorskip("dask.distributed")
