@@ -202,6 +202,9 @@ nb::dict NormalVariation(const Array2& points, std::optional<Array2> normals, co
 
 NB_MODULE(_core, m) {
   m.doc() = "vcg_ext's geodesic LOD samplers on numpy arrays (use the functions of geodesic_lod)";
+  // Objects a thread still holds as the interpreter ends (Dask's, after a stop as a cluster closes) are
+  // freed with the process: nanobind's report of them would be the user's last lines, not the command's.
+  nb::set_leak_warnings(false);
 
   // vcg_ext's input errors reach Python as ValueError(field id, problem): geodesic_lod words them.
   nb::register_exception_translator([](const std::exception_ptr& p, void*) {

@@ -239,6 +239,21 @@ def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp
     assert (tmp_path / "lod" / "index.json").is_file()
 
 
+HELD_AT_EXIT = textwrap.dedent("""
+    import threading, time
+    from geodesic_lod import _core
+    param = _core.DomainParam()
+    threading.Thread(target=lambda held=param: time.sleep(60), daemon=True).start()
+""")
+
+
+def test_a_process_ending_while_a_thread_holds_the_cores_objects_prints_nothing_of_them():
+    """A stop as a cluster closes can leave the client's threads holding the core's objects (a job's domain
+    parameters) as the interpreter ends: the command's own line is the last the user reads."""
+    r = subprocess.run([sys.executable, "-c", HELD_AT_EXIT], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+
+
 # The command as its console script runs it; a stop lands as the interpreter exits after it returned.
 AT_EXIT = textwrap.dedent("""
     import atexit, os, signal, sys, time
