@@ -17,7 +17,7 @@ import pathlib
 import re
 from typing import Optional, Sequence
 
-from . import point_files
+from . import point_files, stop_signals
 from .command import PROG
 from .errors import PointFileError
 
@@ -176,7 +176,9 @@ class OutputFolder:
 
     def _commit(self, index: dict) -> dict:
         old = [n for n in self.owned if n != self.run]
-        self._write_index({"tool": TOOL, **index, **self._ownership()})
+        with stop_signals.held():  # the LOD complete and noted so at once: a stop as the older runs go names it
+            self._write_index({"tool": TOOL, **index, **self._ownership()})
+            point_files.note_placed([self.path])
         listed = lod_files(self.index or {})
         kept = [n for n in old if not remove_own(self.path / n, self._removable(n, listed))]
         self.owned, self.swept = kept + [self.run], kept

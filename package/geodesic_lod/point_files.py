@@ -393,19 +393,26 @@ def _name(tmp: pathlib.Path, path: pathlib.Path, overwrite: bool) -> None:
     tmp.unlink()
 
 
-_placed: Optional[list] = None  # within outputs_placed(): the outputs write_files put in place
+_placed: Optional[list] = None  # within outputs_placed(): the outputs put in place
 
 
 @contextmanager
 def outputs_placed():
-    """A list of the outputs write_files puts in place within (each call's once all its names are given):
-    a run stopped after that, before it returns, names them as complete (cli.main)."""
+    """A list of the outputs put in place within (note_placed: write_files' once all its names are given, a
+    cluster's folder once its index names the new run): a run stopped after that, before it returns, names
+    them as complete (cli.main)."""
     global _placed
     before, _placed = _placed, []
     try:
         yield _placed
     finally:
         _placed = before
+
+
+def note_placed(paths) -> None:
+    """Notes complete outputs for outputs_placed(); nothing outside it."""
+    if _placed is not None:
+        _placed.extend(paths)
 
 
 def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
@@ -438,8 +445,7 @@ def write_files(items: Sequence[tuple], overwrite: bool = False) -> None:
                         for _, earlier in done[:k]:
                             earlier.unlink(missing_ok=True)
                     raise
-            if _placed is not None:
-                _placed.extend(path for _, path in done)
+            note_placed(path for _, path in done)
     except BaseException:
         with stop_signals.held():  # a second Ctrl-C does not leave a partial file
             for tmp, _ in done:

@@ -239,6 +239,21 @@ def test_a_stop_while_a_cluster_closes_after_its_job_says_the_output_is_kept(tmp
     assert (tmp_path / "lod" / "index.json").is_file()
 
 
+def test_a_stop_as_a_cluster_run_becomes_the_folders_lod_says_it_is_kept(tmp_path, monkeypatch, capsys):
+    """Stopped once the folder's index names the new run (as the older runs' files are removed, before the
+    job returns): the LOD is complete, and named."""
+    pytest.importorskip("dask.distributed")
+    from geodesic_lod import cli, output_folder
+    np.save(tmp_path / "in.npy", bumpy_sphere(3000))
+    # As the commit finds the older runs' files to remove, the new index written.
+    monkeypatch.setattr(output_folder, "lod_files", _stops_once_done(signal.SIGINT, output_folder.lod_files))
+    code = cli.main([str(tmp_path / "in.npy"), "-o", str(tmp_path / "lod"), "--rate", "10%", "--workers", "1", "-q"])
+    assert code == 130
+    assert capsys.readouterr().err.strip().splitlines()[-1] == \
+        f"geodesic-lod: stopped; the output was complete and is kept: {tmp_path / 'lod'}"
+    assert (tmp_path / "lod" / "index.json").is_file()
+
+
 HELD_AT_EXIT = textwrap.dedent("""
     import threading, time
     from geodesic_lod import _core
