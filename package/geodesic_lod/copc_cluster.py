@@ -231,12 +231,10 @@ def _copc_job(paths, output, seed, domain, visit_order, tile_points, client, thr
             choices = cluster_choices(client, cells, domain, visit_order, total)
             job, visit = dataclasses.replace(job, domain=choices.domain), choices.order
             taken = dict(metric=choices.metric, visit_order=visit.kind, scatter_share=choices.scatter_share)
-            # A depth coarser than the finest is among the finer one's samples and takes no ring, as a level
-            # among a finer one's does (distributed._first_halo): at depth 0 it would double the halo every
-            # tile reads. A tile read reads the widest halo, so that it serves every depth; each decides within
-            # its own.
-            halos = [tiles.first_halo(radii[d], spacing, dataclasses.replace(visit, scale=radii[d]),
-                                      ring=None if d == depths - 1 else False) for d in range(depths)]
+            # Each depth's halo (tiles.level_halo: the finest among every point, the coarser ones among a finer
+            # one's samples); a tile read reads the widest, so that it serves every depth.
+            halos = [tiles.level_halo(radii[d], spacing, dataclasses.replace(visit, scale=radii[d]),
+                                      among_all=d == depths - 1) for d in range(depths)]
         where = {}
         for d in reversed(range(depths)):  # finest first, each among the finer one's samples
             job = dataclasses.replace(job, radius=radii[d], order=dataclasses.replace(visit, scale=radii[d]),

@@ -499,16 +499,10 @@ def _count_search(client, job: Job, boxes, target: int, tolerance: float, max_ru
 
 
 def _run_job(job: Job, radius: float, read_halo: float, spacing: float) -> Job:
-    """`job` for a run of `radius`: it decides each tile within the halo of its radius (_first_halo), and a tile
-    read reads at least `read_halo` (the job's coarsest run's)."""
-    halo = _first_halo(job, radius, spacing)
+    """`job` for a run of `radius`: it decides each tile within the halo of its radius (tiles.level_halo), and a
+    tile read reads at least `read_halo` (the job's coarsest run's)."""
+    halo = tiles.level_halo(radius, spacing, job.order, among_all=job.within is None)
     return dataclasses.replace(job, radius=radius, halo=halo, read_halo=max(halo, read_halo))
-
-
-def _first_halo(job: Job, radius: float, spacing: float) -> float:
-    """tiles.first_halo of a run of `job` at `radius`: without the ring among a finer level's samples, few of
-    which are left open at the seams (the ring of the coarsest level would set the halo every tile reads)."""
-    return tiles.first_halo(radius, spacing, job.order, None if job.within is None else False)
 
 
 def _pilot_radius(client, job: Job, boxes, target: int, tolerance: float, pool: int, guess: float, read_halo: float,
@@ -711,19 +705,19 @@ def _levels(client, srcs, cells, cloud, boxes, targets, folders, size, seed, cho
     pool, made = total, []
     diagonal = _core_diagonal(client, cells, cloud, total) if any(kind == "count" for kind, _ in targets) else 0.0
     order = choices.order
-    # A tile read reads the widest halo the levels likely need (the finest's with its ring, the coarser ones'
-    # among its samples without: _first_halo), so that it (its points and their domain, kept on its worker)
-    # serves every level and every step of the count searches; each run decides within its own.
+    # A tile read reads the widest halo the levels likely need (tiles.level_halo: the finest among every point,
+    # the coarser ones among its samples), so that it (its points and their domain, kept on its worker) serves
+    # every level and every step of the count searches; each run decides within its own.
     reaches = [value if kind == "radius" else SEARCH_REACH * _core.RadiusSearch.first_radius(diagonal, value)
                for kind, value in targets]
-    read_halo = max(tiles.first_halo(r, spacing, dataclasses.replace(order, scale=r), None if k == 0 else False)
+    read_halo = max(tiles.level_halo(r, spacing, dataclasses.replace(order, scale=r), among_all=k == 0)
                     for k, r in enumerate(reaches))
     where = {}
     for k, ((kind, value), folder) in enumerate(zip(targets, folders)):
         search = {}
         if kind == "radius":
-            job = dataclasses.replace(job, radius=value, order=dataclasses.replace(order, scale=value))
-            job = _run_job(job, value, read_halo, spacing)
+            job = _run_job(dataclasses.replace(job, order=dataclasses.replace(order, scale=value)), value, read_halo,
+                           spacing)
             run = poisson_run(client, job, boxes, ticks, where)
         else:
             first = _core.RadiusSearch.first_radius(diagonal, value)

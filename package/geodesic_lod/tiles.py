@@ -238,6 +238,13 @@ def first_halo(radius: float, spacing: float, order: Order = RANDOM, ring: Optio
     return radius + 12 * spacing + (2 * radius if ring else 0.0) + (max(order.scale, radius) if order.keyed else 0.0)
 
 
+def level_halo(radius: float, spacing: float, order: Order, among_all: bool) -> float:
+    """first_halo of a run among every point (with the ring where disks are wide), or among a finer level's
+    samples (a level of nested ones, a COPC file's depth but the finest): without it, as few of those are left
+    open at the seams, and the coarsest level's ring would set the halo every tile reads."""
+    return first_halo(radius, spacing, order, None if among_all else False)
+
+
 @dataclass
 class TileRead:
     """What a tile read, kept for every run on the same points: its points within `halo` of its box (in
